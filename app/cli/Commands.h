@@ -1,0 +1,14 @@
+#pragma once
+/// @file Commands.h
+/// Registration functions of scanpick-cli's subcommands, one per source file.
+
+#include <CLI/CLI.hpp>
+
+namespace scanpick::cli {
+void registerSynthCommands(CLI::App& app);     ///< synth, synth-suite (SynthCommand.cpp)
+void registerEvalCommand(CLI::App& app);       ///< eval (EvalCommand.cpp)
+void registerTeachCommand(CLI::App& app);      ///< teach (TeachCommand.cpp)
+void registerRecognizeCommand(CLI::App& app);  ///< recognize (RecognizeCommand.cpp)
+void registerDeviceCommands(CLI::App& app);    ///< devices, capture (DeviceCommands.cpp)
+void registerDemoCommand(CLI::App& app);       ///< demo: the README's main job (DemoCommand.cpp)
+} // namespace scanpick::cli

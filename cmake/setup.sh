@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# scanpick set-up on Debian 12: installs what is missing, builds (Release) and then
+#   demo  runs the main job on the bundled demo (default)
+#   test  runs every test (ctest; GUI tests in a real X server under xvfb-run)
+#   deps  only installs the packages
+# Environment: BUILD_DIR (default: build), JOBS (default: number of cores), CI=true adds -Werror.
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+mode="${1:-demo}"
+build_dir="${BUILD_DIR:-$here/build}"
+jobs="${JOBS:-$(nproc)}"
+
+install_packages() {
+  local wanted missing=()
+  mapfile -t wanted < <(sed -e 's/#.*//' -e '/^[[:space:]]*$/d' "$here/cmake/packages.txt")
+  for p in "${wanted[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "scanpick: installing ${#missing[@]} missing packages: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+build() {
+  local werror=OFF
+  [ "${CI:-}" = "true" ] && werror=ON
+  cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSCANPICK_WERROR="$werror" >/dev/null
+  cmake --build "$build_dir" --parallel "$jobs"
+}
+
+case "$mode" in
+  deps) install_packages ;;
+  demo)
+    install_packages
+    build
+    "$build_dir/bin/scanpick-cli" demo --out "${DEMO_OUT:-$here/demo-output}" ;;
+  test)
+    install_packages
+    build
+    cd "$build_dir"
+    xvfb-run -a -s "-screen 0 1600x1200x24" ctest --output-on-failure --timeout 900 -j "$jobs" ;;
+  *) echo "usage: cmake/setup.sh [demo|test|deps]" >&2; exit 2 ;;
+esac

@@ -1,0 +1,36 @@
+#pragma once
+/// @file CloudIo.h
+/// Reading and writing point clouds (PCD and PLY), converting units to millimetres.
+
+#include "core/cloud/PointCloud.h"
+#include "core/cloud/Units.h"
+
+#include <filesystem>
+#include <string>
+
+namespace scanpick::core {
+
+/// What loadCloud found besides the points.
+struct LoadedCloud {
+  PointCloud cloud;           ///< in millimetres, organization kept
+  std::string units_warning;  ///< unitsSanityWarning() text, empty when the extent looks right
+};
+
+/// Loads a .pcd or .ply file whose coordinates are in `units`, converting to millimetres.
+/// Reads XYZ and, when present, normals (normal_x/y/z) and colour (rgb/rgba).
+/// Throws Error for a missing, unreadable, truncated or empty file, an unknown extension, or a
+/// cloud with no valid point.
+LoadedCloud loadCloud(const std::filesystem::path& path, LengthUnit units);
+
+/// Writes a binary PCD in millimetres, keeping the organization (width x height) and NaNs.
+/// Writes normals and colours when present. Atomic: the destination is replaced only when
+/// complete. Throws Error on failure.
+void saveCloudPcd(const std::filesystem::path& path, const PointCloud& cloud_mm);
+
+/// Writes a binary little-endian PLY (vertices, normals and colours when present), atomically.
+void saveCloudPly(const std::filesystem::path& path, const PointCloud& cloud_mm);
+
+/// Saves by extension (.pcd or .ply).
+void saveCloud(const std::filesystem::path& path, const PointCloud& cloud_mm);
+
+} // namespace scanpick::core

@@ -1,0 +1,64 @@
+#include "core/common/AtomicFile.h"
+
+#include "core/common/Error.h"
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace scanpick::core {
+namespace fs = std::filesystem;
+
+namespace {
+fs::path temporaryPathFor(const fs::path& path) {
+  static std::atomic<unsigned> counter{0};
+  fs::path tmp = path;
+  tmp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  return tmp;
+}
+} // namespace
+
+void writeFileAtomicWith(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+  if (path.has_parent_path() && !fs::is_directory(path.parent_path()))
+    throw Error("cannot write '" + path.string() + "': folder '" + path.parent_path().string() +
+                "' does not exist");
+  const fs::path tmp = temporaryPathFor(path);
+  try {
+    write(tmp);
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec)
+      throw Error("cannot write '" + path.string() + "': " + ec.message());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw;
+  }
+}
+
+void writeFileAtomic(const fs::path& path, std::string_view contents) {
+  writeFileAtomicWith(path, [&](const fs::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out)
+      throw Error("cannot write '" + path.string() + "': " + std::strerror(errno));
+    out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    out.flush();
+    if (!out)
+      throw Error("cannot write '" + path.string() + "': write failed (disk full?)");
+  });
+}
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw Error("cannot read '" + path.string() + "': " +
+                (fs::exists(path) ? std::string(std::strerror(errno)) : "no such file"));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+} // namespace scanpick::core

@@ -1,0 +1,24 @@
+#pragma once
+/// @file AtomicFile.h
+/// Atomic file writes: data go to a temporary file in the destination folder, which is renamed
+/// over the destination only when complete, so readers never see a partial file.
+
+#include <filesystem>
+#include <functional>
+#include <string_view>
+
+namespace scanpick::core {
+
+/// Writes `contents` to `path` atomically. Throws Error (with the path and the OS reason) on
+/// failure; the destination is then untouched and no temporary file is left.
+void writeFileAtomic(const std::filesystem::path& path, std::string_view contents);
+
+/// Calls `write(tmp_path)` to produce the file at a temporary path next to `path`, then renames it
+/// into place. If `write` throws, the temporary file is removed and the exception propagates.
+void writeFileAtomicWith(const std::filesystem::path& path,
+                         const std::function<void(const std::filesystem::path& tmp_path)>& write);
+
+/// Reads a whole file; throws Error if it is missing or unreadable.
+std::string readFile(const std::filesystem::path& path);
+
+} // namespace scanpick::core

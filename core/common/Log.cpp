@@ -1,0 +1,33 @@
+#include "core/common/Log.h"
+
+#include "core/common/Error.h"
+#include "core/common/Progress.h"
+
+#include <algorithm>
+#include <spdlog/sinks/stdout_color_sinks.h>
+
+namespace scanpick::core {
+
+std::shared_ptr<spdlog::logger> logger() {
+  static const std::shared_ptr<spdlog::logger> instance = [] {
+    auto sink = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
+    auto log = std::make_shared<spdlog::logger>("scanpick", sink);
+    log->set_level(spdlog::level::info);
+    log->set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
+    return log;
+  }();
+  return instance;
+}
+
+void reportProgress(const ProgressFn& progress, double fraction) {
+  if (progress && !progress(std::clamp(fraction, 0.0, 1.0)))
+    throw Cancelled();
+}
+
+ProgressFn subProgress(const ProgressFn& parent, double begin, double end) {
+  if (!parent)
+    return {};
+  return [parent, begin, end](double f) { return parent(begin + (end - begin) * f); };
+}
+
+} // namespace scanpick::core

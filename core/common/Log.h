@@ -1,0 +1,13 @@
+#pragma once
+/// @file Log.h
+/// The core's logger. Front ends add sinks (the GUI's log dock, the CLI's stderr) to it.
+
+#include <memory>
+#include <spdlog/logger.h>
+
+namespace scanpick::core {
+
+/// The shared "scanpick" logger (created on first use, stderr sink, level info).
+std::shared_ptr<spdlog::logger> logger();
+
+} // namespace scanpick::core

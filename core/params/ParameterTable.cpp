@@ -1,0 +1,236 @@
+#include "core/params/ParameterTable.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace scanpick::core {
+namespace {
+
+/// Builds get/set for a member `field` of the stage struct `group` of RecognitionParams.
+template <typename Group, typename Field>
+ParamInfo entry(Group RecognitionParams::*group, Field Group::*field, ParamInfo info) {
+  info.get = [group, field](const RecognitionParams& p) {
+    return static_cast<double>((p.*group).*field);
+  };
+  const double lo = info.min_value, hi = info.max_value;
+  info.set = [group, field, lo, hi](RecognitionParams& p, double v) {
+    v = std::clamp(v, lo, hi);
+    if constexpr (std::is_enum_v<Field>)
+      (p.*group).*field = static_cast<Field>(static_cast<int>(std::lround(v)));
+    else if constexpr (std::is_same_v<Field, bool>)
+      (p.*group).*field = v >= 0.5;
+    else if constexpr (std::is_integral_v<Field>)
+      (p.*group).*field = static_cast<Field>(std::llround(v));
+    else
+      (p.*group).*field = static_cast<Field>(v);
+  };
+  return info;
+}
+
+ParamInfo make(std::string key, std::string label, std::string unit, Stage stage, ParamType type,
+               double lo, double hi, double step, std::string description,
+               std::vector<std::string> choices = {}) {
+  ParamInfo info;
+  info.key = std::move(key);
+  info.label = std::move(label);
+  info.unit = std::move(unit);
+  info.description = std::move(description);
+  info.stage = stage;
+  info.type = type;
+  info.min_value = lo;
+  info.max_value = hi;
+  info.step = step;
+  info.choices = std::move(choices);
+  return info;
+}
+
+using RP = RecognitionParams;
+constexpr auto D = ParamType::Double;
+constexpr auto I = ParamType::Int;
+constexpr auto B = ParamType::Bool;
+constexpr auto E = ParamType::Enum;
+
+std::vector<ParamInfo> buildTable() {
+  std::vector<ParamInfo> t;
+  // --- Scene preprocessing (§3.3) ---
+  t.push_back(entry(&RP::floor, &FloorParams::enabled,
+      make("floor.enabled", "Remove floor", "", Stage::Preprocess, B, 0, 1, 1,
+           "Remove the dominant planes (bin floor, table) with RANSAC before anything else.")));
+  t.push_back(entry(&RP::floor, &FloorParams::distance_mm,
+      make("floor.distance_mm", "Floor distance", "mm", Stage::Preprocess, D, 0.05, 50, 0.1,
+           "Points closer than this to the fitted plane are floor and are removed.")));
+  t.push_back(entry(&RP::floor, &FloorParams::max_planes,
+      make("floor.max_planes", "Planes to remove", "", Stage::Preprocess, I, 0, 6, 1,
+           "How many dominant planes to remove (1: floor; 5: floor and four bin walls).")));
+  t.push_back(entry(&RP::floor, &FloorParams::min_plane_fraction,
+      make("floor.min_plane_fraction", "Min plane share", "", Stage::Preprocess, D, 0.0, 1.0, 0.01,
+           "A plane is removed only if it holds at least this fraction of the scene's points.")));
+  t.push_back(entry(&RP::downsample, &DownsampleParams::voxel_mm,
+      make("downsample.voxel_mm", "Voxel size", "mm", Stage::Preprocess, D, 0, 20, 0.1,
+           "Voxel-grid downsampling of the scene before keypoints; 0 keeps every point.")));
+  // --- Object count and clustering (§3.3, Algorithm 7, k-means) ---
+  t.push_back(entry(&RP::clustering, &ClusteringParams::enabled,
+      make("clustering.enabled", "Split into objects", "", Stage::Clustering, B, 0, 1, 1,
+           "Count the objects and split the scene with k-means; off treats the scene as one "
+           "object.")));
+  t.push_back(entry(&RP::clustering, &ClusteringParams::count_radius_mm,
+      make("clustering.count_radius_mm", "Count radius r", "mm", Stage::Clustering, D, 0.1, 50, 0.1,
+           "Single-linkage distance r on the scene projected along the line to the farther "
+           "source (Algorithm 7); the thesis suggests 1-1.5 mm for PhoXi.")));
+  t.push_back(entry(&RP::clustering, &ClusteringParams::count_min_points,
+      make("clustering.count_min_points", "Min object size", "points", Stage::Clustering, I, 1,
+           1000000, 10,
+           "Projected clusters with at least this many points are counted as objects "
+           "(min_cluster_size of Algorithm 7).")));
+  t.push_back(entry(&RP::clustering, &ClusteringParams::init,
+      make("clustering.init", "k-means seeding", "", Stage::Clustering, E, 0, 1, 1,
+           "Initial centres of Lloyd's k-means: farthest-first traversal (the thesis's choice, "
+           "deterministic) or k-means++ (seeded).",
+           {"farthest_first", "kmeans++"})));
+  t.push_back(entry(&RP::clustering, &ClusteringParams::max_iterations,
+      make("clustering.max_iterations", "k-means iterations", "", Stage::Clustering, I, 1, 1000, 1,
+           "Upper bound on Lloyd iterations; it stops earlier when the objective stops "
+           "decreasing.")));
+  t.push_back(entry(&RP::clustering, &ClusteringParams::min_cluster_points,
+      make("clustering.min_cluster_points", "Min cluster size", "points", Stage::Clustering, I, 1,
+           100000, 1,
+           "k-means clusters smaller than this are outliers: their points are removed and "
+           "k-means is re-run (the thesis uses 3).")));
+  // --- First-level keypoints (§3.1) ---
+  t.push_back(entry(&RP::keypoints, &KeypointParams::method,
+      make("keypoints.method", "Keypoint method", "", Stage::Keypoints, E, 0, 2, 1,
+           "Neighbourhood analysis (edges, Algorithm 2), normals gradient analysis (curvature "
+           "peaks, Algorithm 1), or both together.",
+           {"neighbourhood", "normals_gradient", "both"})));
+  t.push_back(entry(&RP::keypoints, &KeypointParams::neighbourhood_radius_mm,
+      make("keypoints.neighbourhood_radius_mm", "Neighbourhood radius Δr", "mm", Stage::Keypoints,
+           D, 0.1, 100, 0.1, "Radius of the neighbourhood whose centroid is examined.")));
+  t.push_back(entry(&RP::keypoints, &KeypointParams::position_range_mm,
+      make("keypoints.position_range_mm", "Neig. position range Δp", "mm", Stage::Keypoints, D, -1,
+           50, 0.05,
+           "A point is an edge keypoint when its neighbourhood centroid is at least this far "
+           "away; a negative value keeps every point (the thesis's ideal test uses -1).")));
+  t.push_back(entry(&RP::keypoints, &KeypointParams::gradient_sensitivity_rad,
+      make("keypoints.gradient_sensitivity_rad", "Gradient sensitivity s", "rad", Stage::Keypoints,
+           D, 0.0, 3.14, 0.01,
+           "Normals gradient analysis: a point whose neighbours' normals all turn less than s "
+           "is in a flat region and yields no keypoint.")));
+  t.push_back(entry(&RP::keypoints, &KeypointParams::gradient_neighbours,
+      make("keypoints.gradient_neighbours", "Gradient neighbours n", "points", Stage::Keypoints, I,
+           3, 200, 1, "Normals gradient analysis: neighbours examined at each step of the walk.")));
+  t.push_back(entry(&RP::keypoints, &KeypointParams::normal_radius_mm,
+      make("keypoints.normal_radius_mm", "Normal radius", "mm", Stage::Keypoints, D, 0.1, 100, 0.1,
+           "Radius of the neighbourhood used to estimate surface normals.")));
+  // --- Second-level features (§3.1-3.2) ---
+  t.push_back(entry(&RP::features, &FeatureParams::estimator,
+      make("features.estimator", "Estimator", "", Stage::Features, E, 0, 2, 1,
+           "Sample-consensus estimator for lines and circles; the thesis keeps RANSAC, which "
+           "finds more features than MLESAC and PROSAC.",
+           {"ransac", "mlesac", "prosac"})));
+  t.push_back(entry(&RP::features, &FeatureParams::ransac_size,
+      make("features.ransac_size", "Ransac size", "points", Stage::Features, I, 2, 100000, 1,
+           "Minimum inliers of an accepted line or circle.")));
+  t.push_back(entry(&RP::features, &FeatureParams::line_threshold_mm,
+      make("features.line_threshold_mm", "Ransac threshold (lines)", "mm", Stage::Features, D,
+           0.0001, 50, 0.05, "Distance within which a keypoint is an inlier of a line.")));
+  t.push_back(entry(&RP::features, &FeatureParams::circle_threshold_mm,
+      make("features.circle_threshold_mm", "Ransac threshold (circles)", "mm", Stage::Features, D,
+           0.0001, 50, 0.05, "Distance within which a keypoint is an inlier of a circle.")));
+  t.push_back(entry(&RP::features, &FeatureParams::max_iterations,
+      make("features.max_iterations", "Ransac trials", "", Stage::Features, I, 10, 100000, 10,
+           "Random samples drawn per line or circle search.")));
+  t.push_back(entry(&RP::features, &FeatureParams::max_features,
+      make("features.max_features", "Max features", "", Stage::Features, I, 1, 10000, 1,
+           "Stop extracting after this many lines and circles per cloud.")));
+  t.push_back(entry(&RP::features, &FeatureParams::min_circle_radius_mm,
+      make("features.min_circle_radius_mm", "Min circle radius", "mm", Stage::Features, D, 0, 1000,
+           0.5, "Circles with a smaller radius are rejected.")));
+  t.push_back(entry(&RP::features, &FeatureParams::max_circle_radius_mm,
+      make("features.max_circle_radius_mm", "Max circle radius", "mm", Stage::Features, D, 0, 5000,
+           1, "Circles with a larger radius are rejected.")));
+  t.push_back(entry(&RP::features, &FeatureParams::lines,
+      make("features.lines", "Find lines", "", Stage::Features, B, 0, 1, 1, "Search 3D lines.")));
+  t.push_back(entry(&RP::features, &FeatureParams::circles,
+      make("features.circles", "Find circles", "", Stage::Features, B, 0, 1, 1,
+           "Search 3D circles.")));
+  // --- Feature matching (§3.4) ---
+  t.push_back(entry(&RP::matching, &MatchingParams::length_tolerance_mm,
+      make("matching.length_tolerance_mm", "Matching length Δl", "mm", Stage::Matching, D, 0, 500,
+           0.5, "Two lines may match when their lengths differ by at most this.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::radius_tolerance_mm,
+      make("matching.radius_tolerance_mm", "Matching radius size", "mm", Stage::Matching, D, 0, 500,
+           0.5, "Two circles may match when their radii differ by at most this.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::position_tolerance_mm,
+      make("matching.position_tolerance_mm", "Matching position Δp", "mm", Stage::Matching, D, 0.01,
+           200, 0.1,
+           "Radius around the predicted position (on the roll toroid, and after the transform "
+           "when scoring) within which a scene feature is accepted.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::orientation_tolerance_rad,
+      make("matching.orientation_tolerance_rad", "Matching orientation Δo", "rad", Stage::Matching,
+           D, 0.001, 3.14, 0.01,
+           "Largest angle between predicted and found feature directions (line axis or circle "
+           "normal).")));
+  t.push_back(entry(&RP::matching, &MatchingParams::roll_step_deg,
+      make("matching.roll_step_deg", "Roll step", "deg", Stage::Matching, D, 0.1, 90, 0.5,
+           "Angular step of the search around T1's axis (the toroid of Figure 3.5).")));
+  t.push_back(entry(&RP::matching, &MatchingParams::score_threshold,
+      make("matching.score_threshold", "Score", "", Stage::Matching, D, 0, 1, 0.01,
+           "Detections whose share of confirmed model features is below this are rejected.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::max_detections,
+      make("matching.max_detections", "Max detections", "", Stage::Matching, I, 0, 1000, 1,
+           "Report at most this many detections, best first; 0 = all.")));
+  // --- Refinement (beyond the thesis) ---
+  t.push_back(entry(&RP::refine, &RefineParams::enabled,
+      make("refine.enabled", "ICP refinement", "", Stage::Refine, B, 0, 1, 1,
+           "Refine each detection's pose with ICP against the scene points.")));
+  t.push_back(entry(&RP::refine, &RefineParams::max_iterations,
+      make("refine.max_iterations", "ICP iterations", "", Stage::Refine, I, 1, 500, 1,
+           "Upper bound on ICP iterations.")));
+  t.push_back(entry(&RP::refine, &RefineParams::max_correspondence_mm,
+      make("refine.max_correspondence_mm", "ICP distance", "mm", Stage::Refine, D, 0.01, 100, 0.1,
+           "Model-scene point pairs farther apart than this are ignored by ICP.")));
+  // --- Seed ---
+  ParamInfo seed = make("seed", "Random seed", "", Stage::Clustering, I, 0, 2147483647, 1,
+                        "Seed of every random choice; the same input and seed give the same "
+                        "output.");
+  seed.get = [](const RP& p) { return static_cast<double>(p.seed); };
+  seed.set = [](RP& p, double v) { p.seed = static_cast<std::uint64_t>(std::clamp(v, 0.0, 2147483647.0)); };
+  t.push_back(std::move(seed));
+  return t;
+}
+
+} // namespace
+
+std::span<const ParamInfo> parameterTable() {
+  static const std::vector<ParamInfo> table = buildTable();
+  return table;
+}
+
+const ParamInfo* findParameter(std::string_view key) {
+  for (const auto& info : parameterTable())
+    if (info.key == key)
+      return &info;
+  return nullptr;
+}
+
+std::string stageName(Stage stage) {
+  switch (stage) {
+  case Stage::Preprocess: return "Scene preprocessing";
+  case Stage::Clustering: return "Object count and clustering";
+  case Stage::Keypoints: return "First-level keypoints";
+  case Stage::Features: return "Second-level features";
+  case Stage::Matching: return "Feature matching";
+  case Stage::Refine: return "Refinement";
+  }
+  return "?";
+}
+
+std::optional<Stage> firstChangedStage(const RecognitionParams& a, const RecognitionParams& b) {
+  std::optional<Stage> first;
+  for (const auto& info : parameterTable())
+    if (info.get(a) != info.get(b) && (!first || info.stage < *first))
+      first = info.stage;
+  return first;
+}
+
+} // namespace scanpick::core

@@ -1,0 +1,52 @@
+#pragma once
+/// @file ParameterTable.h
+/// The one metadata table of recognition parameters: key, type, default, range, step, unit and a
+/// description in the thesis's terms. The GUI builds its editors from it; presets use its keys.
+
+#include "core/params/Parameters.h"
+
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace scanpick::core {
+
+/// Pipeline stages, in execution order. Changing a parameter invalidates its stage and later ones.
+enum class Stage { Preprocess, Clustering, Keypoints, Features, Matching, Refine };
+
+/// Type of a parameter's value (all are exchanged as double; Bool is 0/1, Enum is the index).
+enum class ParamType { Double, Int, Bool, Enum };
+
+/// Metadata of one parameter.
+struct ParamInfo {
+  std::string key;          ///< dotted key, e.g. "keypoints.position_range_mm"
+  std::string label;        ///< short name as in the thesis, e.g. "Neig. position range Δp"
+  std::string unit;         ///< "mm", "rad", "deg", "points", "" ...
+  std::string description;  ///< what it does, for tooltips and docs
+  Stage stage;
+  ParamType type;
+  double min_value;
+  double max_value;
+  double step;
+  std::vector<std::string> choices;  ///< Enum only: names by index
+  std::function<double(const RecognitionParams&)> get;
+  std::function<void(RecognitionParams&, double)> set;  ///< clamps to [min, max]
+};
+
+/// All parameters, grouped by stage in pipeline order.
+std::span<const ParamInfo> parameterTable();
+
+/// The entry for `key`, or nullptr.
+const ParamInfo* findParameter(std::string_view key);
+
+/// Human-readable stage name ("First-level keypoints", ...).
+std::string stageName(Stage stage);
+
+/// The earliest stage whose parameters differ between `a` and `b`, or nullopt when all are equal.
+/// A changed seed counts from Stage::Clustering (the first stage that draws random numbers).
+std::optional<Stage> firstChangedStage(const RecognitionParams& a, const RecognitionParams& b);
+
+} // namespace scanpick::core

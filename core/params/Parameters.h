@@ -1,0 +1,98 @@
+#pragma once
+/// @file Parameters.h
+/// One plain value struct per recognition stage, grouped in RecognitionParams. Names follow the
+/// thesis (chapter 3, tables 5.1-5.8); units are millimetres, radians and point counts.
+/// Every field is described once, in the metadata table of ParameterTable.h, from which the GUI
+/// builds its editors and presets are read and written.
+
+#include <cstdint>
+
+namespace scanpick::core {
+
+/// Scene preprocessing, §3.3: floor/plane removal by RANSAC.
+struct FloorParams {
+  bool enabled = true;               ///< remove the largest planes (bin floor, table) first
+  double distance_mm = 2.0;          ///< RANSAC plane inlier distance
+  int max_planes = 1;                ///< how many dominant planes to remove
+  double min_plane_fraction = 0.15;  ///< a plane must hold this fraction of the points to go
+  bool operator==(const FloorParams&) const = default;
+};
+
+/// Optional voxel downsampling before keypoints (0 = off). Not in the thesis: keeps the cost of
+/// high-resolution PhoXi scans bounded.
+struct DownsampleParams {
+  double voxel_mm = 0.0;
+  bool operator==(const DownsampleParams&) const = default;
+};
+
+/// Object count (Algorithm 7) and centre-based clustering (k-means, §3.3).
+struct ClusteringParams {
+  bool enabled = true;                ///< off: the whole scene is one cluster
+  double count_radius_mm = 1.5;       ///< r: single-linkage distance on the 2D projection
+  int count_min_points = 1000;        ///< min_cluster_size: clusters counted as objects
+  enum class Init { FarthestFirst, KMeansPlusPlus } init = Init::FarthestFirst;
+  int max_iterations = 100;           ///< Lloyd iterations at most
+  int min_cluster_points = 3;         ///< smaller k-means clusters are removed and k-means re-run
+  bool operator==(const ClusteringParams&) const = default;
+};
+
+/// First-level keypoints, §3.1 (Algorithms 1 and 2).
+struct KeypointParams {
+  enum class Method { Neighbourhood, NormalsGradient, Both } method = Method::Neighbourhood;
+  double neighbourhood_radius_mm = 3.0;   ///< Δr: neighbourhood search radius
+  double position_range_mm = 0.6;         ///< Δp: centroid offset marking an edge; < 0 keeps all
+  double gradient_sensitivity_rad = 0.35; ///< s: flat-region tolerance of Algorithm 1
+  int gradient_neighbours = 12;           ///< n: neighbours examined per step of Algorithm 1
+  double normal_radius_mm = 3.0;          ///< radius for normal estimation
+  bool operator==(const KeypointParams&) const = default;
+};
+
+/// Second-level features, §3.1-3.2: repeated RANSAC lines and circles among keypoints.
+struct FeatureParams {
+  enum class Estimator { Ransac, Mlesac, Prosac } estimator = Estimator::Ransac;
+  int ransac_size = 50;                 ///< minimum inliers of a line or circle ("Ransac size")
+  double line_threshold_mm = 5.0;       ///< line inlier tolerance ("Ransac threshold")
+  double circle_threshold_mm = 5.0;     ///< circle inlier tolerance ("Ransac threshold")
+  int max_iterations = 1000;            ///< RANSAC trials per search
+  int max_features = 200;               ///< stop after this many lines + circles
+  double min_circle_radius_mm = 1.0;    ///< circles outside [min, max] are not accepted
+  double max_circle_radius_mm = 200.0;
+  bool lines = true;                    ///< search lines
+  bool circles = true;                  ///< search circles
+  bool operator==(const FeatureParams&) const = default;
+};
+
+/// Feature matching, §3.4 (Algorithm 8).
+struct MatchingParams {
+  double length_tolerance_mm = 60.0;     ///< Δl for lines ("Matching length")
+  double radius_tolerance_mm = 60.0;     ///< Δl for circles ("Matching radius size")
+  double position_tolerance_mm = 20.0;   ///< Δp ("Matching position")
+  double orientation_tolerance_rad = 0.25; ///< Δo ("Matching orientation")
+  double roll_step_deg = 5.0;            ///< angular step of the roll (toroid) search
+  double score_threshold = 0.1;          ///< detections scoring below are rejected ("Score")
+  int max_detections = 0;                ///< 0 = no limit
+  bool operator==(const MatchingParams&) const = default;
+};
+
+/// Pose refinement after matching (not in the thesis, which names ICP as future work).
+struct RefineParams {
+  bool enabled = false;                  ///< run ICP on each detection
+  int max_iterations = 30;
+  double max_correspondence_mm = 5.0;
+  bool operator==(const RefineParams&) const = default;
+};
+
+/// All recognition parameters. Same input + same parameters (seed included) = same output.
+struct RecognitionParams {
+  FloorParams floor;
+  DownsampleParams downsample;
+  ClusteringParams clustering;
+  KeypointParams keypoints;
+  FeatureParams features;
+  MatchingParams matching;
+  RefineParams refine;
+  std::uint64_t seed = 42;  ///< seed of every random choice (RANSAC samples, k-means++)
+  bool operator==(const RecognitionParams&) const = default;
+};
+
+} // namespace scanpick::core

@@ -1,0 +1,94 @@
+#include "core/params/ParamsJson.h"
+
+#include "core/common/AtomicFile.h"
+#include "core/common/Error.h"
+#include "core/params/ParameterTable.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace scanpick::core {
+
+namespace {
+constexpr int kPresetVersion = 1;
+}
+
+nlohmann::json paramsToJson(const RecognitionParams& params) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& info : parameterTable()) {
+    const double v = info.get(params);
+    switch (info.type) {
+    case ParamType::Bool: out[info.key] = v != 0.0; break;
+    case ParamType::Int: out[info.key] = static_cast<long long>(std::llround(v)); break;
+    case ParamType::Enum: out[info.key] = info.choices.at(static_cast<std::size_t>(v)); break;
+    case ParamType::Double: out[info.key] = v; break;
+    }
+  }
+  return out;
+}
+
+RecognitionParams paramsFromJson(const nlohmann::json& object, RecognitionParams params) {
+  if (!object.is_object())
+    throw Error("parameters must be a JSON object of {\"key\": value}");
+  for (const auto& [key, value] : object.items()) {
+    const ParamInfo* info = findParameter(key);
+    if (!info)
+      throw Error("unknown parameter '" + key + "' (see docs/parameters.md for the keys)");
+    double v = 0.0;
+    if (info->type == ParamType::Enum && value.is_string()) {
+      const auto it = std::find(info->choices.begin(), info->choices.end(), value.get<std::string>());
+      if (it == info->choices.end())
+        throw Error("parameter '" + key + "': unknown choice '" + value.get<std::string>() + "'");
+      v = static_cast<double>(it - info->choices.begin());
+    } else if (value.is_boolean()) {
+      v = value.get<bool>() ? 1.0 : 0.0;
+    } else if (value.is_number()) {
+      v = value.get<double>();
+    } else {
+      throw Error("parameter '" + key + "': expected a number, got " + value.dump());
+    }
+    if (!std::isfinite(v) || v < info->min_value || v > info->max_value)
+      throw Error("parameter '" + key + "' = " + value.dump() + " is outside [" +
+                  std::to_string(info->min_value) + ", " + std::to_string(info->max_value) + "]");
+    info->set(params, v);
+  }
+  return params;
+}
+
+Preset loadPreset(const std::filesystem::path& path) {
+  const std::string text = readFile(path);
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("preset '" + path.string() + "' is not valid JSON: " + e.what());
+  }
+  if (!doc.is_object() || doc.value("format", "") != "scanpick-preset")
+    throw Error("'" + path.string() + "' is not a scanpick preset (missing \"format\": "
+                "\"scanpick-preset\")");
+  const int version = doc.value("version", 0);
+  if (version > kPresetVersion)
+    throw Error("preset '" + path.string() + "' has version " + std::to_string(version) +
+                "; this scanpick reads up to version " + std::to_string(kPresetVersion) +
+                ": update scanpick");
+  Preset preset;
+  preset.name = doc.value("name", path.stem().string());
+  preset.description = doc.value("description", "");
+  try {
+    preset.params = paramsFromJson(doc.value("params", nlohmann::json::object()));
+  } catch (const Error& e) {
+    throw Error("preset '" + path.string() + "': " + e.what());
+  }
+  return preset;
+}
+
+void savePreset(const std::filesystem::path& path, const Preset& preset) {
+  nlohmann::json doc{{"format", "scanpick-preset"},
+                     {"version", kPresetVersion},
+                     {"name", preset.name},
+                     {"description", preset.description},
+                     {"params", paramsToJson(preset.params)}};
+  writeFileAtomic(path, doc.dump(2) + "\n");
+}
+
+} // namespace scanpick::core

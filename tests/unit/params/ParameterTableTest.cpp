@@ -1,0 +1,64 @@
+#include "core/common/AtomicFile.h"
+#include "core/common/Error.h"
+#include "core/params/ParameterTable.h"
+#include "core/params/ParamsJson.h"
+#include "tests/support/TempDir.h"
+
+#include <gtest/gtest.h>
+#include <set>
+
+using namespace scanpick;
+
+TEST(ParameterTable, KeysAreUniqueAndDefaultsLieInRange) {
+  const core::RecognitionParams defaults;
+  std::set<std::string> keys;
+  for (const auto& info : core::parameterTable()) {
+    EXPECT_TRUE(keys.insert(info.key).second) << "duplicate key " << info.key;
+    const double v = info.get(defaults);
+    EXPECT_GE(v, info.min_value) << info.key;
+    EXPECT_LE(v, info.max_value) << info.key;
+    EXPECT_FALSE(info.description.empty()) << info.key;
+    if (info.type == core::ParamType::Enum) {
+      EXPECT_EQ(info.choices.size(), static_cast<std::size_t>(info.max_value) + 1) << info.key;
+    }
+  }
+  EXPECT_GE(keys.size(), 30u);
+}
+
+TEST(ParameterTable, SetClampsAndChangedStageIsReported) {
+  core::RecognitionParams p;
+  const auto* info = core::findParameter("matching.position_tolerance_mm");
+  ASSERT_NE(info, nullptr);
+  info->set(p, 7.5);
+  EXPECT_DOUBLE_EQ(p.matching.position_tolerance_mm, 7.5);
+  info->set(p, 1e9);
+  EXPECT_DOUBLE_EQ(p.matching.position_tolerance_mm, info->max_value);
+  EXPECT_EQ(core::firstChangedStage(p, core::RecognitionParams{}), core::Stage::Matching);
+  p.keypoints.position_range_mm = 1.0;
+  EXPECT_EQ(core::firstChangedStage(p, core::RecognitionParams{}), core::Stage::Keypoints);
+  EXPECT_FALSE(core::firstChangedStage(core::RecognitionParams{}, core::RecognitionParams{}));
+}
+
+TEST(ParamsJson, PresetRoundTripAndErrors) {
+  test::TempDir dir;
+  core::Preset preset{"cup", "thesis table 5.4", {}};
+  preset.params.features.estimator = core::FeatureParams::Estimator::Prosac;
+  preset.params.features.ransac_size = 17;
+  core::savePreset(dir / "cup.json", preset);
+  const auto loaded = core::loadPreset(dir / "cup.json");
+  EXPECT_EQ(loaded.params, preset.params);
+  EXPECT_EQ(loaded.name, "cup");
+
+  EXPECT_THROW(core::paramsFromJson(nlohmann::json{{"no.such.key", 1}}), core::Error);
+  EXPECT_THROW(core::paramsFromJson(nlohmann::json{{"features.ransac_size", -5}}), core::Error);
+  EXPECT_THROW(core::paramsFromJson(nlohmann::json{{"features.estimator", "magic"}}), core::Error);
+
+  core::writeFileAtomic(dir / "future.json",
+                        R"({"format":"scanpick-preset","version":99,"params":{}})");
+  try {
+    core::loadPreset(dir / "future.json");
+    FAIL();
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("update scanpick"), std::string::npos);
+  }
+}
