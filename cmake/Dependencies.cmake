@@ -28,7 +28,8 @@ unset(QT_NO_CREATE_VERSIONLESS_TARGETS)
 
 # Trap 1: Debian's PCLConfig.cmake adds VTK::GUISupportQt (a Qt5 module) to the interface of
 # several PCL targets. No PCL shared library links Qt, so it is dropped before Qt6 is found.
-foreach(component IN LISTS SCANPICK_PCL_COMPONENTS)
+# pcl_2d and pcl_surface come in as dependencies of pcl_features without being listed.
+foreach(component IN LISTS SCANPICK_PCL_COMPONENTS ITEMS 2d surface)
   if(TARGET pcl_${component})
     get_target_property(_libs pcl_${component} INTERFACE_LINK_LIBRARIES)
     if(_libs)

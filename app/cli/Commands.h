@@ -11,4 +11,5 @@ void registerTeachCommand(CLI::App& app);      ///< teach (TeachCommand.cpp)
 void registerRecognizeCommand(CLI::App& app);  ///< recognize (RecognizeCommand.cpp)
 void registerDeviceCommands(CLI::App& app);    ///< devices, capture (DeviceCommands.cpp)
 void registerDemoCommand(CLI::App& app);       ///< demo: the README's main job (DemoCommand.cpp)
+void registerParamsCommand(CLI::App& app);     ///< params: the parameter table (ParamsCommand.cpp)
 } // namespace scanpick::cli

@@ -27,6 +27,9 @@ int main(int argc, char** argv) {
 #ifdef SCANPICK_HAS_DEMOCOMMAND
   scanpick::cli::registerDemoCommand(app);
 #endif
+#ifdef SCANPICK_HAS_PARAMSCOMMAND
+  scanpick::cli::registerParamsCommand(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -96,6 +96,12 @@ std::vector<ParamInfo> buildTable() {
            100000, 1,
            "k-means clusters smaller than this are outliers: their points are removed and "
            "k-means is re-run (the thesis uses 3).")));
+  t.push_back(entry(&RP::clustering, &ClusteringParams::method,
+      make("clustering.method", "Split method", "", Stage::Clustering, E, 0, 1, 1,
+           "k-means with k = the object count (the thesis), or the projected clusters of the "
+           "count used directly as objects (keeps touching parts apart; small fragments join "
+           "the nearest object).",
+           {"kmeans", "projected_clusters"})));
   // --- First-level keypoints (§3.1) ---
   t.push_back(entry(&RP::keypoints, &KeypointParams::method,
       make("keypoints.method", "Keypoint method", "", Stage::Keypoints, E, 0, 2, 1,
@@ -153,6 +159,11 @@ std::vector<ParamInfo> buildTable() {
   t.push_back(entry(&RP::features, &FeatureParams::circles,
       make("features.circles", "Find circles", "", Stage::Features, B, 0, 1, 1,
            "Search 3D circles.")));
+  t.push_back(entry(&RP::features, &FeatureParams::run_gap_mm,
+      make("features.run_gap_mm", "Max inlier gap", "mm", Stage::Features, D, 0, 500, 0.5,
+           "A line's or circle's inliers are cut where neighbours along it are farther apart than "
+           "this and only the largest connected run is kept, so collinear edges of different "
+           "objects do not merge; 0 = automatic.")));
   // --- Feature matching (§3.4) ---
   t.push_back(entry(&RP::matching, &MatchingParams::length_tolerance_mm,
       make("matching.length_tolerance_mm", "Matching length Δl", "mm", Stage::Matching, D, 0, 500,
@@ -179,6 +190,11 @@ std::vector<ParamInfo> buildTable() {
   t.push_back(entry(&RP::matching, &MatchingParams::max_detections,
       make("matching.max_detections", "Max detections", "", Stage::Matching, I, 0, 1000, 1,
            "Report at most this many detections, best first; 0 = all.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::max_instances_per_cluster,
+      make("matching.max_instances_per_cluster", "Instances per object", "", Stage::Matching, I, 1,
+           50, 1,
+           "Searches per scene cluster: after a detection its features are removed and the "
+           "cluster is searched again, since clustering may merge touching parts.")));
   // --- Refinement (beyond the thesis) ---
   t.push_back(entry(&RP::refine, &RefineParams::enabled,
       make("refine.enabled", "ICP refinement", "", Stage::Refine, B, 0, 1, 1,
@@ -189,8 +205,29 @@ std::vector<ParamInfo> buildTable() {
   t.push_back(entry(&RP::refine, &RefineParams::max_correspondence_mm,
       make("refine.max_correspondence_mm", "ICP distance", "mm", Stage::Refine, D, 0.01, 100, 0.1,
            "Model-scene point pairs farther apart than this are ignored by ICP.")));
+  t.push_back(entry(&RP::refine, &RefineParams::min_correspondence_mm,
+      make("refine.min_correspondence_mm", "ICP final distance", "mm", Stage::Refine, D, 0.01, 100,
+           0.1,
+           "The pair distance shrinks from the ICP distance towards 3x the residual, but not "
+           "below this; about 5-10x the sensor noise (PhoXi 1 mm, Kinect 10 mm).")));
+  t.push_back(entry(&RP::refine, &RefineParams::inlier_distance_mm,
+      make("refine.inlier_distance_mm", "Inlier distance", "mm", Stage::Refine, D, 0.01, 100, 0.1,
+           "A visible model point with a scene point this close confirms the refined pose.")));
+  t.push_back(entry(&RP::refine, &RefineParams::convergence_mm,
+      make("refine.convergence_mm", "ICP convergence", "mm", Stage::Refine, D, 0.000001, 10, 0.001,
+           "ICP stops when an iteration moves no model point by more than this.")));
+  t.push_back(entry(&RP::refine, &RefineParams::model_points,
+      make("refine.model_points", "ICP model points", "points", Stage::Refine, I, 10, 1000000, 100,
+           "Model points used by ICP (an even voxel subsample); more is slower, rarely better.")));
+  t.push_back(entry(&RP::refine, &RefineParams::point_to_plane,
+      make("refine.point_to_plane", "Point-to-plane", "", Stage::Refine, B, 0, 1, 1,
+           "Minimise point-to-plane distances (fast, sub-sample accurate); off: point-to-point.")));
+  t.push_back(entry(&RP::refine, &RefineParams::min_inlier_fraction,
+      make("refine.min_inlier_fraction", "ICP min inliers", "", Stage::Refine, D, 0, 1, 0.01,
+           "A refined pose counts as converged only if this share of the visible model points "
+           "has a scene point within the inlier distance.")));
   // --- Seed ---
-  ParamInfo seed = make("seed", "Random seed", "", Stage::Clustering, I, 0, 2147483647, 1,
+  ParamInfo seed = make("seed", "Random seed", "", Stage::Preprocess, I, 0, 2147483647, 1,
                         "Seed of every random choice; the same input and seed give the same "
                         "output.");
   seed.get = [](const RP& p) { return static_cast<double>(p.seed); };

@@ -46,7 +46,7 @@ const ParamInfo* findParameter(std::string_view key);
 std::string stageName(Stage stage);
 
 /// The earliest stage whose parameters differ between `a` and `b`, or nullopt when all are equal.
-/// A changed seed counts from Stage::Clustering (the first stage that draws random numbers).
+/// A changed seed counts from Stage::Preprocess (floor removal is the first stage that samples).
 std::optional<Stage> firstChangedStage(const RecognitionParams& a, const RecognitionParams& b);
 
 } // namespace scanpick::core

@@ -33,6 +33,9 @@ struct ClusteringParams {
   enum class Init { FarthestFirst, KMeansPlusPlus } init = Init::FarthestFirst;
   int max_iterations = 100;           ///< Lloyd iterations at most
   int min_cluster_points = 3;         ///< smaller k-means clusters are removed and k-means re-run
+  /// How objects are split: k-means with k = the count (the thesis), or the projected clusters
+  /// of Algorithm 7 used directly (beyond the thesis: keeps touching parts apart).
+  enum class Method { KMeans, ProjectedClusters } method = Method::KMeans;
   bool operator==(const ClusteringParams&) const = default;
 };
 
@@ -59,6 +62,10 @@ struct FeatureParams {
   double max_circle_radius_mm = 200.0;
   bool lines = true;                    ///< search lines
   bool circles = true;                  ///< search circles
+  /// Inliers of a line or circle are split where consecutive ones (along the line or arc) are
+  /// farther apart than this, and only the largest run is kept; 0 = automatic (the larger of
+  /// 3 x threshold and 4 x the median keypoint spacing).
+  double run_gap_mm = 0.0;
   bool operator==(const FeatureParams&) const = default;
 };
 
@@ -71,6 +78,7 @@ struct MatchingParams {
   double roll_step_deg = 5.0;            ///< angular step of the roll (toroid) search
   double score_threshold = 0.1;          ///< detections scoring below are rejected ("Score")
   int max_detections = 0;                ///< 0 = no limit
+  int max_instances_per_cluster = 4;     ///< repeated searches per cluster (merged parts)
   bool operator==(const MatchingParams&) const = default;
 };
 
@@ -79,6 +87,19 @@ struct RefineParams {
   bool enabled = false;                  ///< run ICP on each detection
   int max_iterations = 30;
   double max_correspondence_mm = 5.0;
+  /// The coarse-to-fine schedule shrinks the pair distance from max_correspondence_mm towards
+  /// 3x the current residual, but not below this (mm); about 5-10x the sensor noise.
+  double min_correspondence_mm = 1.0;
+  /// A visible model point with a scene point this close counts as an inlier (mm).
+  double inlier_distance_mm = 1.0;
+  /// Stop when an iteration moves no model point by more than this (mm).
+  double convergence_mm = 0.001;
+  /// Model points used (deterministic voxel subsample of the taught cloud).
+  int model_points = 2000;
+  /// Point-to-plane (true) or point-to-point (false) error.
+  bool point_to_plane = true;
+  /// A settled pose counts as converged only with at least this inlier share, [0, 1].
+  double min_inlier_fraction = 0.5;
   bool operator==(const RefineParams&) const = default;
 };
 

@@ -1,0 +1,128 @@
+// scanpick-cli recognize: find a taught part in one scene, or in every scene of a suite folder.
+#include "app/cli/CliCommon.h"
+#include "app/cli/Commands.h"
+#include "app/cli/RecipeOptions.h"
+
+#include "core/common/AtomicFile.h"
+#include "core/model/ModelFile.h"
+#include "core/pipeline/OverlayPicture.h"
+#include "core/pipeline/Recognizer.h"
+#include "core/pipeline/ResultsJson.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace scanpick::cli {
+namespace {
+namespace fs = std::filesystem;
+
+struct Options {
+  RecipeOptions recipe;
+  std::string model, scene, out, picture, suite;
+};
+
+/// The suite scene's sensor preset and kind from its ground truth, when there is one.
+std::pair<std::string, std::string> truthInfo(const fs::path& scene_path) {
+  const fs::path gt = scene_path.parent_path() / (scene_path.stem().string() + ".gt.json");
+  if (!fs::exists(gt))
+    return {};
+  const auto doc = nlohmann::json::parse(core::readFile(gt), nullptr, false);
+  if (doc.is_discarded())
+    return {};
+  std::string preset, kind;
+  if (doc.contains("sensor") && doc["sensor"].is_object())
+    preset = doc["sensor"].value("preset", std::string());
+  if (doc.contains("scene") && doc["scene"].is_object())
+    kind = doc["scene"].value("kind", std::string());
+  return {preset, kind};
+}
+
+void printSummary(const std::string& scene, const core::RecognitionResult& r) {
+  std::printf("%s: %zu detection(s) in %.0f ms (preprocess %.0f, clustering %.0f, keypoints %.0f, "
+              "features %.0f, matching %.0f)\n",
+              scene.c_str(), r.detections.size(), r.timings.total_ms, r.timings.preprocess_ms,
+              r.timings.clustering_ms, r.timings.keypoints_ms, r.timings.features_ms,
+              r.timings.matching_ms);
+  for (std::size_t i = 0; i < r.detections.size(); ++i) {
+    const auto& d = r.detections[i];
+    const Eigen::Vector3d t = d.T_scene_model.translation();
+    std::printf("  #%zu score %.3f at (%.1f, %.1f, %.1f) mm, cluster %d\n", i, d.score, t.x(), t.y(),
+                t.z(), d.cluster);
+  }
+}
+
+int run(const Options& o) {
+  if (o.model.empty())
+    throw core::Error("--model is required");
+  auto model = std::make_shared<core::TaughtModel>(core::loadModel(o.model));
+  // Without --preset/--params the model's own parameters are used.
+  const core::RecognitionParams params = resolveParams(o.recipe, model->params);
+  core::Recognizer recognizer(model);
+  const std::string default_sensor = model->sensor.preset.empty() || model->sensor.preset == "custom"
+                                         ? "phoxi-m-1032"
+                                         : model->sensor.preset;
+  if (o.suite.empty()) {
+    if (o.scene.empty() || o.out.empty())
+      throw core::Error("give --scene and --out (or --suite DIR --out RESULTS_DIR)");
+    const core::SensorModel sensor =
+        core::sensorPreset(o.recipe.sensor.empty() ? default_sensor : o.recipe.sensor);
+    const core::PointCloud scene = loadWithUnitsCheck(o.scene, o.recipe.units);
+    const auto result = recognizer.recognize(scene, sensor, params);
+    core::saveResults(o.out, result, *model, o.scene, o.model);
+    if (!o.picture.empty())
+      core::writeOverlayPng(o.picture, scene, model->cloud_mm, result.detections, sensor);
+    printSummary(o.scene, result);
+    return kOk;
+  }
+  if (!fs::is_directory(o.suite))
+    throw core::Error("suite folder '" + o.suite + "' does not exist");
+  if (o.out.empty())
+    throw core::Error("--out RESULTS_DIR is required with --suite");
+  fs::create_directories(o.out);
+  std::vector<fs::path> scenes;
+  for (const auto& entry : fs::directory_iterator(o.suite)) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with("scene-") && entry.path().extension() == ".pcd")
+      scenes.push_back(entry.path());
+  }
+  std::sort(scenes.begin(), scenes.end());
+  if (scenes.empty())
+    throw core::Error("suite folder '" + o.suite + "' holds no scene-*.pcd files");
+  for (const auto& path : scenes) {
+    const auto [preset, kind] = truthInfo(path);
+    if (kind == "teach")
+      continue;  // the scans parts are taught from are not recognition scenes
+    const std::string sensor_name =
+        !o.recipe.sensor.empty() ? o.recipe.sensor : (!preset.empty() ? preset : default_sensor);
+    const core::SensorModel sensor = core::sensorPreset(sensor_name);
+    const core::PointCloud scene = loadWithUnitsCheck(path.string(), o.recipe.units);
+    const auto result = recognizer.recognize(scene, sensor, params);
+    const fs::path out = fs::path(o.out) / (path.stem().string() + ".json");
+    core::saveResults(out, result, *model, path.string(), o.model);
+    if (!o.picture.empty())
+      core::writeOverlayPng(fs::path(o.out) / (path.stem().string() + ".png"), scene,
+                            model->cloud_mm, result.detections, sensor);
+    printSummary(path.filename().string(), result);
+  }
+  return kOk;
+}
+
+} // namespace
+
+void registerRecognizeCommand(CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = addCommand(app, "recognize",
+                             "Find a taught part in a scene (or in every scene-*.pcd of a suite)",
+                             [o] { return run(*o); });
+  sub->add_option("--model", o->model, "Taught model (.spmodel)")->required();
+  sub->add_option("--scene", o->scene, "Scene scan (.pcd or .ply)");
+  sub->add_option("--suite", o->suite, "Folder of scene-XXX.pcd (+ .gt.json) to recognize in turn");
+  sub->add_option("--out", o->out, "Results file (or folder with --suite)")->required();
+  sub->add_option("--picture", o->picture,
+                  "Overlay PNG: scene grey, detections red (with --suite: any value writes "
+                  "RESULTS_DIR/scene-XXX.png)");
+  o->recipe.add(sub);
+}
+
+} // namespace scanpick::cli

@@ -1,0 +1,122 @@
+// scanpick-cli teach: crop a part from a scan, find its features and write a .spmodel file.
+#include "app/cli/CliCommon.h"
+#include "app/cli/Commands.h"
+#include "app/cli/RecipeOptions.h"
+
+#include "core/common/AtomicFile.h"
+#include "core/model/ModelFile.h"
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace scanpick::cli {
+namespace {
+
+std::vector<double> parseNumbers(const std::string& text, std::size_t count, const std::string& what) {
+  std::vector<double> values;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      values.push_back(std::stod(item));
+    } catch (const std::exception&) {
+      throw core::Error(what + ": '" + item + "' is not a number");
+    }
+  }
+  if (values.size() != count)
+    throw core::Error(what + ": expected " + std::to_string(count) + " comma-separated numbers, got " +
+                      std::to_string(values.size()));
+  return values;
+}
+
+Eigen::Matrix4d matrixFromJson(const nlohmann::json& j) {
+  Eigen::Matrix4d m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      m(r, c) = j.at(r).at(c).get<double>();
+  return m;
+}
+
+/// Crop box and grip points of a teach scene's ground truth (written by `scanpick-cli synth`).
+void cropFromTruth(const std::string& path, core::TeachOptions& options) {
+  const auto doc = nlohmann::json::parse(core::readFile(path), nullptr, false);
+  if (doc.is_discarded() || !doc.contains("crop_box"))
+    throw core::Error(path + " has no crop_box: use a teach scene's .gt.json or --crop-box");
+  try {
+    const auto& box = doc["crop_box"];
+    const auto vec = [](const nlohmann::json& v) {
+      return Eigen::Vector3d(v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>());
+    };
+    const Eigen::Vector3d lo = vec(box["min_mm"]), hi = vec(box["max_mm"]);
+    core::OrientedBox oriented;
+    Eigen::Isometry3d T_scene_box;
+    T_scene_box.matrix() = matrixFromJson(box["T_scene_box"]);
+    // Recentre the box so it is symmetric about its own origin.
+    Eigen::Isometry3d centred = T_scene_box * Eigen::Translation3d(0.5 * (lo + hi));
+    oriented.T_scan_box = centred.cast<float>();
+    oriented.half_extents_mm = (0.5 * (hi - lo)).cast<float>();
+    options.crop_oriented = oriented;
+    if (options.grips_scan.empty() && doc.contains("instances") && !doc["instances"].empty())
+      for (const auto& g : doc["instances"][0].value("grip_points", nlohmann::json::array()))
+        options.grips_scan.push_back(
+            {g["name"].get<std::string>(),
+             Eigen::Vector3d(g["position_mm"][0].get<double>(), g["position_mm"][1].get<double>(),
+                             g["position_mm"][2].get<double>())});
+  } catch (const nlohmann::json::exception& e) {
+    throw core::Error(path + ": malformed crop_box (" + std::string(e.what()) + ")");
+  }
+}
+
+} // namespace
+
+void registerTeachCommand(CLI::App& app) {
+  struct Options {
+    RecipeOptions recipe;
+    std::string scan, crop_box, crop_truth, out, name = "part";
+    bool remove_floor = false;
+    std::vector<std::string> grips;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = addCommand(app, "teach", "Teach a part from a scan: crop, features, .spmodel", [o] {
+    core::TeachOptions options;
+    options.name = o->name;
+    options.remove_floor = o->remove_floor;
+    options.source_units = core::parseLengthUnit(o->recipe.units);
+    options.sensor = core::sensorPreset(o->recipe.sensor.empty() ? "phoxi-m-1032" : o->recipe.sensor);
+    for (const auto& g : o->grips) {
+      const auto eq = g.find('=');
+      if (eq == std::string::npos || eq == 0)
+        throw core::Error("--grip '" + g + "': expected NAME=x,y,z (scan frame, mm)");
+      const auto xyz = parseNumbers(g.substr(eq + 1), 3, "--grip " + g.substr(0, eq));
+      options.grips_scan.push_back({g.substr(0, eq), Eigen::Vector3d(xyz[0], xyz[1], xyz[2])});
+    }
+    if (o->crop_box.empty() == o->crop_truth.empty())
+      throw core::Error("give exactly one of --crop-box or --crop-from-truth");
+    if (!o->crop_box.empty()) {
+      const auto b = parseNumbers(o->crop_box, 6, "--crop-box");
+      options.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(float(b[0]), float(b[1]), float(b[2])),
+                                                Eigen::Vector3f(float(b[3]), float(b[4]), float(b[5])));
+      if (options.crop_box_mm->isEmpty())
+        throw core::Error("--crop-box: each minimum must be below its maximum");
+    } else {
+      cropFromTruth(o->crop_truth, options);
+    }
+    const core::PointCloud scan = loadWithUnitsCheck(o->scan, o->recipe.units);
+    const core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));
+    core::saveModel(o->out, model);
+    std::cout << "taught '" << model.name << "': " << model.cloud_mm.size() << " points, "
+              << model.keypoints_mm.size() << " keypoints, " << model.features.size()
+              << " features, diameter " << model.diameter_mm << " mm -> " << o->out << "\n";
+    return kOk;
+  });
+  sub->add_option("--scan", o->scan, "Scan holding the part (.pcd or .ply)")->required();
+  sub->add_option("--crop-box", o->crop_box, "Crop box in the scan frame: xmin,ymin,zmin,xmax,ymax,zmax");
+  sub->add_option("--crop-from-truth", o->crop_truth, "Take the crop box from a teach scene's .gt.json");
+  sub->add_flag("--remove-floor", o->remove_floor, "Remove the floor plane inside the crop");
+  sub->add_option("--grip", o->grips, "Grip point NAME=x,y,z in the scan frame (repeatable)");
+  sub->add_option("--name", o->name, "Part name stored in the model")->capture_default_str();
+  sub->add_option("--out", o->out, "Model file to write (.spmodel)")->required();
+  o->recipe.add(sub);
+}
+
+} // namespace scanpick::cli

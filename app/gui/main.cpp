@@ -1,0 +1,100 @@
+// scanpick: the desktop application. Options let scripts and the docs drive it:
+//   scanpick [--scene S] [--model M] [--preset P] [--recognize] [--screenshot out.png]
+//            [--quit-after-screenshot] [files...]
+#include "core/common/Log.h"
+#include "ui/MainWindow.h"
+#include "ui/Settings.h"
+#include "ui/panels/ParameterPanel.h"
+#include "ui/viewport/QtVtkViewport.h"
+
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QLibraryInfo>
+#include <QLocale>
+#include <QSettings>
+#include <QTimer>
+#include <QTranslator>
+#include <cstdio>
+
+using scanpick::ui::MainWindow;
+
+int main(int argc, char** argv) {
+  // VTK needs an OpenGL 3.2 core context; the default format must be set before QApplication.
+  QSurfaceFormat::setDefaultFormat(scanpick::ui::QtVtkViewport::defaultFormat());
+  QApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName(QStringLiteral("scanpick"));
+  QApplication::setApplicationName(QStringLiteral("scanpick"));
+
+  QTranslator translator, qt_translator;
+  const QString language =
+      QSettings().value(scanpick::ui::settings::kLanguage, QStringLiteral("en")).toString();
+  if (language == QLatin1String("it")) {
+    if (translator.load(QStringLiteral(":/i18n/scanpick_it.qm")))
+      QApplication::installTranslator(&translator);
+    if (qt_translator.load(QStringLiteral("qtbase_it"),
+                           QLibraryInfo::path(QLibraryInfo::TranslationsPath)))
+      QApplication::installTranslator(&qt_translator);
+  }
+
+  QCommandLineParser parser;
+  parser.setApplicationDescription(
+      QApplication::translate("main", "3D object recognition for bin picking, taught from a scan"));
+  parser.addHelpOption();
+  const QCommandLineOption scene({"s", "scene"}, "Scan to open (PCD or PLY).", "file");
+  const QCommandLineOption model({"m", "model"}, "Taught model to open (.spmodel).", "file");
+  const QCommandLineOption preset("preset", "Parameter preset to load (JSON).", "file");
+  const QCommandLineOption recognize("recognize", "Recognize the model in the scene at start.");
+  const QCommandLineOption screenshot("screenshot", "Save the 3D view as PNG when ready.", "png");
+  const QCommandLineOption quit("quit-after-screenshot", "Exit after writing the screenshot.");
+  parser.addOptions({scene, model, preset, recognize, screenshot, quit});
+  parser.addPositionalArgument("files", "Scans or models to open.", "[files...]");
+  parser.process(app);
+
+  MainWindow window;
+  window.resize(1400, 900);
+  window.show();
+  int exit_code = 0;
+  try {
+    if (parser.isSet(preset))
+      window.parameterPanel()->loadPresetFile(parser.value(preset));
+    if (parser.isSet(model) && !window.openModel(parser.value(model)))
+      exit_code = 1;
+    if (parser.isSet(scene)) {
+      // Synchronous on purpose: scripted runs want the scene before anything else.
+      const auto loaded = MainWindow::loadScanFile(parser.value(scene).toStdString());
+      window.setScan(std::make_shared<const scanpick::core::PointCloud>(loaded.cloud),
+                     parser.value(scene));
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "scanpick: %s\n", e.what());
+    exit_code = 1;
+  }
+  for (const QString& file : parser.positionalArguments()) {
+    if (file.endsWith(QLatin1String(".spmodel")))
+      window.openModel(file);
+    else
+      window.openScan(file);
+  }
+  if (exit_code != 0 && parser.isSet(quit))
+    return exit_code;
+
+  const QString shot = parser.value(screenshot);
+  const bool quit_after = parser.isSet(quit);
+  const auto take_screenshot = [&window, shot, quit_after](bool ok) {
+    // A short delay lets the final frame reach the widget before it is grabbed.
+    QTimer::singleShot(300, &window, [&window, shot, quit_after, ok] {
+      const bool saved = shot.isEmpty() || window.saveScreenshot(shot);
+      if (quit_after)
+        QApplication::exit(saved && ok ? 0 : 1);
+    });
+  };
+  if (parser.isSet(recognize)) {
+    QObject::connect(&window, &MainWindow::recognitionFinished, &window, take_screenshot,
+                     Qt::SingleShotConnection);
+    QTimer::singleShot(0, &window, &MainWindow::recognize);
+  } else if (!shot.isEmpty() || quit_after) {
+    take_screenshot(true);
+  }
+  return QApplication::exec();
+}

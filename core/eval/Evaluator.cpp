@@ -1,0 +1,342 @@
+#include "core/eval/Evaluator.h"
+
+#include "core/common/Error.h"
+#include "core/eval/JsonFields.h"
+
+#include <algorithm>
+#include <iterator>
+#include <map>
+#include <numbers>
+#include <numeric>
+
+namespace scanpick::core::eval {
+namespace {
+
+/// Translation plus rotation converted to the displacement of a point at the part's radius:
+/// one number to compare candidate instances by.
+double poseCost(const PoseError& e, double diameter_mm) {
+  return e.translation_mm + e.rotation_deg * std::numbers::pi / 180.0 * diameter_mm / 2.0;
+}
+
+/// "scene-003.gt.json" -> "scene-003".
+std::string sceneNameOf(const std::filesystem::path& truth_path) {
+  std::string name = truth_path.filename().string();
+  for (const std::string suffix : {".gt.json", ".json"})
+    if (name.size() > suffix.size() && name.ends_with(suffix))
+      return name.substr(0, name.size() - suffix.size());
+  return name;
+}
+
+} // namespace
+
+Stats computeStats(std::vector<double> values) {
+  Stats s;
+  s.count = values.size();
+  if (values.empty())
+    return s;
+  std::sort(values.begin(), values.end());
+  const auto quantile = [&](double q) {
+    const double pos = q * static_cast<double>(values.size() - 1);
+    const auto lo = static_cast<std::size_t>(pos);
+    const std::size_t hi = std::min(lo + 1, values.size() - 1);
+    return values[lo] + (pos - static_cast<double>(lo)) * (values[hi] - values[lo]);
+  };
+  s.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+  s.median = quantile(0.5);
+  s.p95 = quantile(0.95);
+  s.max = values.back();
+  return s;
+}
+
+SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& results,
+                              const GroundTruth& teach, const Tolerances& tolerances,
+                              const std::string& name) {
+  if (teach.instances.size() != 1)
+    throw Error("teach ground truth " + teach.source + " holds " +
+                std::to_string(teach.instances.size()) +
+                " instances; a teach scene must hold exactly one (pass the teach scene's .gt.json)");
+  const TruthInstance& taught = teach.instances.front();
+  const auto part_it = truth.parts.contains(taught.part) ? truth.parts.find(taught.part)
+                                                         : teach.parts.find(taught.part);
+  const PartInfo& part = part_it->second;
+  const auto group = symmetryGroup(part.symmetry, part.diameter_mm);
+  const Eigen::Isometry3d T_model_part = results.T_teach_model.inverse() * taught.T_scene_part;
+
+  SceneEvaluation scene;
+  scene.name = name;
+  scene.part = taught.part;
+  scene.total_ms = results.total_ms;
+  std::vector<std::size_t> targets;
+  for (std::size_t i = 0; i < truth.instances.size(); ++i) {
+    if (truth.instances[i].part != taught.part)
+      continue;
+    targets.push_back(i);
+    ++scene.instances;
+    if (truth.instances[i].visible_fraction >= tolerances.min_visible_fraction)
+      ++scene.visible_instances;
+  }
+
+  // Greedy by score: the best-scored detection claims its instance first, so a duplicate of an
+  // already found instance is a false positive, and any score threshold keeps a prefix.
+  std::vector<std::size_t> order(results.detections.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return results.detections[a].score > results.detections[b].score;
+  });
+  std::vector<bool> matched(truth.instances.size(), false);
+  for (const std::size_t d : order) {
+    const ResultDetection& detection = results.detections[d];
+    const Eigen::Isometry3d T_scene_part_est = detection.T_scene_model * T_model_part;
+    DetectionOutcome outcome;
+    outcome.detection_id = detection.id;
+    outcome.score = detection.score;
+    double nearest_cost = 0.0, match_cost = 0.0;
+    std::optional<PoseError> match_error;
+    for (const std::size_t i : targets) {
+      PoseError e = symmetricPoseError(T_scene_part_est, truth.instances[i].T_scene_part, part,
+                                       group, tolerances);
+      const double cost = poseCost(e, part.diameter_mm);
+      if (!outcome.error || cost < nearest_cost) {
+        nearest_cost = cost;
+        outcome.error = e;
+        outcome.nearest_instance_id = truth.instances[i].id;
+      }
+      if (e.within_tolerance && !matched[i] && (!match_error || cost < match_cost)) {
+        match_cost = cost;
+        match_error = std::move(e);
+        outcome.instance_id = static_cast<int>(i);  // index for now, id below
+      }
+    }
+    if (match_error) {
+      const auto index = static_cast<std::size_t>(outcome.instance_id);
+      matched[index] = true;
+      outcome.true_positive = true;
+      outcome.instance_id = truth.instances[index].id;
+      outcome.counts_for_recall =
+          truth.instances[index].visible_fraction >= tolerances.min_visible_fraction;
+      outcome.error = std::move(match_error);
+      outcome.nearest_instance_id = outcome.instance_id;
+    }
+    scene.outcomes.push_back(std::move(outcome));
+  }
+  return scene;
+}
+
+Summary summarize(const std::vector<SceneEvaluation>& scenes, const std::string& label) {
+  Summary s;
+  s.label = label;
+  struct Pooled {
+    double score;
+    bool tp, recall;
+  };
+  std::vector<Pooled> pooled;
+  std::vector<double> translation, rotation, grip, time;
+  for (const auto& scene : scenes) {
+    ++s.scenes;
+    s.instances += scene.instances;
+    s.visible_instances += scene.visible_instances;
+    if (scene.total_ms)
+      time.push_back(*scene.total_ms);
+    for (const auto& o : scene.outcomes) {
+      ++s.detections;
+      pooled.push_back({o.score, o.true_positive, o.counts_for_recall});
+      if (!o.true_positive)
+        continue;
+      ++s.true_positives;
+      s.recalled_visible += o.counts_for_recall ? 1 : 0;
+      translation.push_back(o.error->translation_mm);
+      rotation.push_back(o.error->rotation_deg);
+      grip.insert(grip.end(), o.error->grip_mm.begin(), o.error->grip_mm.end());
+    }
+  }
+  if (s.detections > 0)
+    s.precision = static_cast<double>(s.true_positives) / s.detections;
+  if (s.visible_instances > 0)
+    s.recall = static_cast<double>(s.recalled_visible) / s.visible_instances;
+
+  // Sweep the score threshold: greedy matching per scene makes every threshold's matching the
+  // prefix of the score order, so pooled prefixes give each threshold's precision and recall.
+  std::stable_sort(pooled.begin(), pooled.end(),
+                   [](const Pooled& a, const Pooled& b) { return a.score > b.score; });
+  std::vector<std::pair<double, double>> curve;  // (recall, precision) per threshold
+  int tp = 0, recalled = 0;
+  for (std::size_t k = 0; k < pooled.size(); ++k) {
+    tp += pooled[k].tp ? 1 : 0;
+    recalled += pooled[k].recall ? 1 : 0;
+    if (k + 1 < pooled.size() && pooled[k + 1].score == pooled[k].score)
+      continue;  // a threshold keeps all detections of equal score
+    const double precision = static_cast<double>(tp) / static_cast<double>(k + 1);
+    const double recall =
+        s.visible_instances > 0 ? static_cast<double>(recalled) / s.visible_instances : 0.0;
+    curve.emplace_back(recall, precision);
+    if (precision >= 0.99 && recall >= s.recall_at_99_precision) {
+      s.recall_at_99_precision = recall;
+      s.threshold_at_99_precision = pooled[k].score;
+    }
+  }
+  // Interpolated precision: the best precision at this recall or beyond.
+  double previous_recall = 0.0;
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    double best_precision = 0.0;
+    for (std::size_t j = i; j < curve.size(); ++j)
+      best_precision = std::max(best_precision, curve[j].second);
+    s.average_precision += (curve[i].first - previous_recall) * best_precision;
+    previous_recall = curve[i].first;
+  }
+
+  s.translation_mm = computeStats(std::move(translation));
+  s.rotation_deg = computeStats(std::move(rotation));
+  s.grip_mm = computeStats(std::move(grip));
+  s.time_ms = computeStats(std::move(time));
+  return s;
+}
+
+const GroundTruth& selectTeachTruth(const std::vector<GroundTruth>& teach_truths,
+                                    const ResultsFile& results, const GroundTruth& truth) {
+  if (teach_truths.empty())
+    throw Error("no teach ground truth: pass --teach-truth with the teach scene's .gt.json");
+  if (teach_truths.size() == 1)
+    return teach_truths.front();
+  const auto teachOf = [&](const std::string& part) -> const GroundTruth* {
+    for (const auto& teach : teach_truths)
+      if (teach.instances.size() == 1 && teach.instances.front().part == part)
+        return &teach;
+    return nullptr;
+  };
+  if (const GroundTruth* teach = teachOf(results.model_name))
+    return *teach;
+  // A model named by the operator ("bracket-v2") on a one-part scene: that part's teach scene.
+  if (truth.parts.size() == 1)
+    if (const GroundTruth* teach = teachOf(truth.parts.begin()->first))
+      return *teach;
+  throw Error(results.source + ": its model '" + results.model_name +
+              "' matches none of the teach ground truths' parts: pass only the teach scene of "
+              "the part this model was taught from");
+}
+
+EvalReport makeReport(std::vector<SceneEvaluation> scenes, const Tolerances& tolerances) {
+  EvalReport report;
+  report.tolerances = tolerances;
+  report.scenes = std::move(scenes);
+  report.overall = summarize(report.scenes, "all");
+  std::map<std::string, std::vector<SceneEvaluation>> by_part;
+  for (const auto& scene : report.scenes)
+    by_part[scene.part].push_back(scene);
+  for (const auto& [part, group] : by_part)
+    report.per_part.push_back(summarize(group, part));
+  return report;
+}
+
+EvalReport evaluateFiles(const std::filesystem::path& truth_path,
+                         const std::filesystem::path& results_path,
+                         const std::vector<GroundTruth>& teach_truths,
+                         const Tolerances& tolerances) {
+  const GroundTruth truth = loadGroundTruth(truth_path);
+  const ResultsFile results = loadResults(results_path);
+  std::vector<SceneEvaluation> scenes;
+  scenes.push_back(evaluateScene(truth, results, selectTeachTruth(teach_truths, results, truth),
+                                 tolerances, sceneNameOf(truth_path)));
+  return makeReport(std::move(scenes), tolerances);
+}
+
+std::vector<GroundTruth> findTeachTruths(const std::filesystem::path& dir) {
+  if (!std::filesystem::is_directory(dir))
+    throw Error("folder " + quoted(dir) + " does not exist");
+  std::vector<std::filesystem::path> paths;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    if (entry.path().filename().string().ends_with(".gt.json"))
+      paths.push_back(entry.path());
+  std::sort(paths.begin(), paths.end());
+  std::vector<GroundTruth> teach;
+  for (const auto& path : paths) {
+    GroundTruth truth = loadGroundTruth(path);
+    if (truth.kind == "teach")
+      teach.push_back(std::move(truth));
+  }
+  return teach;
+}
+
+std::vector<GroundTruth> loadTeachTruths(const std::vector<std::filesystem::path>& paths,
+                                         const std::filesystem::path& suite_dir) {
+  std::vector<GroundTruth> teach;
+  for (const auto& path : paths) {
+    if (std::filesystem::is_directory(path)) {
+      auto found = findTeachTruths(path);
+      if (found.empty())
+        throw Error("folder " + quoted(path) + " holds no teach ground truth (*.gt.json of kind "
+                    "\"teach\")");
+      std::move(found.begin(), found.end(), std::back_inserter(teach));
+    } else {
+      teach.push_back(loadGroundTruth(path));
+    }
+  }
+  if (teach.empty() && !suite_dir.empty() && std::filesystem::is_directory(suite_dir)) {
+    teach = findTeachTruths(suite_dir);
+    if (teach.empty()) {
+      // synth-suite writes <out>/phoxi-bin/scene-XXX and <out>/teach/<sensor>/<part>.
+      std::vector<std::filesystem::path> scenes;
+      for (const auto& entry : std::filesystem::directory_iterator(suite_dir))
+        if (entry.path().filename().string().ends_with(".gt.json"))
+          scenes.push_back(entry.path());
+      std::sort(scenes.begin(), scenes.end());
+      if (!scenes.empty()) {
+        const std::string sensor = loadGroundTruth(scenes.front()).sensor_preset;
+        auto suite = std::filesystem::absolute(suite_dir).lexically_normal();
+        if (!suite.has_filename())  // "out/phoxi-bin/" names the same folder as "out/phoxi-bin"
+          suite = suite.parent_path();
+        const auto dir = suite.parent_path() / "teach" / sensor;
+        if (!sensor.empty() && std::filesystem::is_directory(dir))
+          teach = findTeachTruths(dir);
+      }
+    }
+  }
+  if (teach.empty())
+    throw Error("no teach ground truth: pass --teach-truth teach.gt.json (the ground truth of the "
+                "scan the model was taught from) or a folder of them");
+  for (const auto& t : teach)
+    if (t.instances.size() != 1)
+      throw Error("teach ground truth " + t.source + " holds " +
+                  std::to_string(t.instances.size()) + " instances; a teach scene holds one");
+  return teach;
+}
+
+EvalReport evaluateSuite(const std::filesystem::path& suite_dir,
+                         const std::filesystem::path& results_dir,
+                         const std::vector<GroundTruth>& teach_truths,
+                         const Tolerances& tolerances, const ProgressFn& progress) {
+  if (!std::filesystem::is_directory(suite_dir))
+    throw Error("suite folder '" + suite_dir.string() + "' does not exist (create it with "
+                "scanpick-cli synth-suite)");
+  if (!std::filesystem::is_directory(results_dir))
+    throw Error("results folder '" + results_dir.string() + "' does not exist (write it with "
+                "scanpick-cli recognize)");
+  std::vector<std::filesystem::path> truth_paths;
+  for (const auto& entry : std::filesystem::directory_iterator(suite_dir)) {
+    const std::string file = entry.path().filename().string();
+    if (file.starts_with("scene-") && file.ends_with(".gt.json"))
+      truth_paths.push_back(entry.path());
+  }
+  std::sort(truth_paths.begin(), truth_paths.end());
+  if (truth_paths.empty())
+    throw Error("suite folder '" + suite_dir.string() + "' holds no scene-*.gt.json files");
+
+  std::vector<SceneEvaluation> scenes;
+  for (std::size_t i = 0; i < truth_paths.size(); ++i) {
+    reportProgress(progress, static_cast<double>(i) / static_cast<double>(truth_paths.size()));
+    const std::string name = sceneNameOf(truth_paths[i]);
+    const GroundTruth truth = loadGroundTruth(truth_paths[i]);
+    if (truth.kind == "teach")
+      continue;
+    const std::filesystem::path results_path = results_dir / (name + ".json");
+    if (!std::filesystem::exists(results_path))
+      throw Error("no results for " + name + ": expected '" + results_path.string() +
+                  "' (run scanpick-cli recognize on every scene of the suite)");
+    const ResultsFile results = loadResults(results_path);
+    scenes.push_back(evaluateScene(truth, results, selectTeachTruth(teach_truths, results, truth),
+                                   tolerances, name));
+  }
+  reportProgress(progress, 1.0);
+  return makeReport(std::move(scenes), tolerances);
+}
+
+} // namespace scanpick::core::eval

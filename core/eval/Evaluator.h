@@ -1,0 +1,120 @@
+#pragma once
+/// @file Evaluator.h
+/// Scores recognition results against ground truth: one-to-one greedy matching by score,
+/// symmetry-aware pose errors, precision, recall, recall at 99 % precision, error statistics and
+/// time per scene; for one scene or a whole suite (aggregated and per part).
+
+#include "core/common/Progress.h"
+#include "core/eval/GroundTruth.h"
+#include "core/eval/PoseError.h"
+#include "core/eval/ResultsFile.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace scanpick::core::eval {
+
+/// What became of one detection.
+struct DetectionOutcome {
+  int detection_id = 0;
+  double score = 0.0;
+  bool true_positive = false;
+  int instance_id = -1;          ///< matched instance (true positives only), else -1
+  bool counts_for_recall = false; ///< the matched instance is visible enough for recall
+  /// Error to the nearest instance of the part (matched or not), for diagnosis; absent when the
+  /// scene holds no instance of the part.
+  std::optional<PoseError> error;
+  int nearest_instance_id = -1;
+};
+
+/// One scene's evaluation.
+struct SceneEvaluation {
+  std::string name;              ///< scene name (ground-truth file stem)
+  std::string part;              ///< part that was searched (from the teach ground truth)
+  int instances = 0;             ///< instances of that part in the scene
+  int visible_instances = 0;     ///< of those, at least Tolerances::min_visible_fraction visible
+  std::vector<DetectionOutcome> outcomes;  ///< in matching order (score descending)
+  std::optional<double> total_ms;          ///< results' timings_ms.total
+};
+
+/// Median, 95th percentile (linear interpolation between order statistics) and maximum.
+struct Stats {
+  std::size_t count = 0;
+  double mean = 0.0, median = 0.0, p95 = 0.0, max = 0.0;
+};
+
+/// Statistics of `values` (all zero when empty).
+Stats computeStats(std::vector<double> values);
+
+/// Metrics over a set of scenes.
+struct Summary {
+  std::string label;  ///< "all" or a part name
+  int scenes = 0, detections = 0, true_positives = 0, instances = 0, visible_instances = 0;
+  int recalled_visible = 0;            ///< visible instances matched by a true positive
+  std::optional<double> precision;     ///< true positives / detections (none without detections)
+  std::optional<double> recall;        ///< recalled_visible / visible_instances
+  /// Highest recall reached by a score threshold whose precision is ≥ 0.99 (0 when none) and
+  /// that threshold (the lowest kept score).
+  double recall_at_99_precision = 0.0;
+  std::optional<double> threshold_at_99_precision;
+  double average_precision = 0.0;      ///< area under the interpolated precision-recall curve
+  Stats translation_mm, rotation_deg, grip_mm;  ///< over true positives
+  Stats time_ms;                                ///< per scene with timings
+};
+
+/// Metrics over `scenes` (label names the group).
+Summary summarize(const std::vector<SceneEvaluation>& scenes, const std::string& label);
+
+/// The evaluation of one or more scenes.
+struct EvalReport {
+  Tolerances tolerances;
+  std::vector<SceneEvaluation> scenes;
+  Summary overall;
+  std::vector<Summary> per_part;  ///< one per searched part, by name
+};
+
+/// Evaluates one scene. The searched part and T_teach_part are the single instance of `teach`
+/// (a ground truth of kind "teach"). Detections become part poses with
+/// T_scene_part = T_scene_model · T_teach_model⁻¹ · T_teach_part, then are matched greedily by
+/// descending score, each to the nearest unmatched instance within tolerance.
+/// Throws Error when `teach` does not hold exactly one instance.
+SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& results,
+                              const GroundTruth& teach, const Tolerances& tolerances,
+                              const std::string& name);
+
+/// Picks the teach ground truth for `results` on scene `truth`: the only one given; else the one
+/// whose part is named like the results' model; else, when the scene holds one part type, that
+/// part's. Throws Error when none fits.
+const GroundTruth& selectTeachTruth(const std::vector<GroundTruth>& teach_truths,
+                                    const ResultsFile& results, const GroundTruth& truth);
+
+/// Builds the report (overall and per part) from evaluated scenes.
+EvalReport makeReport(std::vector<SceneEvaluation> scenes, const Tolerances& tolerances);
+
+/// Single mode: one ground truth, one results file.
+EvalReport evaluateFiles(const std::filesystem::path& truth_path,
+                         const std::filesystem::path& results_path,
+                         const std::vector<GroundTruth>& teach_truths,
+                         const Tolerances& tolerances);
+
+/// Suite mode: every `scene-*.gt.json` in `suite_dir` (teach scenes excluded) against
+/// `results_dir/scene-*.json`. Throws Error when the folder holds no scene or a results file is
+/// missing (naming it).
+EvalReport evaluateSuite(const std::filesystem::path& suite_dir,
+                         const std::filesystem::path& results_dir,
+                         const std::vector<GroundTruth>& teach_truths,
+                         const Tolerances& tolerances, const ProgressFn& progress = {});
+
+/// Teach ground truths in a folder (`*.gt.json` whose scene kind is "teach"), sorted by name.
+std::vector<GroundTruth> findTeachTruths(const std::filesystem::path& dir);
+
+/// Teach ground truths from `--teach-truth` arguments (files, or folders searched with
+/// findTeachTruths). When `paths` is empty and `suite_dir` is set, looks in the suite folder,
+/// then in `<suite_dir>/../teach/<sensor preset of its first scene>` (the layout synth-suite
+/// writes). Throws Error when nothing is found, saying what to pass.
+std::vector<GroundTruth> loadTeachTruths(const std::vector<std::filesystem::path>& paths,
+                                         const std::filesystem::path& suite_dir = {});
+
+} // namespace scanpick::core::eval

@@ -1,0 +1,120 @@
+#include "core/eval/GroundTruth.h"
+
+#include "core/common/Error.h"
+#include "core/eval/JsonFields.h"
+
+namespace scanpick::core::eval {
+namespace {
+
+std::vector<NamedPoint> readNamedPoints(const nlohmann::json& array, const std::string& where) {
+  if (!array.is_array())
+    throw Error(where + ": expected an array of {\"name\", \"position_mm\"}");
+  std::vector<NamedPoint> points;
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    const std::string at = where + "[" + std::to_string(i) + "]";
+    NamedPoint p;
+    p.name = array[i].contains("name") ? readString(array[i]["name"], at + ".name")
+                                       : "grip " + std::to_string(i);
+    p.position_mm = readVector3(requireField(array[i], "position_mm", at), at + ".position_mm");
+    points.push_back(std::move(p));
+  }
+  return points;
+}
+
+PartSymmetry readSymmetry(const nlohmann::json& object, const std::string& where) {
+  PartSymmetry symmetry;
+  if (object.is_null())
+    return symmetry;
+  if (!object.is_object())
+    throw Error(where + ": expected an object {\"continuous_axis\", \"discrete\"} or null");
+  if (object.contains("continuous_axis") && !object["continuous_axis"].is_null()) {
+    const auto& axis = object["continuous_axis"];
+    const std::string at = where + ".continuous_axis";
+    ContinuousAxis a;
+    a.point_mm = readVector3(requireField(axis, "point_mm", at), at + ".point_mm");
+    a.direction = readVector3(requireField(axis, "direction", at), at + ".direction");
+    if (a.direction.norm() < 1e-9)
+      throw Error(at + ".direction: must not be the zero vector");
+    a.direction.normalize();
+    symmetry.continuous_axis = a;
+  }
+  if (object.contains("discrete") && !object["discrete"].is_null()) {
+    const auto& list = object["discrete"];
+    if (!list.is_array())
+      throw Error(where + ".discrete: expected an array of 4x4 matrices");
+    for (std::size_t i = 0; i < list.size(); ++i)
+      symmetry.discrete.push_back(
+          readRigidTransform(list[i], where + ".discrete[" + std::to_string(i) + "]"));
+  }
+  return symmetry;
+}
+
+} // namespace
+
+GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& source) {
+  checkFormatAndVersion(doc, "scanpick-ground-truth", kGroundTruthVersion, source);
+  if (doc.contains("units") && doc["units"] != "mm")
+    throw Error(source + ": units " + doc["units"].dump() + " are not supported (expected \"mm\")");
+  GroundTruth truth;
+  truth.source = source;
+  if (doc.contains("scene") && doc["scene"].is_object()) {
+    const auto& scene = doc["scene"];
+    truth.kind = scene.value("kind", "");
+    if (scene.contains("seed") && scene["seed"].is_number_unsigned())
+      truth.seed = scene["seed"].get<std::uint64_t>();
+    truth.cloud = scene.value("cloud", "");
+  }
+  if (doc.contains("sensor") && doc["sensor"].is_object() && doc["sensor"].contains("preset") &&
+      doc["sensor"]["preset"].is_string())
+    truth.sensor_preset = doc["sensor"]["preset"].get<std::string>();
+
+  const auto& parts = requireField(doc, "parts", source);
+  if (!parts.is_object())
+    throw Error(source + ": 'parts' must be an object {name: {...}}");
+  for (const auto& [name, value] : parts.items()) {
+    const std::string at = source + ": parts." + name;
+    PartInfo part;
+    part.name = name;
+    part.diameter_mm = readNumber(requireField(value, "diameter_mm", at), at + ".diameter_mm");
+    if (part.diameter_mm <= 0.0)
+      throw Error(at + ".diameter_mm must be positive");
+    if (value.contains("grip_points"))
+      part.grip_points_part = readNamedPoints(value["grip_points"], at + ".grip_points");
+    if (value.contains("symmetry"))
+      part.symmetry = readSymmetry(value["symmetry"], at + ".symmetry");
+    truth.parts.emplace(name, std::move(part));
+  }
+
+  const auto& instances = requireField(doc, "instances", source);
+  if (!instances.is_array())
+    throw Error(source + ": 'instances' must be an array");
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const auto& value = instances[i];
+    const std::string at = source + ": instances[" + std::to_string(i) + "]";
+    TruthInstance instance;
+    instance.id = value.contains("id")
+                      ? static_cast<int>(readNumber(value["id"], at + ".id"))
+                      : static_cast<int>(i);
+    instance.part = readString(requireField(value, "part", at), at + ".part");
+    if (!truth.parts.contains(instance.part))
+      throw Error(at + ": part '" + instance.part + "' is not described in 'parts'");
+    instance.T_scene_part =
+        readRigidTransform(requireField(value, "T_scene_part", at), at + ".T_scene_part");
+    instance.visible_fraction =
+        readNumber(requireField(value, "visible_fraction", at), at + ".visible_fraction");
+    if (instance.visible_fraction < 0.0 || instance.visible_fraction > 1.0 + 1e-9)
+      throw Error(at + ".visible_fraction must lie in [0, 1]");
+    if (value.contains("visible_points"))
+      instance.visible_points =
+          static_cast<long long>(readNumber(value["visible_points"], at + ".visible_points"));
+    truth.instances.push_back(std::move(instance));
+  }
+  return truth;
+}
+
+GroundTruth loadGroundTruth(const std::filesystem::path& path) {
+  const nlohmann::json doc = readVersionedJson(path, "scanpick-ground-truth", kGroundTruthVersion);
+  return parseGroundTruth(doc, quoted(path));
+}
+
+} // namespace scanpick::core::eval

@@ -1,0 +1,61 @@
+#include "core/eval/ResultsFile.h"
+
+#include "core/common/Error.h"
+#include "core/eval/JsonFields.h"
+
+namespace scanpick::core::eval {
+
+ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
+  checkFormatAndVersion(doc, "scanpick-results", kResultsVersion, source);
+  if (doc.contains("units") && doc["units"] != "mm")
+    throw Error(source + ": units " + doc["units"].dump() + " are not supported (expected \"mm\")");
+  ResultsFile results;
+  results.source = source;
+  if (doc.contains("scene") && doc["scene"].is_string())
+    results.scene = doc["scene"].get<std::string>();
+
+  const auto& model = requireField(doc, "model", source);
+  if (model.contains("name") && model["name"].is_string())
+    results.model_name = model["name"].get<std::string>();
+  results.T_teach_model = readRigidTransform(requireField(model, "T_teach_model", source + ": model"),
+                                             source + ": model.T_teach_model");
+
+  const auto& detections = requireField(doc, "detections", source);
+  if (!detections.is_array())
+    throw Error(source + ": 'detections' must be an array");
+  for (std::size_t i = 0; i < detections.size(); ++i) {
+    const auto& value = detections[i];
+    const std::string at = source + ": detections[" + std::to_string(i) + "]";
+    ResultDetection d;
+    d.id = value.contains("id") ? static_cast<int>(readNumber(value["id"], at + ".id"))
+                                : static_cast<int>(i);
+    d.score = readNumber(requireField(value, "score", at), at + ".score");
+    if (d.score < 0.0 || d.score > 1.0)
+      throw Error(at + ".score = " + std::to_string(d.score) + " is outside [0, 1]");
+    d.T_scene_model =
+        readRigidTransform(requireField(value, "T_scene_model", at), at + ".T_scene_model");
+    if (value.contains("grip_points") && value["grip_points"].is_array()) {
+      const auto& grips = value["grip_points"];
+      for (std::size_t g = 0; g < grips.size(); ++g) {
+        const std::string gat = at + ".grip_points[" + std::to_string(g) + "]";
+        NamedPoint p;
+        p.name = grips[g].value("name", "");
+        p.position_mm = readVector3(requireField(grips[g], "position_mm", gat), gat + ".position_mm");
+        d.grip_points_scene.push_back(std::move(p));
+      }
+    }
+    results.detections.push_back(std::move(d));
+  }
+
+  if (doc.contains("timings_ms") && doc["timings_ms"].is_object() &&
+      doc["timings_ms"].contains("total"))
+    results.total_ms = readNumber(doc["timings_ms"]["total"], source + ": timings_ms.total");
+  return results;
+}
+
+ResultsFile loadResults(const std::filesystem::path& path) {
+  const nlohmann::json doc = readVersionedJson(path, "scanpick-results", kResultsVersion);
+  return parseResults(doc, quoted(path));
+}
+
+} // namespace scanpick::core::eval

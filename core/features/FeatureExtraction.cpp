@@ -1,0 +1,300 @@
+#include "core/features/FeatureExtraction.h"
+
+#include "core/cloud/PointCloud.h"
+#include "core/common/Error.h"
+
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/sample_consensus/mlesac.h>
+#include <pcl/sample_consensus/prosac.h>
+#include <pcl/sample_consensus/ransac.h>
+#include <pcl/sample_consensus/sac_model_circle3d.h>
+#include <pcl/sample_consensus/sac_model_line.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <numeric>
+#include <optional>
+#include <random>
+#include <string>
+
+namespace scanpick::core {
+namespace {
+
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+constexpr double kTwoPi = 6.283185307179586;
+
+/// PCL seeds its samplers with a constant; these expose the generator so our seed drives it.
+template <typename Model> class Seeded : public Model {
+public:
+  using Model::Model;
+  void seed(std::uint64_t s) { this->rng_alg_.seed(static_cast<unsigned>(s ^ (s >> 32))); }
+};
+using LineModel = Seeded<pcl::SampleConsensusModelLine<pcl::PointXYZ>>;
+using CircleModel = Seeded<pcl::SampleConsensusModelCircle3D<pcl::PointXYZ>>;
+
+std::uint64_t mix(std::uint64_t x) {  // splitmix64
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+/// Runs the chosen estimator on `model` (whose indices are the candidates); false if no model.
+bool runEstimator(const pcl::SampleConsensusModel<pcl::PointXYZ>::Ptr& model,
+                  const FeatureParams& params, double threshold, Eigen::VectorXf& coefficients) {
+  std::unique_ptr<pcl::SampleConsensus<pcl::PointXYZ>> sac;
+  switch (params.estimator) {
+  case FeatureParams::Estimator::Ransac:
+    sac = std::make_unique<pcl::RandomSampleConsensus<pcl::PointXYZ>>(model, threshold);
+    break;
+  case FeatureParams::Estimator::Mlesac:
+    sac = std::make_unique<pcl::MaximumLikelihoodSampleConsensus<pcl::PointXYZ>>(model, threshold);
+    break;
+  case FeatureParams::Estimator::Prosac:
+    sac = std::make_unique<pcl::ProgressiveSampleConsensus<pcl::PointXYZ>>(model, threshold);
+    break;
+  }
+  sac->setMaxIterations(std::max(1, params.max_iterations));
+  if (!sac->computeModel())
+    return false;
+  sac->getModelCoefficients(coefficients);
+  return coefficients.allFinite();
+}
+
+/// Largest run of `values` (sorted along with `ids`) without a step larger than `gap`;
+/// `period` > 0 makes the values circular. Returns the run's ids.
+std::vector<int> largestRun(std::vector<std::pair<double, int>> values, double gap, double period) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  std::vector<std::size_t> cuts;  // run starts
+  for (std::size_t i = 1; i < n; ++i)
+    if (values[i].first - values[i - 1].first > gap)
+      cuts.push_back(i);
+  const bool wraps = period > 0 && n > 1 && values.front().first + period - values.back().first <= gap;
+  if (cuts.empty()) {
+    std::vector<int> ids;
+    for (const auto& v : values)
+      ids.push_back(v.second);
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  }
+  // Runs [cuts[k], cuts[k+1]); with wrap-around the last and first runs are one.
+  std::size_t best_start = 0, best_len = 0;
+  const std::size_t runs = cuts.size() + (wraps ? 0 : 1);
+  for (std::size_t k = 0; k < runs; ++k) {
+    std::size_t start, len;
+    if (wraps) {
+      start = cuts[k];
+      const std::size_t end = cuts[(k + 1) % cuts.size()];
+      len = (end + n - start) % n;
+      if (len == 0)
+        len = n;
+    } else {
+      start = k == 0 ? 0 : cuts[k - 1];
+      len = (k < cuts.size() ? cuts[k] : n) - start;
+    }
+    if (len > best_len) {
+      best_len = len;
+      best_start = start;
+    }
+  }
+  std::vector<int> ids;
+  for (std::size_t k = 0; k < best_len; ++k)
+    ids.push_back(values[(best_start + k) % n].second);
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+struct Candidate {
+  Feature feature;
+  std::vector<int> inliers;
+};
+
+std::optional<Candidate> bestLine(const Cloud::Ptr& cloud, const std::vector<int>& remaining,
+                                  const FeatureParams& params, double gap, std::uint64_t seed) {
+  auto model = std::make_shared<LineModel>(cloud, pcl::Indices(remaining.begin(), remaining.end()));
+  model->seed(seed);
+  Eigen::VectorXf c;
+  if (!runEstimator(model, params, params.line_threshold_mm, c))
+    return std::nullopt;
+  pcl::Indices inliers;
+  model->selectWithinDistance(c, params.line_threshold_mm, inliers);
+  if (inliers.size() < 2)
+    return std::nullopt;
+  Eigen::VectorXf refined;
+  model->optimizeModelCoefficients(inliers, c, refined);
+  if (refined.size() == 6 && refined.allFinite() && refined.tail<3>().norm() > 0) {
+    c = refined;
+    model->selectWithinDistance(c, params.line_threshold_mm, inliers);
+  }
+  const Eigen::Vector3f origin = c.head<3>(), axis = c.tail<3>().normalized();
+  std::vector<std::pair<double, int>> along;
+  for (int i : inliers)
+    along.emplace_back(static_cast<double>(axis.dot((*cloud)[static_cast<std::size_t>(i)].getVector3fMap() - origin)), i);
+  Candidate out;
+  out.inliers = largestRun(std::move(along), gap, 0.0);
+  if (out.inliers.size() >= 2) {  // the run's own axis, not the one pulled by other runs
+    pcl::Indices run(out.inliers.begin(), out.inliers.end());
+    model->optimizeModelCoefficients(run, c, refined);
+    if (refined.size() == 6 && refined.allFinite() && refined.tail<3>().norm() > 0)
+      c = refined;
+  }
+  const Eigen::Vector3f o = c.head<3>(), d = c.tail<3>().normalized();
+  float lo = std::numeric_limits<float>::max(), hi = -lo;
+  for (int i : out.inliers) {
+    const float t = d.dot((*cloud)[static_cast<std::size_t>(i)].getVector3fMap() - o);
+    lo = std::min(lo, t);
+    hi = std::max(hi, t);
+  }
+  out.feature.type = FeatureType::Line;
+  out.feature.centre_mm = o + d * (0.5f * (lo + hi));
+  out.feature.direction = d;
+  out.feature.size_mm = hi - lo;
+  out.feature.inlier_count = static_cast<int>(out.inliers.size());
+  return out;
+}
+
+bool circleValid(const Eigen::VectorXf& c, const FeatureParams& params) {
+  return c.size() == 7 && c.allFinite() && c[3] >= params.min_circle_radius_mm &&
+         c[3] <= params.max_circle_radius_mm && c.tail<3>().norm() > 0;
+}
+
+std::optional<Candidate> bestCircle(const Cloud::Ptr& cloud, const std::vector<int>& remaining,
+                                    const FeatureParams& params, double gap, std::uint64_t seed) {
+  auto model = std::make_shared<CircleModel>(cloud, pcl::Indices(remaining.begin(), remaining.end()));
+  model->seed(seed);
+  model->setRadiusLimits(params.min_circle_radius_mm, params.max_circle_radius_mm);
+  Eigen::VectorXf c;
+  if (!runEstimator(model, params, params.circle_threshold_mm, c) || !circleValid(c, params))
+    return std::nullopt;
+  pcl::Indices inliers;
+  model->selectWithinDistance(c, params.circle_threshold_mm, inliers);
+  if (inliers.size() < 3)
+    return std::nullopt;
+  Eigen::VectorXf refined;
+  model->optimizeModelCoefficients(inliers, c, refined);
+  if (circleValid(refined, params)) {
+    c = refined;
+    model->selectWithinDistance(c, params.circle_threshold_mm, inliers);
+  }
+  // Angles in the circle's plane; the run gap is measured along the arc.
+  const Eigen::Vector3f centre = c.head<3>(), normal = c.tail<3>().normalized();
+  const Eigen::Vector3f u = normal.unitOrthogonal(), v = normal.cross(u);
+  const double radius = c[3];
+  std::vector<std::pair<double, int>> around;
+  for (int i : inliers) {
+    const Eigen::Vector3f d = (*cloud)[static_cast<std::size_t>(i)].getVector3fMap() - centre;
+    around.emplace_back(radius * std::atan2(static_cast<double>(d.dot(v)), static_cast<double>(d.dot(u))), i);
+  }
+  Candidate out;
+  out.inliers = largestRun(std::move(around), gap, kTwoPi * radius);
+  if (out.inliers.size() < 3)
+    return std::nullopt;
+  if (out.inliers.size() < inliers.size()) {
+    pcl::Indices run(out.inliers.begin(), out.inliers.end());
+    model->optimizeModelCoefficients(run, c, refined);
+    if (circleValid(refined, params))
+      c = refined;
+  }
+  out.feature.type = FeatureType::Circle;
+  out.feature.centre_mm = c.head<3>();
+  out.feature.direction = c.tail<3>().normalized();
+  out.feature.size_mm = c[3];
+  out.feature.inlier_count = static_cast<int>(out.inliers.size());
+  return out;
+}
+
+/// Median distance from a keypoint to its nearest other keypoint.
+double medianSpacing(const Cloud::Ptr& cloud) {
+  if (cloud->size() < 2)
+    return 0.0;
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+  tree.setInputCloud(cloud);
+  std::vector<float> spacing;
+  pcl::Indices ids(2);
+  std::vector<float> dist(2);
+  const std::size_t step = std::max<std::size_t>(1, cloud->size() / 2000);
+  for (std::size_t i = 0; i < cloud->size(); i += step)
+    if (tree.nearestKSearch((*cloud)[i], 2, ids, dist) == 2)
+      spacing.push_back(std::sqrt(dist[1]));
+  if (spacing.empty())
+    return 0.0;
+  std::nth_element(spacing.begin(), spacing.begin() + static_cast<long>(spacing.size() / 2), spacing.end());
+  return spacing[spacing.size() / 2];
+}
+
+} // namespace
+
+FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_mm,
+                                  const FeatureParams& params, std::uint64_t seed,
+                                  const ProgressFn& progress) {
+  if (!(params.line_threshold_mm > 0) || !(params.circle_threshold_mm > 0))
+    throw Error("feature extraction needs positive RANSAC thresholds (features.line_threshold_mm, "
+                "features.circle_threshold_mm)");
+  if (params.min_circle_radius_mm > params.max_circle_radius_mm)
+    throw Error("the minimum circle radius is larger than the maximum: check "
+                "features.min_circle_radius_mm and features.max_circle_radius_mm");
+  FeatureExtraction result;
+  auto cloud = std::make_shared<Cloud>();
+  std::vector<int> remaining;
+  for (std::size_t i = 0; i < keypoints_mm.size(); ++i)
+    if (isValid(keypoints_mm[i])) {
+      remaining.push_back(static_cast<int>(cloud->size()));
+      cloud->push_back(pcl::PointXYZ(keypoints_mm[i].x(), keypoints_mm[i].y(), keypoints_mm[i].z()));
+    }
+  // Map from the cloud (valid keypoints only) back to the caller's indices.
+  std::vector<int> original;
+  for (std::size_t i = 0; i < keypoints_mm.size(); ++i)
+    if (isValid(keypoints_mm[i]))
+      original.push_back(static_cast<int>(i));
+  const std::size_t total = remaining.size();
+  const double spacing = params.run_gap_mm > 0 ? 0.0 : medianSpacing(cloud);
+  const auto autoGap = [&](double threshold) {
+    return params.run_gap_mm > 0 ? params.run_gap_mm : std::max(3.0 * threshold, 4.0 * spacing);
+  };
+  const double line_gap = autoGap(params.line_threshold_mm);
+  const double circle_gap = autoGap(params.circle_threshold_mm);
+  const std::size_t min_support = static_cast<std::size_t>(std::max(2, params.ransac_size));
+
+  for (int round = 0; round < params.max_features; ++round) {
+    reportProgress(progress, total ? 1.0 - static_cast<double>(remaining.size()) / static_cast<double>(total) : 1.0);
+    if (remaining.size() < min_support)
+      break;
+    // PROSAC draws from a growing prefix; without a quality order a seeded shuffle keeps it fair.
+    std::vector<int> candidates = remaining;
+    const std::uint64_t round_seed = mix(seed ^ mix(static_cast<std::uint64_t>(round)));
+    if (params.estimator == FeatureParams::Estimator::Prosac) {
+      std::mt19937_64 rng(round_seed);
+      std::shuffle(candidates.begin(), candidates.end(), rng);
+    }
+    std::optional<Candidate> line, circle;
+    if (params.lines && candidates.size() >= 2)
+      line = bestLine(cloud, candidates, params, line_gap, mix(round_seed + 1));
+    if (params.circles && candidates.size() >= 3)
+      circle = bestCircle(cloud, candidates, params, circle_gap, mix(round_seed + 2));
+    std::optional<Candidate>* best = nullptr;
+    if (line && line->inliers.size() >= min_support)
+      best = &line;
+    if (circle && circle->inliers.size() >= min_support &&
+        (!best || circle->inliers.size() > (*best)->inliers.size()))
+      best = &circle;
+    if (!best)
+      break;
+    Candidate& accepted = **best;
+    std::vector<int> left;
+    std::set_difference(remaining.begin(), remaining.end(), accepted.inliers.begin(),
+                        accepted.inliers.end(), std::back_inserter(left));
+    remaining.swap(left);
+    for (int& i : accepted.inliers)
+      i = original[static_cast<std::size_t>(i)];
+    result.features.push_back(accepted.feature);
+    result.inliers.push_back(std::move(accepted.inliers));
+  }
+  reportProgress(progress, 1.0);
+  return result;
+}
+
+} // namespace scanpick::core

@@ -1,0 +1,68 @@
+#include "core/matching/RigidFit.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+namespace scanpick::core {
+
+Eigen::Matrix3d rotationBetween(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  const Eigen::Vector3d a = from.normalized(), b = to.normalized();
+  const Eigen::Vector3d axis = a.cross(b);
+  const double s = axis.norm(), c = std::clamp(a.dot(b), -1.0, 1.0);
+  if (s < 1e-12) {
+    if (c > 0.0)
+      return Eigen::Matrix3d::Identity();
+    // Antiparallel: any perpendicular axis; pick a fixed one so the result is deterministic.
+    Eigen::Vector3d perp = a.cross(Eigen::Vector3d::UnitX());
+    if (perp.norm() < 1e-6)
+      perp = a.cross(Eigen::Vector3d::UnitY());
+    return Eigen::AngleAxisd(M_PI, perp.normalized()).toRotationMatrix();
+  }
+  return Eigen::AngleAxisd(std::atan2(s, c), axis / s).toRotationMatrix();
+}
+
+double axisAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const double c = std::abs(a.normalized().dot(b.normalized()));
+  return std::acos(std::min(1.0, c));
+}
+
+namespace {
+double armOf(const Feature& f) {
+  const double arm = f.type == FeatureType::Circle ? f.size_mm : 0.5 * f.size_mm;
+  return std::max(1.0, arm);
+}
+} // namespace
+
+Eigen::Isometry3d fitFeaturePairs(const FeatureList& model, const FeatureList& scene,
+                                  const std::vector<std::pair<int, int>>& pairs,
+                                  const Eigen::Isometry3d& T_guess) {
+  if (pairs.empty())
+    return T_guess;
+  Eigen::Matrix3Xd src(3, 3 * pairs.size()), dst(3, 3 * pairs.size());
+  Eigen::Index col = 0;
+  for (const auto& [mi, si] : pairs) {
+    const Feature& m = model[static_cast<std::size_t>(mi)];
+    const Feature& t = scene[static_cast<std::size_t>(si)];
+    const Eigen::Vector3d mc = m.centre_mm.cast<double>(), tc = t.centre_mm.cast<double>();
+    const Eigen::Vector3d md = m.direction.cast<double>().normalized();
+    Eigen::Vector3d td = t.direction.cast<double>().normalized();
+    if ((T_guess.linear() * md).dot(td) < 0.0)
+      td = -td;
+    // The same arm on both sides: the scene feature's size may differ by up to Δl.
+    const double arm = armOf(m);
+    src.col(col) = mc;
+    dst.col(col++) = tc;
+    src.col(col) = mc + arm * md;
+    dst.col(col++) = tc + arm * td;
+    src.col(col) = mc - arm * md;
+    dst.col(col++) = tc - arm * td;
+  }
+  const Eigen::Matrix4d T = Eigen::umeyama(src, dst, false);
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() = T.topLeftCorner<3, 3>();
+  out.translation() = T.topRightCorner<3, 1>();
+  return out;
+}
+
+} // namespace scanpick::core

@@ -1,0 +1,260 @@
+#include "core/model/ModelFile.h"
+
+#include "core/common/AtomicFile.h"
+#include "core/common/Error.h"
+#include "core/params/ParamsJson.h"
+
+#include <array>
+#include <bit>
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+namespace scanpick::core {
+namespace {
+
+using nlohmann::json;
+static_assert(std::endian::native == std::endian::little, "the point block is little-endian");
+
+std::uint32_t crc32(const char* data, std::size_t size) {
+  static const auto table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i;
+      for (int k = 0; k < 8; ++k)
+        c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      t[i] = c;
+    }
+    return t;
+  }();
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < size; ++i)
+    crc = table[(crc ^ static_cast<std::uint8_t>(data[i])) & 0xFFu] ^ (crc >> 8);
+  return crc ^ 0xFFFFFFFFu;
+}
+
+json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+json vec(const Eigen::Vector3f& v) { return vec(Eigen::Vector3d(v.cast<double>())); }
+
+json matrix(const Eigen::Isometry3d& T) {
+  json rows = json::array();
+  for (int r = 0; r < 4; ++r)
+    rows.push_back(json::array({T(r, 0), T(r, 1), T(r, 2), T(r, 3)}));
+  return rows;
+}
+
+/// Field access with messages that name the file and the key.
+struct Reader {
+  std::string source;
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error(source + ": " + what + " (the model file is damaged: teach the part again)");
+  }
+  const json& at(const json& obj, const char* key) const {
+    if (!obj.is_object() || !obj.contains(key))
+      fail(std::string("missing field '") + key + "'");
+    return obj.at(key);
+  }
+  double number(const json& v, const std::string& what) const {
+    if (!v.is_number())
+      fail("'" + what + "' must be a number");
+    return v.get<double>();
+  }
+  Eigen::Vector3d vector(const json& v, const std::string& what) const {
+    if (!v.is_array() || v.size() != 3)
+      fail("'" + what + "' must be an array of 3 numbers");
+    return {number(v[0], what), number(v[1], what), number(v[2], what)};
+  }
+  Eigen::Isometry3d isometry(const json& v, const std::string& what) const {
+    if (!v.is_array() || v.size() != 4)
+      fail("'" + what + "' must be a 4x4 matrix");
+    Eigen::Matrix4d m;
+    for (int r = 0; r < 4; ++r) {
+      if (!v[r].is_array() || v[r].size() != 4)
+        fail("'" + what + "' must be a 4x4 matrix");
+      for (int c = 0; c < 4; ++c)
+        m(r, c) = number(v[r][c], what);
+    }
+    Eigen::Isometry3d T;
+    T.matrix() = m;
+    return T;
+  }
+};
+
+json sensorToJson(const SensorModel& s) {
+  return {{"preset", s.preset}, {"width", s.width}, {"height", s.height}, {"fx", s.fx},
+          {"fy", s.fy}, {"cx", s.cx}, {"cy", s.cy},
+          {"T_camera_projector", matrix(s.T_camera_projector)},
+          {"min_range_mm", s.min_range_mm}, {"max_range_mm", s.max_range_mm},
+          {"nominal_distance_mm", s.nominal_distance_mm}, {"noise_sigma_mm", s.noise_sigma_mm}};
+}
+
+SensorModel sensorFromJson(const json& j, const Reader& r) {
+  SensorModel s;
+  s.preset = j.value("preset", std::string("custom"));
+  s.width = j.value("width", 0);
+  s.height = j.value("height", 0);
+  s.fx = j.value("fx", 0.0);
+  s.fy = j.value("fy", 0.0);
+  s.cx = j.value("cx", 0.0);
+  s.cy = j.value("cy", 0.0);
+  if (j.contains("T_camera_projector"))
+    s.T_camera_projector = r.isometry(j["T_camera_projector"], "sensor.T_camera_projector");
+  s.min_range_mm = j.value("min_range_mm", 0.0);
+  s.max_range_mm = j.value("max_range_mm", 0.0);
+  s.nominal_distance_mm = j.value("nominal_distance_mm", 0.0);
+  s.noise_sigma_mm = j.value("noise_sigma_mm", 0.0);
+  return s;
+}
+
+void appendPoints(std::string& block, const std::vector<Eigen::Vector3f>& points) {
+  const std::size_t offset = block.size();
+  block.resize(offset + points.size() * 12);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    std::memcpy(&block[offset + i * 12], points[i].data(), 12);
+}
+
+std::vector<Eigen::Vector3f> readPoints(const std::string& block, std::size_t& offset,
+                                        std::size_t count) {
+  std::vector<Eigen::Vector3f> points(count);
+  for (std::size_t i = 0; i < count; ++i)
+    std::memcpy(points[i].data(), &block[offset + i * 12], 12);
+  offset += count * 12;
+  return points;
+}
+
+} // namespace
+
+std::string encodeModel(const TaughtModel& model) {
+  std::string block;
+  const PointCloud cloud = dropInvalid(model.cloud_mm);
+  const bool normals = !cloud.normals.empty();
+  appendPoints(block, cloud.points_mm);
+  if (normals)
+    appendPoints(block, cloud.normals);
+  appendPoints(block, model.keypoints_mm);
+
+  json features = json::array();
+  for (const auto& f : model.features)
+    features.push_back({{"type", toString(f.type)}, {"centre_mm", vec(f.centre_mm)},
+                        {"direction", vec(f.direction)}, {"size_mm", f.size_mm},
+                        {"inlier_count", f.inlier_count}});
+  json grips = json::array();
+  for (const auto& g : model.grip_points)
+    grips.push_back({{"name", g.name}, {"position_mm", vec(g.position_mm)}});
+  const json header = {
+      {"format", "scanpick-model"},
+      {"version", kModelFormatVersion},
+      {"units", "mm"},
+      {"name", model.name},
+      {"source_units", toString(model.source_units)},
+      {"diameter_mm", model.diameter_mm},
+      {"T_teach_model", matrix(model.T_teach_model)},
+      {"sensor", sensorToJson(model.sensor)},
+      {"params", paramsToJson(model.params)},
+      {"features", features},
+      {"grip_points", grips},
+      {"block", {{"encoding", "float32-le"},
+                 {"cloud_points", cloud.size()},
+                 {"cloud_normals", normals},
+                 {"keypoints", model.keypoints_mm.size()},
+                 {"bytes", block.size()},
+                 {"crc32", crc32(block.data(), block.size())}}}};
+  return header.dump() + "\n" + block;
+}
+
+namespace {
+TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
+  const Reader r{source};
+  const std::size_t eol = bytes.find('\n');
+  if (bytes.empty() || bytes[0] != '{' || eol == std::string::npos)
+    throw Error(source + " is not a scanpick model (.spmodel): it does not start with the JSON "
+                         "header line");
+  json header;
+  try {
+    header = json::parse(bytes.substr(0, eol));
+  } catch (const json::exception& e) {
+    throw Error(source + " is not a scanpick model (.spmodel): unreadable header (" +
+                std::string(e.what()) + ")");
+  }
+  if (header.value("format", std::string()) != "scanpick-model")
+    throw Error(source + " is not a scanpick model: its format is '" +
+                header.value("format", std::string("?")) + "'");
+  const int version = static_cast<int>(r.number(r.at(header, "version"), "version"));
+  if (version > kModelFormatVersion)
+    throw Error(source + " was written by a newer scanpick (model format version " +
+                std::to_string(version) + ", this build reads up to " +
+                std::to_string(kModelFormatVersion) + "): update scanpick");
+  if (version < 1)
+    r.fail("invalid version " + std::to_string(version));
+
+  const json& info = r.at(header, "block");
+  const auto cloud_points = static_cast<std::size_t>(r.number(r.at(info, "cloud_points"), "cloud_points"));
+  const bool normals = info.value("cloud_normals", false);
+  const auto n_keypoints = static_cast<std::size_t>(r.number(r.at(info, "keypoints"), "keypoints"));
+  const auto n_bytes = static_cast<std::size_t>(r.number(r.at(info, "bytes"), "bytes"));
+  const auto crc = static_cast<std::uint32_t>(r.number(r.at(info, "crc32"), "crc32"));
+  if (n_bytes != 12 * (cloud_points * (normals ? 2 : 1) + n_keypoints))
+    r.fail("the point block's byte count does not match its point counts");
+  const std::size_t have = bytes.size() - eol - 1;
+  if (have < n_bytes)
+    throw Error(source + " is truncated: its point block holds " + std::to_string(have) + " of " +
+                std::to_string(n_bytes) + " bytes (copy the file again or teach the part again)");
+  if (have > n_bytes)
+    r.fail(std::to_string(have - n_bytes) + " unexpected bytes after the point block");
+  const std::string block = bytes.substr(eol + 1);
+  if (crc32(block.data(), block.size()) != crc)
+    r.fail("the point block's checksum does not match (CRC-32)");
+
+  TaughtModel model;
+  model.name = header.value("name", std::string("part"));
+  model.source_units = parseLengthUnit(header.value("source_units", std::string("mm")));
+  model.diameter_mm = header.value("diameter_mm", 0.0);
+  model.T_teach_model = r.isometry(r.at(header, "T_teach_model"), "T_teach_model");
+  if (header.contains("sensor"))
+    model.sensor = sensorFromJson(header["sensor"], r);
+  try {
+    model.params = paramsFromJson(header.value("params", json::object()));
+  } catch (const Error& e) {
+    r.fail(std::string("parameters: ") + e.what());
+  }
+  for (const auto& f : r.at(header, "features")) {
+    Feature feature;
+    const std::string type = r.at(f, "type").get<std::string>();
+    if (type != "line" && type != "circle")
+      r.fail("unknown feature type '" + type + "'");
+    feature.type = type == "line" ? FeatureType::Line : FeatureType::Circle;
+    feature.centre_mm = r.vector(r.at(f, "centre_mm"), "centre_mm").cast<float>();
+    feature.direction = r.vector(r.at(f, "direction"), "direction").cast<float>();
+    feature.size_mm = static_cast<float>(r.number(r.at(f, "size_mm"), "size_mm"));
+    feature.inlier_count = f.value("inlier_count", 0);
+    model.features.push_back(feature);
+  }
+  for (const auto& g : header.value("grip_points", json::array()))
+    model.grip_points.push_back(
+        {g.value("name", std::string("grip")), r.vector(r.at(g, "position_mm"), "position_mm")});
+  std::size_t offset = 0;
+  model.cloud_mm = PointCloud::fromPoints(readPoints(block, offset, cloud_points));
+  if (normals)
+    model.cloud_mm.normals = readPoints(block, offset, cloud_points);
+  model.keypoints_mm = readPoints(block, offset, n_keypoints);
+  return model;
+}
+} // namespace
+
+TaughtModel decodeModel(const std::string& bytes, const std::string& source) {
+  try {
+    return decodeChecked(bytes, source);
+  } catch (const json::exception& e) {
+    throw Error(source + ": malformed header field (" + std::string(e.what()) +
+                "); the model file is damaged: teach the part again");
+  }
+}
+
+void saveModel(const std::filesystem::path& path, const TaughtModel& model) {
+  writeFileAtomic(path, encodeModel(model));
+}
+
+TaughtModel loadModel(const std::filesystem::path& path) {
+  return decodeModel(readFile(path), path.string());
+}
+
+} // namespace scanpick::core

@@ -1,0 +1,97 @@
+#include "core/model/TaughtModel.h"
+
+#include "core/common/Error.h"
+#include "core/features/FeatureExtraction.h"
+#include "core/keypoints/Keypoints.h"
+#include "core/preprocess/Downsample.h"
+#include "core/preprocess/FloorRemoval.h"
+
+#include <string>
+
+namespace scanpick::core {
+
+PointCloud cropToOrientedBox(const PointCloud& cloud, const OrientedBox& box) {
+  const Eigen::Isometry3f T_box_scan = box.T_scan_box.inverse();
+  std::vector<std::size_t> keep;
+  for (std::size_t i = 0; i < cloud.points_mm.size(); ++i) {
+    const auto& p = cloud.points_mm[i];
+    if (!isValid(p))
+      continue;
+    const Eigen::Vector3f local = T_box_scan * p;
+    if ((local.cwiseAbs().array() <= box.half_extents_mm.array()).all())
+      keep.push_back(i);
+  }
+  PointCloud out;
+  for (std::size_t i : keep) {
+    out.points_mm.push_back(cloud.points_mm[i]);
+    if (!cloud.normals.empty())
+      out.normals.push_back(cloud.normals[i]);
+    if (!cloud.colors.empty())
+      out.colors.push_back(cloud.colors[i]);
+    if (!cloud.intensity.empty())
+      out.intensity.push_back(cloud.intensity[i]);
+    if (!cloud.confidence.empty())
+      out.confidence.push_back(cloud.confidence[i]);
+  }
+  out.width = static_cast<std::uint32_t>(out.points_mm.size());
+  out.height = 1;
+  return out;
+}
+
+TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
+                  const RecognitionParams& params, const ProgressFn& progress) {
+  scan_mm.validate();
+  if (!options.crop_box_mm && !options.crop_oriented)
+    throw Error("no crop box given: draw a box around the part (or pass --crop-box)");
+  PointCloud part = options.crop_oriented ? cropToOrientedBox(scan_mm, *options.crop_oriented)
+                                          : cropToBox(scan_mm, *options.crop_box_mm);
+  reportProgress(progress, 0.05);
+  if (options.remove_floor && part.validCount() >= kMinTeachPoints) {
+    FloorParams floor = params.floor;
+    floor.enabled = true;
+    part = removeFloor(part, floor, params.seed, subProgress(progress, 0.05, 0.25)).remaining;
+  }
+  part = dropInvalid(voxelDownsample(part, params.downsample.voxel_mm));
+  if (part.size() < kMinTeachPoints)
+    throw Error("the crop holds " + std::to_string(part.size()) + " points (at least " +
+                std::to_string(kMinTeachPoints) + " are needed): widen the crop box");
+
+  // Keypoints and features are found in the scan frame, as for scene objects (normals are
+  // oriented towards the camera), then moved into the model frame.
+  const Keypoints keypoints =
+      extractKeypoints(part, params.keypoints, subProgress(progress, 0.25, 0.6));
+  const FeatureExtraction extraction = extractFeatures(
+      keypoints.points_mm, params.features, params.seed, subProgress(progress, 0.6, 0.95));
+  const std::size_t n = extraction.features.size();
+  if (n < 2)
+    throw Error("found " + std::to_string(n) + (n == 1 ? " feature" : " features") +
+                " in the crop (" + std::to_string(keypoints.points_mm.size()) +
+                " keypoints; matching needs at least 2): lower ransac size or widen the crop");
+
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : part.points_mm)
+    centroid += p.cast<double>();
+  centroid /= static_cast<double>(part.size());
+
+  TaughtModel model;
+  model.name = options.name;
+  model.params = params;
+  model.sensor = options.sensor;
+  model.source_units = options.source_units;
+  model.T_teach_model = Eigen::Isometry3d::Identity();
+  model.T_teach_model.translation() = centroid;
+  const Eigen::Isometry3f T_model_teach = model.T_teach_model.inverse().cast<float>();
+  model.cloud_mm = transformed(part, T_model_teach);
+  for (const auto& k : keypoints.points_mm)
+    model.keypoints_mm.push_back(T_model_teach * k);
+  model.features = extraction.features;
+  for (auto& f : model.features)
+    f.centre_mm = T_model_teach * f.centre_mm;
+  for (const auto& g : options.grips_scan)
+    model.grip_points.push_back({g.name, model.T_teach_model.inverse() * g.position_mm});
+  model.diameter_mm = static_cast<double>(boundingBox(model.cloud_mm).diagonal().norm());
+  reportProgress(progress, 1.0);
+  return model;
+}
+
+} // namespace scanpick::core

@@ -1,0 +1,69 @@
+#pragma once
+/// @file TaughtModel.h
+/// The taught model (thesis §3.5, first paragraph): the part cropped from a scan, its keypoints
+/// and features, the parameters it was taught with, and the operator's grip points.
+
+#include "core/cloud/PointCloud.h"
+#include "core/cloud/Sensor.h"
+#include "core/cloud/Units.h"
+#include "core/common/Progress.h"
+#include "core/features/Feature.h"
+#include "core/params/Parameters.h"
+#include "core/pipeline/Detection.h"
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace scanpick::core {
+
+/// A part taught from one scan. The model frame has the teach camera's axes and its origin at the
+/// centroid of the cropped cloud, so a detection's translation is where that centroid lies.
+struct TaughtModel {
+  std::string name = "part";
+  PointCloud cloud_mm;                         ///< the cropped part, model frame, unorganized
+  std::vector<Eigen::Vector3f> keypoints_mm;   ///< first-level keypoints, model frame
+  FeatureList features;                        ///< lines and circles, model frame
+  RecognitionParams params;                    ///< parameters it was taught with
+  std::vector<GripPoint> grip_points;          ///< model frame, mm
+  SensorModel sensor;                          ///< sensor of the teach scan
+  LengthUnit source_units = LengthUnit::Millimetres;  ///< units of the teach scan's file
+  /// The model frame in the teach scan's (camera) frame: a pure translation to the centroid.
+  Eigen::Isometry3d T_teach_model = Eigen::Isometry3d::Identity();
+  double diameter_mm = 0.0;  ///< diagonal of the cloud's bounding box, for duplicate suppression
+};
+
+/// A box in the scan frame given by its pose and half extents (an operator's rotated crop box).
+struct OrientedBox {
+  Eigen::Isometry3f T_scan_box = Eigen::Isometry3f::Identity();
+  Eigen::Vector3f half_extents_mm = Eigen::Vector3f::Zero();
+};
+
+/// How to cut the part out of the teach scan.
+struct TeachOptions {
+  std::string name = "part";
+  std::optional<Eigen::AlignedBox3f> crop_box_mm;  ///< axis-aligned crop in the scan frame
+  std::optional<OrientedBox> crop_oriented;        ///< or an oriented one (used if set)
+  bool remove_floor = false;       ///< run floor removal (params.floor) inside the crop
+  std::vector<GripPoint> grips_scan;  ///< grip points in the scan frame, mm
+  SensorModel sensor;              ///< sensor of the scan (stored with the model)
+  LengthUnit source_units = LengthUnit::Millimetres;
+};
+
+/// Smallest crop accepted by teach(), in points.
+inline constexpr std::size_t kMinTeachPoints = 100;
+
+/// Teaches a model from `scan_mm` (camera frame): crop, optional floor removal, downsampling
+/// (params.downsample), keypoints and features as for a scene object, then moves everything into
+/// the model frame. Throws Error when neither crop is given, the crop holds fewer than
+/// kMinTeachPoints points ("the crop holds N points: widen the crop box") or fewer than two
+/// features are found ("found 1 feature: lower ransac size or widen the crop"); Cancelled when
+/// `progress` asks to stop. Deterministic for a given params.seed.
+TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
+                  const RecognitionParams& params, const ProgressFn& progress = {});
+
+/// Points of `cloud` inside the oriented box (unorganized, channels follow).
+PointCloud cropToOrientedBox(const PointCloud& cloud, const OrientedBox& box);
+
+} // namespace scanpick::core

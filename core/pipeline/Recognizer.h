@@ -1,0 +1,75 @@
+#pragma once
+/// @file Recognizer.h
+/// The recognition pipeline of §3.5: floor removal → downsampling → split into objects → per
+/// object keypoints → features → matching (Algorithm 8, several instances per object) →
+/// duplicate suppression → detections with grip points. Each stage's output is cached, keyed by
+/// the scene's content and that stage's parameters, so changing a matching tolerance re-runs the
+/// matching only (the GUI's live tuning relies on this).
+
+#include "core/cloud/PointCloud.h"
+#include "core/cloud/Sensor.h"
+#include "core/common/Progress.h"
+#include "core/features/Feature.h"
+#include "core/keypoints/Keypoints.h"
+#include "core/model/TaughtModel.h"
+#include "core/params/Parameters.h"
+#include "core/pipeline/Detection.h"
+
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace scanpick::core {
+
+/// Wall-clock time of each stage of the last run, milliseconds (0 for a stage served from cache).
+struct StageTimings {
+  double preprocess_ms = 0, clustering_ms = 0, keypoints_ms = 0, features_ms = 0,
+         matching_ms = 0, refine_ms = 0, total_ms = 0;
+};
+
+/// What one recognition produced, intermediate results included (for previews).
+struct RecognitionResult {
+  std::vector<Detection> detections;  ///< best first
+  StageTimings timings;
+  /// The scene after floor removal and downsampling.
+  std::shared_ptr<const PointCloud> preprocessed;
+  std::size_t floor_points_removed = 0;
+  /// One cloud per object (cluster), then per object its keypoints and features.
+  std::shared_ptr<const std::vector<PointCloud>> objects;
+  std::shared_ptr<const std::vector<Keypoints>> object_keypoints;
+  std::shared_ptr<const std::vector<FeatureList>> object_features;
+};
+
+/// Runs recognition of one taught model. recognize() may be called from any thread; concurrent
+/// calls are allowed (the cache is locked only while read or written).
+class Recognizer {
+public:
+  Recognizer() = default;
+  explicit Recognizer(std::shared_ptr<const TaughtModel> model) : m_model(std::move(model)) {}
+
+  /// Sets the model to find (matching is re-run; cached scene stages are kept).
+  void setModel(std::shared_ptr<const TaughtModel> model);
+  [[nodiscard]] std::shared_ptr<const TaughtModel> model() const;
+
+  /// Finds the model in `scene_mm` (camera frame, mm). Throws Error without a model, for a scene
+  /// with no valid point or an inconsistent cloud; Cancelled when `progress` asks to stop.
+  /// Same scene + parameters (seed included) = identical result, cached or not.
+  RecognitionResult recognize(const PointCloud& scene_mm, const SensorModel& sensor,
+                              const RecognitionParams& params, const ProgressFn& progress = {});
+
+  /// Forgets every cached stage.
+  void clearCache();
+
+private:
+  struct Cache;
+  mutable std::mutex m_mutex;
+  std::shared_ptr<const TaughtModel> m_model;
+  std::shared_ptr<Cache> m_cache;
+};
+
+/// Removes duplicates: detections (sorted best first) whose model origins are closer than
+/// `min_distance_mm` to a better one are dropped. Keeps the input order otherwise.
+std::vector<Detection> suppressDuplicates(std::vector<Detection> detections,
+                                          double min_distance_mm);
+
+} // namespace scanpick::core

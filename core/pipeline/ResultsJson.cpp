@@ -1,0 +1,59 @@
+#include "core/pipeline/ResultsJson.h"
+
+#include "core/common/AtomicFile.h"
+
+namespace scanpick::core {
+namespace {
+using nlohmann::json;
+
+json matrix(const Eigen::Isometry3d& T) {
+  json rows = json::array();
+  for (int r = 0; r < 4; ++r)
+    rows.push_back(json::array({T(r, 0), T(r, 1), T(r, 2), T(r, 3)}));
+  return rows;
+}
+json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+} // namespace
+
+json resultsToJson(const RecognitionResult& result, const TaughtModel& model,
+                   const std::string& scene_path, const std::string& model_path) {
+  json detections = json::array();
+  for (std::size_t i = 0; i < result.detections.size(); ++i) {
+    const Detection& d = result.detections[i];
+    const Eigen::Quaterniond q(d.T_scene_model.linear());
+    json grips = json::array();
+    for (const auto& g : d.grip_points_scene)
+      grips.push_back({{"name", g.name}, {"position_mm", vec(g.position_mm)}});
+    json pairs = json::array();
+    for (const auto& [m, s] : d.matched_features)
+      pairs.push_back(json::array({m, s}));
+    detections.push_back({{"id", i},
+                          {"score", d.score},
+                          {"cluster", d.cluster},
+                          {"T_scene_model", matrix(d.T_scene_model)},
+                          {"position_mm", vec(d.T_scene_model.translation())},
+                          {"quaternion_wxyz", json::array({q.w(), q.x(), q.y(), q.z()})},
+                          {"grip_points", grips},
+                          {"matched_features", pairs}});
+  }
+  const StageTimings& t = result.timings;
+  return {{"format", "scanpick-results"},
+          {"version", kResultsFormatVersion},
+          {"units", "mm"},
+          {"scene", scene_path},
+          {"model", {{"path", model_path}, {"name", model.name},
+                     {"T_teach_model", matrix(model.T_teach_model)}}},
+          {"detections", detections},
+          {"timings_ms", {{"preprocess", t.preprocess_ms}, {"clustering", t.clustering_ms},
+                          {"keypoints", t.keypoints_ms}, {"features", t.features_ms},
+                          {"matching", t.matching_ms}, {"refine", t.refine_ms},
+                          {"total", t.total_ms}}}};
+}
+
+void saveResults(const std::filesystem::path& path, const RecognitionResult& result,
+                 const TaughtModel& model, const std::string& scene_path,
+                 const std::string& model_path) {
+  writeFileAtomic(path, resultsToJson(result, model, scene_path, model_path).dump(2) + "\n");
+}
+
+} // namespace scanpick::core

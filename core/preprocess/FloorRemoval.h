@@ -1,0 +1,36 @@
+#pragma once
+/// @file FloorRemoval.h
+/// Removal of the dominant planes of a scene (bin floor, table, walls) with RANSAC, §3.3.
+
+#include "core/cloud/PointCloud.h"
+#include "core/common/Progress.h"
+#include "core/params/Parameters.h"
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace scanpick::core {
+
+/// What removeFloor removed and what it kept.
+struct FloorRemovalResult {
+  /// The scene without the plane points. Same size and organization as the input when the input
+  /// is organized (removed points become NaN, other channels are kept); unorganized otherwise.
+  PointCloud remaining;
+  /// The removed planes, largest first: (a, b, c, d) with a unit normal, a x + b y + c z + d = 0 in
+  /// millimetres, the normal pointing towards the camera (the origin).
+  std::vector<Eigen::Vector4f> planes;
+  std::size_t removed_points = 0;  ///< valid points that were removed
+};
+
+/// Finds up to `params.max_planes` planes one after the other with RANSAC (PCL's plane model,
+/// inlier distance `params.distance_mm`, sampled on at most 60k points for speed and then refined
+/// by least squares and applied to every point) and removes each one that holds at least
+/// `params.min_plane_fraction` of the scene's valid points; the search stops at the first plane
+/// that is too small. `params.enabled == false` or `max_planes == 0` returns a copy.
+/// Deterministic for a given `seed`. Throws Error for an inconsistent cloud, Cancelled when
+/// `progress` asks to stop.
+FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& params,
+                               std::uint64_t seed, const ProgressFn& progress = {});
+
+} // namespace scanpick::core

@@ -1,0 +1,242 @@
+#include "core/refine/PoseRefinement.h"
+
+#include "core/common/Error.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace scanpick::core {
+
+namespace {
+
+/// Pairs whose normals differ by more than ~60° are different surfaces (the other side of a thin
+/// wall, an edge, the floor under a tilted face), not the same one slightly misplaced.
+constexpr float kMinNormalCosine = 0.5f;
+/// Coarse iterations use every kCoarseStride-th model point: the pose is still far off, so more
+/// points would only refine a wrong linearisation.
+constexpr std::size_t kCoarseStride = 4;
+constexpr std::size_t kMinCoarsePoints = 200;
+
+void checkParams(const RefineParams& params) {
+  if (params.max_iterations < 1 || !(params.max_correspondence_mm > 0) ||
+      !(params.min_correspondence_mm > 0) || !(params.inlier_distance_mm > 0) ||
+      !(params.convergence_mm > 0) || params.model_points < 3 ||
+      !(params.min_inlier_fraction >= 0 && params.min_inlier_fraction <= 1))
+    throw Error("Refinement parameters out of range: iterations and model points must be "
+                "positive, the distances and convergence > 0 mm, and the minimum inlier share in "
+                "[0, 1] (see docs/parameters.md, section Refinement).");
+}
+
+/// One model point's pair with the scene at the current pose.
+struct Pair {
+  bool valid = false;
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();  ///< model point in the scene frame
+  Eigen::Vector3d q = Eigen::Vector3d::Zero();  ///< nearest scene point
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();  ///< scene normal at q
+};
+
+/// True when the camera at `viewpoint` sees the front of a surface at `p` with normal `n`.
+bool facesViewpoint(const Eigen::Vector3f& p, const Eigen::Vector3f& n,
+                    const Eigen::Vector3f& viewpoint) {
+  return n.dot(viewpoint - p) > 0.0f;
+}
+
+/// Pairs every stride-th model point with its nearest scene point within sqrt(max_distance_sq).
+/// Each slot is written by one task only, so the result is independent of scheduling.
+void findPairs(const RefineModel& model, const SceneIndex& scene, const Eigen::Isometry3d& T,
+               std::size_t stride, float max_distance_sq, bool need_normals,
+               std::vector<Pair>& pairs) {
+  const Eigen::Matrix3f R = T.linear().cast<float>();
+  const Eigen::Vector3f t = T.translation().cast<float>();
+  const Eigen::Vector3f viewpoint = scene.options().viewpoint_mm.cast<float>();
+  const std::size_t count = (model.size() + stride - 1) / stride;
+  pairs.assign(count, Pair{});
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 128),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t k = range.begin(); k < range.end(); ++k) {
+      const std::size_t i = k * stride;
+      const Eigen::Vector3f p = R * model.points()[i] + t;
+      const Eigen::Vector3f n_model = R * model.normals()[i];
+      if (!facesViewpoint(p, n_model, viewpoint))
+        continue;
+      const std::int64_t j = scene.nearest(p, max_distance_sq);
+      if (j < 0)
+        continue;
+      const Eigen::Vector3f& n_scene = scene.normals()[static_cast<std::size_t>(j)];
+      if (need_normals && (!n_scene.allFinite() || n_scene.dot(n_model) < kMinNormalCosine))
+        continue;
+      Pair& pair = pairs[k];
+      pair.valid = true;
+      pair.p = p.cast<double>();
+      pair.q = scene.points()[static_cast<std::size_t>(j)].cast<double>();
+      if (n_scene.allFinite())
+        pair.n = n_scene.cast<double>();
+    }
+  });
+}
+
+/// Exponential of a small twist (rotation vector omega, translation): the rigid increment.
+Eigen::Isometry3d increment(const Eigen::Matrix<double, 6, 1>& x) {
+  Eigen::Isometry3d dT = Eigen::Isometry3d::Identity();
+  const Eigen::Vector3d omega = x.head<3>();
+  const double angle = omega.norm();
+  if (angle > 0)
+    dT.linear() = Eigen::AngleAxisd(angle, omega / angle).toRotationMatrix();
+  dT.translation() = x.tail<3>();
+  return dT;
+}
+
+} // namespace
+
+RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
+                            const Eigen::Isometry3d& T_scene_model_initial,
+                            const RefineParams& params, const ProgressFn& progress) {
+  checkParams(params);
+  if (model.size() == 0 || scene.size() == 0)
+    throw Error("Refinement needs model and scene points: both are empty.");
+  RefinementResult result;
+  Eigen::Isometry3d T = T_scene_model_initial;
+  const double floor_mm = std::min(params.min_correspondence_mm, params.max_correspondence_mm);
+  double distance_mm = params.max_correspondence_mm;
+  const bool can_coarsen = model.size() >= kCoarseStride * kMinCoarsePoints;
+  bool settled = false;
+  std::vector<Pair> pairs;
+
+  for (int iteration = 0; iteration < params.max_iterations; ++iteration) {
+    reportProgress(progress, static_cast<double>(iteration) / params.max_iterations);
+    const bool coarse = can_coarsen && distance_mm > 1.5 * floor_mm;
+    const std::size_t stride = coarse ? kCoarseStride : 1;
+    findPairs(model, scene, T, stride, static_cast<float>(distance_mm * distance_mm),
+              params.point_to_plane, pairs);
+
+    // Gauss-Newton on the linearised error, summed in point order (bitwise reproducible). Tukey
+    // weights with the current pair distance as scale fade out pairs near the cut-off.
+    Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+    double sum_sq_distance = 0;
+    std::size_t used = 0;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const Pair& pair : pairs) {
+      if (!pair.valid)
+        continue;
+      const Eigen::Vector3d d = pair.p - pair.q;
+      const double distance_sq = d.squaredNorm();
+      const double residual = params.point_to_plane ? pair.n.dot(d) : std::sqrt(distance_sq);
+      const double u = residual / distance_mm;
+      const double w = std::max(0.0, 1.0 - u * u);
+      if (w <= 0)
+        continue;
+      const double weight = w * w;
+      if (params.point_to_plane) {
+        Eigen::Matrix<double, 6, 1> J;
+        J << pair.p.cross(pair.n), pair.n;
+        A.noalias() += weight * J * J.transpose();
+        b.noalias() += weight * J * pair.n.dot(d);
+      } else {
+        // d(p') = -[p']x omega + t for a small rotation omega about the scene origin.
+        Eigen::Matrix<double, 3, 6> J;
+        J << -(Eigen::Matrix3d() << 0, -pair.p.z(), pair.p.y(), pair.p.z(), 0, -pair.p.x(),
+               -pair.p.y(), pair.p.x(), 0).finished(),
+            Eigen::Matrix3d::Identity();
+        A.noalias() += weight * J.transpose() * J;
+        b.noalias() += weight * J.transpose() * d;
+      }
+      sum_sq_distance += distance_sq;
+      centroid += pair.p;
+      ++used;
+    }
+    if (used < 6)
+      break;  // too few pairs to fix six degrees of freedom: keep the last pose
+    result.iterations = iteration + 1;
+    // A tiny ridge keeps flat or symmetric models (rank-deficient A) from exploding along the
+    // unconstrained directions; it does not bias constrained ones measurably.
+    A.diagonal().array() += 1e-9 * A.trace() / 6.0;
+    const Eigen::Matrix<double, 6, 1> x = A.ldlt().solve(-b);
+    if (!x.allFinite())
+      break;
+    const Eigen::Isometry3d dT = increment(x);
+    T = dT * T;
+
+    centroid /= static_cast<double>(used);
+    const double motion_mm = (x.head<3>().cross(centroid) + x.tail<3>()).norm() +
+                             x.head<3>().norm() * model.radius_mm();
+    const double rms_mm = std::sqrt(sum_sq_distance / static_cast<double>(used));
+    distance_mm = std::clamp(3.0 * rms_mm, floor_mm, distance_mm);
+    if (motion_mm < params.convergence_mm && !coarse) {
+      settled = true;
+      break;
+    }
+  }
+
+  // Final check on all points: visible ones, their inliers, and the residual.
+  findPairs(model, scene, T, 1,
+            static_cast<float>(params.inlier_distance_mm * params.inlier_distance_mm), false,
+            pairs);
+  const Eigen::Vector3f viewpoint = scene.options().viewpoint_mm.cast<float>();
+  const Eigen::Matrix3f R = T.linear().cast<float>();
+  const Eigen::Vector3f t = T.translation().cast<float>();
+  std::size_t visible = 0, inliers = 0;
+  double sum_sq = 0;
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    if (facesViewpoint(R * model.points()[i] + t, R * model.normals()[i], viewpoint))
+      ++visible;
+    const Pair& pair = pairs[i];
+    if (!pair.valid)
+      continue;
+    ++inliers;
+    const Eigen::Vector3d d = pair.p - pair.q;
+    const double r = params.point_to_plane && pair.n != Eigen::Vector3d::Zero() ? pair.n.dot(d)
+                                                                               : d.norm();
+    sum_sq += r * r;
+  }
+  result.T_scene_model = T;
+  result.visible_points = visible;
+  result.inlier_fraction = visible ? static_cast<double>(inliers) / static_cast<double>(visible) : 0;
+  result.rmse_mm = inliers ? std::sqrt(sum_sq / static_cast<double>(inliers)) : 0;
+  result.converged = settled && result.inlier_fraction >= params.min_inlier_fraction;
+  reportProgress(progress, 1.0);
+  return result;
+}
+
+RefinementResult refinePose(const PointCloud& model_mm, const SceneIndex& scene,
+                            const Eigen::Isometry3d& T_scene_model_initial,
+                            const RefineParams& params, const ProgressFn& progress) {
+  checkParams(params);
+  const RefineModel model(model_mm, params.model_points);
+  return refinePose(model, scene, T_scene_model_initial, params, progress);
+}
+
+RefinementResult refinePose(const PointCloud& model_mm, const PointCloud& scene_mm,
+                            const Eigen::Isometry3d& T_scene_model_initial,
+                            const RefineParams& params, const ProgressFn& progress) {
+  checkParams(params);
+  const RefineModel model(model_mm, params.model_points);
+  const SceneIndex scene(scene_mm, {}, subProgress(progress, 0.0, 0.5));
+  return refinePose(model, scene, T_scene_model_initial, params, subProgress(progress, 0.5, 1.0));
+}
+
+double coverageScore(const RefineModel& model, const SceneIndex& scene,
+                     const Eigen::Isometry3d& T_scene_model, double tolerance_mm) {
+  if (!(tolerance_mm > 0))
+    throw Error("The coverage tolerance must be > 0 mm (got " + std::to_string(tolerance_mm) +
+                ").");
+  std::vector<Pair> pairs;
+  findPairs(model, scene, T_scene_model, 1, static_cast<float>(tolerance_mm * tolerance_mm), false,
+            pairs);
+  const Eigen::Vector3f viewpoint = scene.options().viewpoint_mm.cast<float>();
+  const Eigen::Matrix3f R = T_scene_model.linear().cast<float>();
+  const Eigen::Vector3f t = T_scene_model.translation().cast<float>();
+  std::size_t visible = 0, confirmed = 0;
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    visible += facesViewpoint(R * model.points()[i] + t, R * model.normals()[i], viewpoint) ? 1 : 0;
+    confirmed += pairs[i].valid ? 1 : 0;
+  }
+  return visible ? static_cast<double>(confirmed) / static_cast<double>(visible) : 0.0;
+}
+
+} // namespace scanpick::core

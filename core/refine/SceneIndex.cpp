@@ -1,0 +1,206 @@
+#include "core/refine/SceneIndex.h"
+
+#include "core/common/Error.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nanoflann.hpp>
+#include <string>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace scanpick::core {
+
+namespace {
+
+/// nanoflann's dataset adaptor over the indexed points.
+struct PointSource {
+  const std::vector<Eigen::Vector3f>* points = nullptr;
+  [[nodiscard]] std::size_t kdtree_get_point_count() const { return points->size(); }
+  [[nodiscard]] float kdtree_get_pt(std::size_t i, std::size_t dim) const {
+    return (*points)[i][static_cast<Eigen::Index>(dim)];
+  }
+  template <class Box> bool kdtree_get_bbox(Box&) const { return false; }
+};
+
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointSource>,
+                                                   PointSource, 3, std::uint32_t>;
+
+/// Keeps the single nearest point; starts with the caller's radius so the search prunes early.
+class NearestResult {
+public:
+  explicit NearestResult(float max_distance_sq) : m_best(max_distance_sq) {}
+  [[nodiscard]] std::size_t size() const { return m_index == kNone ? 0 : 1; }
+  [[nodiscard]] bool full() const { return true; }
+  bool addPoint(float distance_sq, std::uint32_t index) {
+    // Equal distances keep the lower index, so the answer does not depend on the visiting order.
+    if (distance_sq < m_best || (distance_sq == m_best && index < m_index)) {
+      m_best = distance_sq;
+      m_index = index;
+    }
+    return true;
+  }
+  [[nodiscard]] float worstDist() const { return m_best; }
+  [[nodiscard]] std::uint32_t index() const { return m_index; }
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+private:
+  float m_best;
+  std::uint32_t m_index = kNone;
+};
+
+/// Unit normal of the best-fit plane of `points` (PCA), turned to face `viewpoint`; NaN for
+/// fewer than 5 points or a degenerate (linear) neighbourhood.
+template <typename Gather>
+Eigen::Vector3f planeNormal(const Eigen::Vector3f& centre, const Eigen::Vector3d& viewpoint,
+                            Gather&& gather) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  int count = 0;
+  // Offsets from the centre keep the covariance well conditioned far from the origin.
+  const Eigen::Vector3d c = centre.cast<double>();
+  gather([&](const Eigen::Vector3f& q) {
+    const Eigen::Vector3d d = q.cast<double>() - c;
+    sum += d;
+    outer += d * d.transpose();
+    ++count;
+  });
+  if (count < 5)
+    return invalidPoint();
+  const Eigen::Vector3d mean = sum / count;
+  const Eigen::Matrix3d cov = outer / count - mean * mean.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(cov);
+  // A neighbourhood that is a line (an edge of valid pixels) has no defined plane.
+  if (!(eig.eigenvalues()(1) > 1e-3 * eig.eigenvalues()(2)))
+    return invalidPoint();
+  Eigen::Vector3d n = eig.eigenvectors().col(0).normalized();
+  if (n.dot(viewpoint - c) < 0)
+    n = -n;
+  return n.cast<float>();
+}
+
+/// Runs body(begin, end) over [0, n) in blocks, reporting progress between blocks.
+template <typename Body>
+void blockedParallel(std::size_t n, const ProgressFn& progress, Body&& body) {
+  constexpr std::size_t kBlock = 1 << 16;
+  for (std::size_t start = 0; start < n; start += kBlock) {
+    const std::size_t stop = std::min(n, start + kBlock);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(start, stop, 1024),
+                      [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+    reportProgress(progress, 0.1 + 0.9 * static_cast<double>(stop) / static_cast<double>(n));
+  }
+}
+
+} // namespace
+
+// The tree owns the points: it lives on the heap, so the adaptor's pointer survives moves of
+// the SceneIndex.
+struct SceneIndex::Tree {
+  std::vector<Eigen::Vector3f> points;
+  PointSource source;
+  KdTree tree;
+  explicit Tree(std::vector<Eigen::Vector3f> points_mm)
+      : points(std::move(points_mm)), source{&points},
+        tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+};
+
+SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& options,
+                       const ProgressFn& progress)
+    : m_options(options) {
+  scene_mm.validate();
+  if (!(options.normal_radius_mm > 0) || options.pixel_half_window < 1 ||
+      options.pixel_half_window > 10 || options.neighbours < 5 || options.neighbours > 100 ||
+      !options.viewpoint_mm.allFinite())
+    throw Error("Scene index options out of range: normal radius must be > 0 mm, pixel half "
+                "window 1-10, neighbours 5-100, and the viewpoint finite.");
+  // Valid points in input order; for organized clouds, remember where each pixel went.
+  std::vector<std::int64_t> pixel_to_index(scene_mm.isOrganized() ? scene_mm.size() : 0, -1);
+  std::vector<std::size_t> source_index;
+  std::vector<Eigen::Vector3f> valid;
+  valid.reserve(scene_mm.size());
+  source_index.reserve(scene_mm.size());
+  for (std::size_t i = 0; i < scene_mm.size(); ++i)
+    if (isValid(scene_mm.points_mm[i])) {
+      if (!pixel_to_index.empty())
+        pixel_to_index[i] = static_cast<std::int64_t>(valid.size());
+      valid.push_back(scene_mm.points_mm[i]);
+      source_index.push_back(i);
+    }
+  if (valid.empty())
+    throw Error("The cloud to refine against has no valid point (empty or all NaN): check that "
+                "the scan loaded and that the crop or floor removal left points.");
+  m_tree = std::make_unique<Tree>(std::move(valid));
+  const std::vector<Eigen::Vector3f>& indexed = m_tree->points;
+  reportProgress(progress, 0.1);
+
+  m_normals.assign(indexed.size(), invalidPoint());
+  const Eigen::Vector3d viewpoint = options.viewpoint_mm;
+  const bool own_normals = options.use_cloud_normals && scene_mm.normals.size() == scene_mm.size();
+  const float radius_sq = static_cast<float>(options.normal_radius_mm * options.normal_radius_mm);
+  const int width = static_cast<int>(scene_mm.width), height = static_cast<int>(scene_mm.height);
+  const int w = options.pixel_half_window;
+  const std::size_t k = static_cast<std::size_t>(options.neighbours);
+
+  blockedParallel(indexed.size(), progress, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::uint32_t> ids(k);
+    std::vector<float> dists(k);
+    for (std::size_t i = begin; i < end; ++i) {
+      const Eigen::Vector3f& p = indexed[i];
+      const std::size_t src = source_index[i];
+      if (own_normals) {
+        const Eigen::Vector3f n = scene_mm.normals[src];
+        if (n.allFinite() && n.norm() > 0.5f) {
+          Eigen::Vector3f unit = n.normalized();
+          if (unit.cast<double>().dot(viewpoint - p.cast<double>()) < 0)
+            unit = -unit;
+          m_normals[i] = unit;
+          continue;
+        }
+      }
+      if (scene_mm.isOrganized()) {
+        const int row = static_cast<int>(src / scene_mm.width);
+        const int col = static_cast<int>(src % scene_mm.width);
+        m_normals[i] = planeNormal(p, viewpoint, [&](auto&& add) {
+          for (int r = std::max(0, row - w); r <= std::min(height - 1, row + w); ++r)
+            for (int c = std::max(0, col - w); c <= std::min(width - 1, col + w); ++c) {
+              const std::int64_t j = pixel_to_index[static_cast<std::size_t>(r) * scene_mm.width +
+                                                    static_cast<std::size_t>(c)];
+              if (j >= 0 && (indexed[static_cast<std::size_t>(j)] - p).squaredNorm() <= radius_sq)
+                add(indexed[static_cast<std::size_t>(j)]);
+            }
+        });
+      } else {
+        const std::size_t found = m_tree->tree.knnSearch(p.data(), k, ids.data(), dists.data());
+        m_normals[i] = planeNormal(p, viewpoint, [&](auto&& add) {
+          for (std::size_t j = 0; j < found; ++j)
+            if (dists[j] <= radius_sq)
+              add(indexed[ids[j]]);
+        });
+      }
+    }
+  });
+}
+
+const std::vector<Eigen::Vector3f>& SceneIndex::points() const { return m_tree->points; }
+
+SceneIndex::~SceneIndex() = default;
+SceneIndex::SceneIndex(SceneIndex&&) noexcept = default;
+SceneIndex& SceneIndex::operator=(SceneIndex&&) noexcept = default;
+
+std::int64_t SceneIndex::nearest(const Eigen::Vector3f& query_mm, float max_distance_sq,
+                                 float* distance_sq) const {
+  if (!m_tree || !(max_distance_sq > 0) || !query_mm.allFinite())
+    return -1;
+  NearestResult result(max_distance_sq);
+  m_tree->tree.findNeighbors(result, query_mm.data(), nanoflann::SearchParams(32, 0.0f, false));
+  if (result.index() == NearestResult::kNone)
+    return -1;
+  if (distance_sq)
+    *distance_sq = result.worstDist();
+  return static_cast<std::int64_t>(result.index());
+}
+
+} // namespace scanpick::core

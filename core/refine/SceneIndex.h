@@ -1,0 +1,70 @@
+#pragma once
+/// @file SceneIndex.h
+/// Scene points with unit normals in a kd-tree: built once per scene, then shared (read-only) by
+/// the refinement and verification of every detection in that scene.
+
+#include "core/cloud/PointCloud.h"
+#include "core/common/Progress.h"
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace scanpick::core {
+
+/// How SceneIndex estimates normals when the cloud brings none.
+struct SceneIndexOptions {
+  /// Where the camera is, in the cloud's frame (mm). Normals are turned to face it, and
+  /// refinement uses it to tell which model points the camera can see. Default: the origin, as
+  /// for a scan in its camera frame.
+  Eigen::Vector3d viewpoint_mm = Eigen::Vector3d::Zero();
+  /// Neighbours farther than this from a point do not shape its normal (mm); default 3 mm, the
+  /// size of a PhoXi-class surface patch that is still flat on machined parts.
+  double normal_radius_mm = 3.0;
+  /// Organized clouds: the normal is the PCA of the valid pixels in a (2w+1)² window (w = this)
+  /// that lie within normal_radius_mm; linear in the number of pixels, no tree search.
+  int pixel_half_window = 2;
+  /// Unorganized clouds: PCA of this many nearest neighbours (within normal_radius_mm).
+  int neighbours = 12;
+  /// Use the cloud's own normals when it has them (re-oriented towards the viewpoint).
+  bool use_cloud_normals = true;
+};
+
+/// The valid points of a cloud, their normals (NaN where too few neighbours), and a kd-tree.
+/// Immutable after construction: queries are safe from many threads at once.
+class SceneIndex {
+public:
+  /// Builds the index from `scene_mm` (organized or not; NaN points are skipped). Normal
+  /// estimation runs in parallel (TBB) and is deterministic. Throws Error when the cloud has no
+  /// valid point or the options are out of range; Cancelled when `progress` asks to stop.
+  explicit SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& options = {},
+                      const ProgressFn& progress = {});
+  ~SceneIndex();
+  SceneIndex(SceneIndex&&) noexcept;
+  SceneIndex& operator=(SceneIndex&&) noexcept;
+  SceneIndex(const SceneIndex&) = delete;
+  SceneIndex& operator=(const SceneIndex&) = delete;
+
+  /// Number of indexed (valid) points.
+  [[nodiscard]] std::size_t size() const { return m_normals.size(); }
+  /// Indexed points (mm), in the order of the valid points of the input cloud.
+  [[nodiscard]] const std::vector<Eigen::Vector3f>& points() const;
+  /// Unit normals facing the viewpoint; NaN where a normal could not be estimated.
+  [[nodiscard]] const std::vector<Eigen::Vector3f>& normals() const { return m_normals; }
+  [[nodiscard]] const SceneIndexOptions& options() const { return m_options; }
+
+  /// Nearest indexed point to `query_mm` no farther than sqrt(max_distance_sq) (mm²). Returns
+  /// its index, or -1 when there is none that close. Exact (no approximate search), so
+  /// deterministic; ties go to the lower index.
+  [[nodiscard]] std::int64_t nearest(const Eigen::Vector3f& query_mm, float max_distance_sq,
+                                     float* distance_sq = nullptr) const;
+
+private:
+  struct Tree;
+  SceneIndexOptions m_options;
+  std::vector<Eigen::Vector3f> m_normals;
+  std::unique_ptr<Tree> m_tree;
+};
+
+} // namespace scanpick::core

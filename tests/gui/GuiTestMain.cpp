@@ -1,0 +1,27 @@
+// main() of the GUI tests: a QApplication with VTK's surface format around GoogleTest. Listing the
+// tests (ctest discovery at build time) needs no display, so no QApplication is made for it.
+#include "ui/viewport/QtVtkViewport.h"
+
+#include <QApplication>
+#include <QStandardPaths>
+#include <cstring>
+#include <gtest/gtest.h>
+#include <memory>
+
+int main(int argc, char** argv) {
+  bool listing = false;
+  for (int i = 1; i < argc; ++i)
+    listing = listing || std::strncmp(argv[i], "--gtest_list_tests", 18) == 0;
+  testing::InitGoogleTest(&argc, argv);
+  std::unique_ptr<QApplication> app;
+  if (!listing) {
+    QSurfaceFormat::setDefaultFormat(scanpick::ui::QtVtkViewport::defaultFormat());
+    QApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
+    app = std::make_unique<QApplication>(argc, argv);
+    QApplication::setOrganizationName("scanpick-tests");
+    QApplication::setApplicationName("scanpick-gui-tests");
+    // QSettings and caches go to a test location, never the user's.
+    QStandardPaths::setTestModeEnabled(true);
+  }
+  return RUN_ALL_TESTS();
+}

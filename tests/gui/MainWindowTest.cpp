@@ -1,0 +1,215 @@
+// The main window driven like an operator would: load a teach scan generated in code, crop the
+// part with the box (undo/redo), place a grip point, preview keypoints/features, tune a
+// parameter, teach, load a bin scene, recognize, and check the results table and the picture.
+#include "core/common/Log.h"
+#include "core/model/ModelFile.h"
+#include "tests/gui/GuiTestSupport.h"
+#include "tests/unit/pipeline/IdealScene.h"
+#include "ui/MainWindow.h"
+#include "ui/jobs/JobRunner.h"
+#include "ui/panels/LogDock.h"
+#include "ui/panels/ParameterPanel.h"
+#include "ui/panels/ResultsTable.h"
+#include "ui/viewport/Presenters.h"
+#include "ui/viewport/QtVtkViewport.h"
+
+#include <QDoubleSpinBox>
+#include <QSignalSpy>
+#include <QTest>
+#include <QUndoStack>
+#include <gtest/gtest.h>
+#include <thread>
+
+using namespace scanpick;
+using ui::MainWindow;
+
+namespace {
+
+Eigen::Isometry3d teachPose() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(0, 0, 700);
+  return T;
+}
+
+/// The thesis's ideal part at 700 mm, and a second copy 300 mm to its right that the crop must
+/// cut away.
+std::shared_ptr<const core::PointCloud> teachScan() {
+  Eigen::Isometry3d other = teachPose();
+  other.translation().x() = 300;
+  return std::make_shared<const core::PointCloud>(
+      test::idealScene(test::idealPartPoints(), {teachPose(), other}, 0.0, 1));
+}
+
+core::OrientedBox cropAroundPart() {
+  core::OrientedBox box;
+  box.T_scan_box.translation() = Eigen::Vector3f(15, 0, 700);
+  box.half_extents_mm = Eigen::Vector3f(75, 75, 50);
+  return box;
+}
+
+struct WindowFixture : ::testing::Test {
+  MainWindow window;
+  void SetUp() override {
+    window.setPreviewDelay(20);
+    window.parameterPanel()->setParams(test::idealParams(0.001));
+    window.resize(1200, 800);
+    window.show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+  }
+};
+
+} // namespace
+
+TEST_F(WindowFixture, CropUndoRedoAndGripPoint) {
+  const auto scan = teachScan();
+  window.setScan(scan, QStringLiteral("teach"));
+  EXPECT_EQ(window.part()->size(), scan->size());
+
+  window.setCropBoxVisible(true);
+  window.setCropBox(cropAroundPart());
+  // The box read back from the VTK widget is the one set.
+  const core::OrientedBox read = window.cropBox();
+  EXPECT_NEAR(read.T_scan_box.translation().x(), 15.0f, 1e-3);
+  EXPECT_NEAR(read.half_extents_mm.x(), 75.0f, 1e-3);
+  ASSERT_TRUE(window.applyCrop());
+  const std::size_t one_copy = test::idealPartPoints().size();
+  EXPECT_EQ(window.part()->validCount(), one_copy) << "the crop keeps exactly the first copy";
+
+  window.undoStack()->undo();
+  EXPECT_EQ(window.part()->size(), scan->size());
+  window.undoStack()->redo();
+  EXPECT_EQ(window.part()->validCount(), one_copy);
+
+  window.addGripPoint(Eigen::Vector3d(0, 0, 700));
+  ASSERT_EQ(window.gripPoints().size(), 1u);
+  EXPECT_FALSE(window.gripPoints().front().name.empty());
+}
+
+TEST_F(WindowFixture, PreviewFollowsParametersAndReusesKeypoints) {
+  auto part = std::make_shared<const core::PointCloud>(
+      test::idealScene(test::idealPartPoints(), {teachPose()}, 0.0, 1));
+  QSignalSpy previews(&window, &MainWindow::previewUpdated);
+  window.setScan(part, QStringLiteral("part"));
+  ASSERT_TRUE(previews.wait(30000));
+  const std::shared_ptr<const ui::PreviewResult> first = window.preview();
+  ASSERT_NE(first, nullptr);
+  // Δp = -1 keeps every point as a keypoint (thesis ideal test); two lines and two circles.
+  EXPECT_EQ(first->keypoints->points_mm.size(), part->size());
+  EXPECT_EQ(first->features.features.size(), 4u);
+  EXPECT_GT(first->keypoints_ms, 0.0);
+
+  // A features-stage change through the real editor: keypoints come from the cache.
+  auto* spin = qobject_cast<QDoubleSpinBox*>(window.parameterPanel()->editor("features.circle_threshold_mm"));
+  ASSERT_NE(spin, nullptr);
+  spin->setValue(1.5);
+  ASSERT_TRUE(previews.wait(30000));
+  EXPECT_EQ(window.preview()->keypoints_ms, 0.0) << "keypoints were recomputed";
+  EXPECT_EQ(window.preview()->keypoints.get(), first->keypoints.get());
+
+  // Raising the ransac size above every feature's support empties the preview.
+  window.parameterPanel()->setValue("features.ransac_size", 5000);
+  ASSERT_TRUE(previews.wait(30000));
+  EXPECT_TRUE(window.preview()->features.features.empty());
+}
+
+TEST_F(WindowFixture, RapidChangesDropStalePreviews) {
+  window.setPreviewDelay(0);
+  auto part = std::make_shared<const core::PointCloud>(
+      test::idealScene(test::idealPartPoints(), {teachPose()}, 0.0, 1));
+  QSignalSpy previews(&window, &MainWindow::previewUpdated);
+  window.setScan(part, QStringLiteral("part"));
+  ASSERT_TRUE(previews.wait(30000));
+  previews.clear();
+  // Keypoint changes in quick succession, each started while the previous job may still run.
+  const int dropped_before = window.previewJobs()->droppedCount();
+  for (int i = 0; i < 6; ++i) {
+    window.parameterPanel()->setValue("keypoints.neighbourhood_radius_mm", 3.0 + i);
+    QTest::qWait(5);
+  }
+  QTRY_VERIFY_WITH_TIMEOUT(!window.previewJobs()->busy(), 30000);
+  QTest::qWait(50);
+  // Whatever ran, the shown preview is the newest parameters' one.
+  ASSERT_NE(window.preview(), nullptr);
+  EXPECT_EQ(window.preview()->keypoint_params.neighbourhood_radius_mm, 8.0);
+  EXPECT_GE(previews.count(), 1);
+  EXPECT_LE(previews.count(), 6);
+  // Every job that did not produce the shown preview was dropped, not shown.
+  EXPECT_EQ(previews.count() + (window.previewJobs()->droppedCount() - dropped_before) >= 1, true);
+}
+
+TEST_F(WindowFixture, TeachRecognizeAndResultsTable) {
+  window.setScan(teachScan(), QStringLiteral("teach"));
+  window.setCropBoxVisible(true);
+  window.setCropBox(cropAroundPart());
+  ASSERT_TRUE(window.applyCrop());
+  window.addGripPoint(Eigen::Vector3d(0, 0, 700));
+  QSignalSpy taught(&window, &MainWindow::modelTaught);
+  window.teach();
+  ASSERT_TRUE(taught.wait(60000)) << window.logDock()->text().toStdString();
+  ASSERT_NE(window.model(), nullptr);
+  EXPECT_EQ(window.model()->features.size(), 4u);
+  EXPECT_EQ(window.model()->grip_points.size(), 1u);
+
+  // The bin scene: the thesis's 12 rotated copies.
+  window.setScan(std::make_shared<const core::PointCloud>(test::idealScene(
+                     test::idealPartPoints(), test::idealCopyPoses(), 0.0, 2024)),
+                 QStringLiteral("bin"));
+  QSignalSpy finished(&window, &MainWindow::recognitionFinished);
+  window.recognize();
+  ASSERT_TRUE(finished.wait(60000)) << window.logDock()->text().toStdString();
+  ASSERT_TRUE(finished.first().at(0).toBool()) << window.logDock()->text().toStdString();
+  const core::RecognitionResult* result = window.lastResult();
+  ASSERT_NE(result, nullptr);
+  EXPECT_EQ(result->detections.size(), 12u);
+  ui::ResultsTable* table = window.resultsTable();
+  ASSERT_EQ(table->rowCount(), static_cast<int>(result->detections.size()));
+  for (int row = 0; row < table->rowCount(); ++row) {
+    EXPECT_EQ(table->item(row, 0)->text(),
+              QString::number(result->detections[row].score, 'f', 3));
+    EXPECT_EQ(table->item(row, 4)->text().count(QLatin1Char('(')),
+              static_cast<int>(result->detections[row].grip_points_scene.size()));
+  }
+
+  table->selectRow(0);
+  window.viewport()->resetCamera();
+  const QImage image = window.screenshot();
+  image.save(test::screenshotDir() + "/recognize.png");
+  EXPECT_GT(test::distinctColours(image), 20) << "blank screenshot";
+  EXPECT_GT(test::countColour(image, ui::detectionColour(0)), 20)
+      << "the selected detection's colour is not in the picture";
+
+  // Results export.
+  const QString json = test::screenshotDir() + "/results.json";
+  EXPECT_TRUE(window.exportResults(json));
+  EXPECT_TRUE(QFile::exists(json));
+}
+
+TEST_F(WindowFixture, CancelRecognition) {
+  window.setScan(std::make_shared<const core::PointCloud>(test::idealScene(
+                     test::idealPartPoints(), test::idealCopyPoses(), 0.5, 7)),
+                 QStringLiteral("bin"));
+  // A model taught directly through the core, then handed to the window through a file.
+  core::TeachOptions options;
+  options.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
+  const core::TaughtModel taught = core::teach(
+      test::idealScene(test::idealPartPoints(), {teachPose()}, 0.0, 1), options, test::idealParams(0.5));
+  const QString path = test::screenshotDir() + "/cancel-test.spmodel";
+  core::saveModel(path.toStdString(), taught);
+  ASSERT_TRUE(window.openModel(path));
+
+  QSignalSpy finished(&window, &MainWindow::recognitionFinished);
+  window.recognize();
+  window.cancelRecognition();  // before the first progress check: the job must not deliver
+  ASSERT_TRUE(finished.wait(60000));
+  EXPECT_FALSE(finished.first().at(0).toBool());
+  EXPECT_EQ(window.lastResult(), nullptr);
+  EXPECT_EQ(window.resultsTable()->rowCount(), 0);
+}
+
+TEST_F(WindowFixture, LogDockReceivesCoreLogFromAnyThread) {
+  const int before = window.logDock()->lineCount();
+  std::thread worker([] { core::logger()->info("message from a worker thread"); });
+  worker.join();
+  QTRY_VERIFY_WITH_TIMEOUT(window.logDock()->text().contains("message from a worker thread"), 5000);
+  EXPECT_GT(window.logDock()->lineCount(), before);
+}

@@ -1,0 +1,77 @@
+// The evaluation suites and the demo scenes: their definitions, and a few of them written to disk.
+#include "core/common/AtomicFile.h"
+#include "core/common/Error.h"
+#include "core/sim/PartCatalog.h"
+#include "core/sim/Suite.h"
+#include "tests/support/TempDir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <set>
+
+using namespace scanpick::core;
+using scanpick::test::TempDir;
+
+TEST(SimSuite, PhoxiBinCoversAllPartsWithSixToFifteenInstances) {
+  const auto scenes = suiteScenes("phoxi-bin", kDefaultSuiteSeed);
+  std::set<std::string> single_parts;
+  std::size_t single = 0, mixed = 0;
+  for (const auto& s : scenes) {
+    EXPECT_EQ(s.request.sensor, "phoxi-m-1032");
+    EXPECT_GE(s.request.count, 6);
+    EXPECT_LE(s.request.count, 15);
+    if (s.request.parts.size() == 1) {
+      ++single;
+      single_parts.insert(s.request.parts.front());
+    } else {
+      ++mixed;
+    }
+  }
+  EXPECT_GE(single, 20u);
+  EXPECT_GE(mixed, 1u);
+  EXPECT_EQ(single_parts.size(), builtInPartNames().size());
+  EXPECT_EQ(scenes.front().relative_prefix, std::filesystem::path("phoxi-bin/scene-000"));
+}
+
+TEST(SimSuite, KinectAndTeachSuites) {
+  const auto kinect = suiteScenes("kinect-bin", kDefaultSuiteSeed);
+  EXPECT_GE(kinect.size(), 10u);
+  for (const auto& s : kinect)
+    EXPECT_EQ(s.request.sensor, "kinect-v1");
+  const auto teach = suiteScenes("teach", kDefaultSuiteSeed);
+  EXPECT_EQ(teach.size(), builtInPartNames().size() * sensorPresetNames().size());
+  EXPECT_EQ(teach.front().relative_prefix, std::filesystem::path("teach/phoxi-m-1032/support"));
+  EXPECT_THROW(suiteScenes("lidar-bin", 1), Error);
+}
+
+TEST(SimSuite, WrittenScenesFollowTheLayoutAndAreReproducible) {
+  TempDir dir;
+  // One scene of each kind keeps the test short; the suite writes them all the same way.
+  std::vector<SuiteScene> some = {suiteScenes("phoxi-bin", kDefaultSuiteSeed).front(),
+                                  suiteScenes("kinect-bin", kDefaultSuiteSeed).back(),
+                                  suiteScenes("teach", kDefaultSuiteSeed).back()};
+  const auto files = writeSuite(dir.path(), some);
+  EXPECT_EQ(files.size(), 9u);
+  for (const char* f : {"phoxi-bin/scene-000.pcd", "phoxi-bin/scene-000.png", "phoxi-bin/scene-000.gt.json",
+                        "kinect-bin/scene-011.gt.json", "teach/kinect-v1/coat-rack.gt.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+  const auto gt = nlohmann::json::parse(readFile(dir / "phoxi-bin/scene-000.gt.json"));
+  EXPECT_EQ(gt["instances"].size(), static_cast<std::size_t>(some[0].request.count));
+  EXPECT_TRUE(nlohmann::json::parse(readFile(dir / "teach/kinect-v1/coat-rack.gt.json")).contains("crop_box"));
+
+  TempDir again;
+  writeSuite(again.path(), {some[0]});
+  EXPECT_EQ(readFile(dir / "phoxi-bin/scene-000.pcd"), readFile(again / "phoxi-bin/scene-000.pcd"));
+  EXPECT_EQ(readFile(dir / "phoxi-bin/scene-000.gt.json"), readFile(again / "phoxi-bin/scene-000.gt.json"));
+}
+
+TEST(SimSuite, DemoScenes) {
+  TempDir dir;
+  const auto files = writeDemoScenes(dir.path());
+  EXPECT_EQ(files.size(), 6u);
+  const auto bin = nlohmann::json::parse(readFile(dir / "demo-bin.gt.json"));
+  EXPECT_EQ(bin["instances"].size(), 8u);
+  EXPECT_EQ(bin["sensor"]["preset"], "phoxi-m-1032");
+  EXPECT_EQ(nlohmann::json::parse(readFile(dir / "support-teach.gt.json"))["scene"]["kind"], "teach");
+}

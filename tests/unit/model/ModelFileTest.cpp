@@ -1,0 +1,91 @@
+#include "core/common/AtomicFile.h"
+#include "core/common/Error.h"
+#include "core/model/ModelFile.h"
+#include "tests/support/TempDir.h"
+#include "tests/unit/pipeline/IdealScene.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+using namespace scanpick;
+using namespace scanpick::core;
+using ::testing::HasSubstr;
+
+namespace {
+PointCloud teachScan() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(0, 0, 700);
+  return test::idealScene(test::idealPartPoints(), {T}, 0.0, 1);
+}
+TeachOptions cropAll() {
+  TeachOptions o;
+  o.name = "ideal";
+  o.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
+  o.grips_scan.push_back({"centre", Eigen::Vector3d(0, 0, 700)});
+  return o;
+}
+std::string messageOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+} // namespace
+
+TEST(Teach, ModelFrameIsTheCentroidWithGripsMoved) {
+  const TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
+  EXPECT_EQ(m.features.size(), 4u);
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : m.cloud_mm.points_mm)
+    centroid += p.cast<double>();
+  EXPECT_LT((centroid / double(m.cloud_mm.size())).norm(), 1e-3);  // origin at the centroid
+  ASSERT_EQ(m.grip_points.size(), 1u);
+  EXPECT_LT((m.T_teach_model * m.grip_points[0].position_mm - Eigen::Vector3d(0, 0, 700)).norm(), 1e-6);
+  EXPECT_GT(m.diameter_mm, 60.0);
+}
+
+TEST(Teach, TooSmallCropAndTooFewFeaturesAreExplained) {
+  TeachOptions tiny = cropAll();
+  tiny.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-1, -1, 699), Eigen::Vector3f(1, 1, 701));
+  EXPECT_THAT(messageOf([&] { teach(teachScan(), tiny, test::idealParams(0.001)); }),
+              HasSubstr("widen the crop box"));
+  // Only circle A (radius 10 around the origin) inside the crop: one feature.
+  TeachOptions one = cropAll();
+  one.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-11, -11, 690), Eigen::Vector3f(11, 11, 710));
+  EXPECT_THAT(messageOf([&] { teach(teachScan(), one, test::idealParams(0.001)); }),
+              HasSubstr("found 1 feature"));
+}
+
+TEST(ModelFile, RoundTripKeepsEverything) {
+  const TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
+  test::TempDir dir;
+  saveModel(dir / "part.spmodel", m);
+  const TaughtModel r = loadModel(dir / "part.spmodel");
+  EXPECT_EQ(r.name, m.name);
+  EXPECT_EQ(r.features, m.features);
+  EXPECT_EQ(r.params, m.params);
+  EXPECT_EQ(r.grip_points, m.grip_points);
+  EXPECT_EQ(r.cloud_mm.points_mm, m.cloud_mm.points_mm);
+  EXPECT_EQ(r.keypoints_mm, m.keypoints_mm);
+  EXPECT_TRUE(r.T_teach_model.isApprox(m.T_teach_model, 0.0));
+  EXPECT_EQ(r.diameter_mm, m.diameter_mm);
+}
+
+TEST(ModelFile, DamagedFilesAreRejectedClearly) {
+  const TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
+  const std::string bytes = encodeModel(m);
+  EXPECT_THAT(messageOf([&] { decodeModel(bytes.substr(0, bytes.size() - 100), "p.spmodel"); }),
+              HasSubstr("truncated"));
+  std::string corrupt = bytes;
+  corrupt[corrupt.size() - 5] ^= 0x40;
+  EXPECT_THAT(messageOf([&] { decodeModel(corrupt, "p.spmodel"); }), HasSubstr("checksum"));
+  std::string future = bytes;
+  const auto at = future.find("\"version\":1");
+  ASSERT_NE(at, std::string::npos);
+  future.replace(at, 11, "\"version\":9");
+  EXPECT_THAT(messageOf([&] { decodeModel(future, "p.spmodel"); }), HasSubstr("newer scanpick"));
+  EXPECT_THAT(messageOf([&] { decodeModel("hello\n", "p.spmodel"); }), HasSubstr("not a scanpick model"));
+  EXPECT_THAT(messageOf([&] { loadModel("/nonexistent/p.spmodel"); }), HasSubstr("p.spmodel"));
+}

@@ -1,0 +1,107 @@
+#include "core/cloud/Sensor.h"
+#include "core/common/Error.h"
+#include "core/eval/ResultsFile.h"
+#include "core/pipeline/OverlayPicture.h"
+#include "core/pipeline/Recognizer.h"
+#include "core/pipeline/ResultsJson.h"
+#include "tests/support/TempDir.h"
+#include "tests/unit/pipeline/IdealScene.h"
+
+#include <gtest/gtest.h>
+
+using namespace scanpick;
+using namespace scanpick::core;
+
+namespace {
+std::shared_ptr<const TaughtModel> idealModel() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(0, 0, 700);
+  TeachOptions o;
+  o.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
+  o.grips_scan.push_back({"centre", Eigen::Vector3d(0, 0, 700)});
+  return std::make_shared<TaughtModel>(
+      teach(test::idealScene(test::idealPartPoints(), {T}, 0.0, 1), o, test::idealParams(0.001)));
+}
+PointCloud threeCopies(double noise) {
+  auto poses = test::idealCopyPoses();
+  poses.resize(3);
+  return test::idealScene(test::idealPartPoints(), poses, noise, 5);
+}
+} // namespace
+
+TEST(Recognizer, SameInputSameDetectionsBitwise) {
+  const auto model = idealModel();
+  const PointCloud scene = threeCopies(0.3);
+  const auto params = test::idealParams(0.5);
+  const auto a = Recognizer(model).recognize(scene, sensorPreset("phoxi-m-1032"), params);
+  const auto b = Recognizer(model).recognize(scene, sensorPreset("phoxi-m-1032"), params);
+  ASSERT_EQ(a.detections.size(), 3u);
+  ASSERT_EQ(a.detections.size(), b.detections.size());
+  for (std::size_t i = 0; i < a.detections.size(); ++i) {
+    EXPECT_EQ(a.detections[i].T_scene_model.matrix(), b.detections[i].T_scene_model.matrix());
+    EXPECT_EQ(a.detections[i].matched_features, b.detections[i].matched_features);
+    EXPECT_EQ(a.detections[i].score, b.detections[i].score);
+  }
+}
+
+TEST(Recognizer, ChangingAMatchingToleranceReusesTheKeypoints) {
+  Recognizer recognizer(idealModel());
+  const PointCloud scene = threeCopies(0.0);
+  auto params = test::idealParams(0.001);
+  const auto first = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
+  params.matching.position_tolerance_mm = 3.0;
+  const auto second = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
+  EXPECT_EQ(first.object_keypoints, second.object_keypoints);  // same cached object
+  EXPECT_EQ(first.object_features, second.object_features);
+  EXPECT_EQ(second.timings.keypoints_ms, 0.0);
+  EXPECT_EQ(second.detections.size(), 3u);
+  params.keypoints.neighbourhood_radius_mm = 4.0;  // invalidates keypoints and later
+  const auto third = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
+  EXPECT_NE(third.object_keypoints, second.object_keypoints);
+  EXPECT_EQ(third.preprocessed, second.preprocessed);
+}
+
+TEST(Recognizer, GripPointsFollowThePose) {
+  const auto model = idealModel();
+  const auto r = Recognizer(model).recognize(threeCopies(0.0), sensorPreset("phoxi-m-1032"),
+                                             test::idealParams(0.001));
+  ASSERT_FALSE(r.detections.empty());
+  for (const auto& d : r.detections) {
+    ASSERT_EQ(d.grip_points_scene.size(), 1u);
+    EXPECT_LT((d.grip_points_scene[0].position_mm - d.T_scene_model * model->grip_points[0].position_mm).norm(), 1e-9);
+  }
+}
+
+TEST(Recognizer, BadScenesAreErrors) {
+  Recognizer recognizer(idealModel());
+  EXPECT_THROW(recognizer.recognize(PointCloud{}, sensorPreset("phoxi-m-1032"), {}), Error);
+  const PointCloud nan = PointCloud::fromPoints({invalidPoint(), invalidPoint()});
+  EXPECT_THROW(recognizer.recognize(nan, sensorPreset("phoxi-m-1032"), {}), Error);
+  EXPECT_THROW(Recognizer().recognize(threeCopies(0.0), sensorPreset("phoxi-m-1032"), {}), Error);
+}
+
+TEST(Recognizer, ResultsFileAndPictureAreWritten) {
+  const auto model = idealModel();
+  const PointCloud scene = threeCopies(0.0);
+  const auto r = Recognizer(model).recognize(scene, sensorPreset("phoxi-m-1032"), test::idealParams(0.001));
+  test::TempDir dir;
+  saveResults(dir / "result.json", r, *model, "scene.pcd", "part.spmodel");
+  const auto back = eval::loadResults(dir / "result.json");
+  ASSERT_EQ(back.detections.size(), r.detections.size());
+  EXPECT_TRUE(back.detections[0].T_scene_model.isApprox(r.detections[0].T_scene_model, 1e-9));
+  EXPECT_TRUE(back.T_teach_model.isApprox(model->T_teach_model, 1e-12));
+  writeOverlayPng(dir / "overlay.png", scene, model->cloud_mm, r.detections, sensorPreset("phoxi-m-1032"));
+  EXPECT_GT(std::filesystem::file_size(dir / "overlay.png"), 1000u);
+}
+
+TEST(Recognizer, SuppressesDuplicatesCloserThanTheDistance) {
+  Detection a, b, c;
+  a.score = 0.9;
+  b.score = 0.8;
+  b.T_scene_model.translation() = Eigen::Vector3d(3, 0, 0);
+  c.score = 0.7;
+  c.T_scene_model.translation() = Eigen::Vector3d(50, 0, 0);
+  const auto kept = suppressDuplicates({a, b, c}, 10.0);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[1].score, 0.7);
+}

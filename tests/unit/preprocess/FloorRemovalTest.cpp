@@ -1,0 +1,86 @@
+#include "core/common/Error.h"
+#include "core/preprocess/Downsample.h"
+#include "core/preprocess/FloorRemoval.h"
+#include "tests/support/RaycastScene.h"
+
+#include <gtest/gtest.h>
+
+using namespace scanpick;
+
+namespace {
+// A 60 x 40 x 30 mm box on a floor 1000 mm from the camera; projector 300 mm to the side.
+test::RaycastScene boxOnFloor() {
+  test::RaycastScene scene;
+  scene.floor_z_mm = 1000.0;
+  scene.boxes.emplace_back(Eigen::Vector3d(-30, -20, 970), Eigen::Vector3d(30, 20, 1000));
+  return scene;
+}
+} // namespace
+
+TEST(FloorRemoval, RemovesTheFloorPlaneAndKeepsTheBox) {
+  auto scene = boxOnFloor();
+  const core::PointCloud cloud = scene.render(320, 240, 800.0, {300, 0, 0}, 0.1, 7);
+  std::size_t floor_points = 0, box_points = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (core::isValid(cloud.points_mm[i]))
+      (scene.labels[i] < 0 ? floor_points : box_points)++;
+  ASSERT_GT(floor_points, box_points);  // the floor is the dominant plane
+
+  core::FloorParams params;  // 2 mm, one plane, 15 % of the points
+  const auto result = core::removeFloor(cloud, params, 42);
+  ASSERT_EQ(result.planes.size(), 1u);
+  // The plane is z = 1000 with its normal towards the camera: (0, 0, -1, 1000).
+  EXPECT_NEAR(result.planes[0].z(), -1.0f, 1e-3);
+  EXPECT_NEAR(result.planes[0].w(), 1000.0f, 0.5);
+  // Organization kept; every floor point gone; the box's top survives (its sides within 2 mm of
+  // the floor may go with it, nothing more).
+  EXPECT_EQ(result.remaining.width, cloud.width);
+  EXPECT_EQ(result.remaining.height, cloud.height);
+  std::size_t kept_floor = 0, kept_box = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (core::isValid(result.remaining.points_mm[i]))
+      (scene.labels[i] < 0 ? kept_floor : kept_box)++;
+  EXPECT_EQ(kept_floor, 0u);
+  EXPECT_GT(kept_box, box_points * 9 / 10);
+  EXPECT_EQ(result.removed_points, floor_points + (box_points - kept_box));
+}
+
+TEST(FloorRemoval, SmallPlanesAreKeptAndDisabledIsACopy) {
+  auto scene = boxOnFloor();
+  const core::PointCloud cloud = scene.render(160, 120, 400.0, {300, 0, 0});
+  core::FloorParams params;
+  params.min_plane_fraction = 0.99;  // no plane holds 99 % of the points
+  EXPECT_TRUE(core::removeFloor(cloud, params, 1).planes.empty());
+  params.min_plane_fraction = 0.15;
+  params.enabled = false;
+  const auto copy = core::removeFloor(cloud, params, 1);
+  EXPECT_EQ(copy.remaining.validCount(), cloud.validCount());
+  params.enabled = true;
+  params.distance_mm = 0;
+  EXPECT_THROW(core::removeFloor(cloud, params, 1), core::Error);
+}
+
+TEST(FloorRemoval, SameSeedSameResultAndUnorganizedInput) {
+  auto scene = boxOnFloor();
+  const core::PointCloud cloud = core::dropInvalid(scene.render(200, 150, 500.0, {300, 0, 0}, 0.2, 3));
+  const auto a = core::removeFloor(cloud, {}, 9), b = core::removeFloor(cloud, {}, 9);
+  ASSERT_EQ(a.planes.size(), 1u);
+  EXPECT_EQ(a.planes, b.planes);
+  EXPECT_EQ(a.remaining.points_mm, b.remaining.points_mm);
+  EXPECT_FALSE(a.remaining.isOrganized());
+  EXPECT_EQ(a.remaining.size() + a.removed_points, cloud.size());
+}
+
+TEST(Downsample, OneCentroidPerVoxel) {
+  // 8 points in two 1 mm voxels -> 2 centroids.
+  std::vector<Eigen::Vector3f> pts;
+  for (int i = 0; i < 4; ++i) {
+    pts.emplace_back(0.1f + 0.2f * i, 0.5f, 0.5f);
+    pts.emplace_back(5.1f + 0.2f * i, 0.5f, 0.5f);
+  }
+  const auto out = core::voxelDownsample(core::PointCloud::fromPoints(pts), 1.0);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_NEAR(out.points_mm[0].x(), 0.4f, 1e-5);
+  EXPECT_NEAR(out.points_mm[1].x(), 5.4f, 1e-5);
+  EXPECT_EQ(core::voxelDownsample(core::PointCloud::fromPoints(pts), 0.0).size(), 8u);
+}

@@ -1,0 +1,77 @@
+// SceneIndex and RefineModel on exact geometry: planes whose normals are known.
+#include "core/common/Error.h"
+#include "core/refine/RefineModel.h"
+#include "core/refine/SceneIndex.h"
+#include "tests/unit/refine/BracketScene.h"
+
+#include <gtest/gtest.h>
+
+using namespace scanpick;
+
+namespace {
+
+/// A floor at 600 mm seen by a 200 x 150 camera (f 500 px): every normal is (0, 0, -1), facing
+/// the camera at the origin.
+core::PointCloud floorScan(double sigma_mm) {
+  return test::renderSolids({}, 600.0, 200, 150, 500, sigma_mm, 0.05, 5);
+}
+
+} // namespace
+
+TEST(SceneIndex, OrganizedAndUnorganizedNormalsFaceTheCamera) {
+  const auto scan = floorScan(0.0);
+  for (const auto& cloud : {scan, core::dropInvalid(scan)}) {
+    const core::SceneIndex index(cloud);
+    ASSERT_EQ(index.size(), scan.validCount());
+    std::size_t with_normal = 0;
+    for (const auto& n : index.normals())
+      if (n.allFinite()) {
+        ++with_normal;
+        EXPECT_NEAR(n.z(), -1.0f, 1e-4f);
+      }
+    // Only isolated pixels among dropouts can lack the 5 neighbours a normal needs.
+    EXPECT_GT(with_normal, index.size() * 99 / 100);
+  }
+}
+
+TEST(SceneIndex, NearestRespectsTheDistanceBoundAndSurvivesAMove) {
+  core::SceneIndex index(floorScan(0.0));
+  const core::SceneIndex moved(std::move(index));
+  // 0.4 mm in front of an indexed point: the neighbours lie 1.2 mm apart (f 500 px at 600 mm),
+  // so that point is the nearest, 0.16 mm² away.
+  const std::size_t k = moved.size() / 2;
+  const Eigen::Vector3f above = moved.points()[k] - Eigen::Vector3f(0, 0, 0.4f);
+  float d2 = -1;
+  EXPECT_EQ(moved.nearest(above, 1.0f, &d2), static_cast<std::int64_t>(k));
+  EXPECT_NEAR(d2, 0.16f, 1e-4f);
+  EXPECT_LT(moved.nearest(above, 0.1f), 0);  // bound 0.32 mm: nothing that close
+  EXPECT_LT(moved.nearest(Eigen::Vector3f(0, 0, 605), 4.0f), 0);  // 5 mm away, bound 2 mm
+  EXPECT_LT(moved.nearest(core::invalidPoint(), 1e9f), 0);
+}
+
+TEST(SceneIndex, OwnNormalsAreUsedAndTurnedTowardsTheViewpoint) {
+  auto cloud = core::dropInvalid(floorScan(0.0));
+  cloud.normals.assign(cloud.size(), Eigen::Vector3f(0, 0, 1));  // pointing away from the camera
+  const core::SceneIndex index(cloud);
+  for (const auto& n : index.normals()) ASSERT_EQ(n, Eigen::Vector3f(0, 0, -1));
+}
+
+TEST(SceneIndex, BadOptionsThrow) {
+  core::SceneIndexOptions options;
+  options.neighbours = 2;
+  EXPECT_THROW(core::SceneIndex(floorScan(0.0), options), core::Error);
+}
+
+TEST(RefineModel, SubsampleIsEvenDeterministicAndBounded) {
+  const auto scan = floorScan(0.1);
+  const core::RefineModel a(scan, 500), b(scan, 500);
+  EXPECT_LE(a.size(), 500u);
+  EXPECT_GT(a.size(), 350u);  // the finest grid under the bound fills it well
+  EXPECT_GT(a.voxel_mm(), 0.0);
+  EXPECT_EQ(a.points(), b.points());
+  for (const auto& n : a.normals()) EXPECT_LT(n.z(), -0.99f);  // towards the teach camera
+  const core::RefineModel all(scan, 1000000);
+  EXPECT_EQ(all.voxel_mm(), 0.0);
+  EXPECT_THROW(core::RefineModel(core::PointCloud{}, 500), core::Error);
+  EXPECT_THROW(core::RefineModel(scan, 0), core::Error);
+}

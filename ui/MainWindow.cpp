@@ -1,0 +1,445 @@
+#include "ui/MainWindow.h"
+
+#include "core/cloud/CloudIo.h"
+#include "core/common/Log.h"
+#include "core/model/ModelFile.h"
+#include "ui/Settings.h"
+#include "ui/jobs/JobRunner.h"
+#include "ui/panels/DevicePanel.h"
+#include "ui/panels/LogDock.h"
+#include "ui/panels/ParameterPanel.h"
+#include "ui/panels/ResultsTable.h"
+#include "ui/viewport/Presenters.h"
+#include "ui/viewport/QtVtkViewport.h"
+
+#include <QActionGroup>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSettings>
+#include <QStatusBar>
+#include <QTimer>
+#include <QToolBar>
+#include <QUndoStack>
+#include <vtkBoxWidget2.h>
+#include <vtkProp.h>
+#include <vtkRenderer.h>
+
+namespace scanpick::ui {
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
+  setObjectName(QStringLiteral("MainWindow"));
+  setWindowTitle(tr("scanpick"));
+  setAcceptDrops(true);
+  setDockNestingEnabled(true);
+  m_view = new QtVtkViewport(this);
+  setCentralWidget(m_view);
+  m_jobs = new JobRunner(this);
+  m_preview_jobs = new JobRunner(this);
+  m_recognize_jobs = new JobRunner(this);
+  m_undo = new QUndoStack(this);
+  m_recognizer = std::make_shared<core::Recognizer>();
+  m_preview_timer = new QTimer(this);
+  m_preview_timer->setSingleShot(true);
+  m_preview_timer->setInterval(150);
+  connect(m_preview_timer, &QTimer::timeout, this, &MainWindow::runPreview);
+
+  m_status_counts = new QLabel(this);
+  m_status_timings = new QLabel(this);
+  m_progress = new QProgressBar(this);
+  m_progress->setRange(0, 1000);
+  m_progress->setMaximumWidth(180);
+  m_progress->setVisible(false);
+  m_cancel = new QPushButton(tr("Cancel"), this);
+  m_cancel->setObjectName(QStringLiteral("cancelButton"));
+  m_cancel->setVisible(false);
+  statusBar()->addPermanentWidget(m_status_counts);
+  statusBar()->addPermanentWidget(m_status_timings);
+  statusBar()->addPermanentWidget(m_progress);
+  statusBar()->addPermanentWidget(m_cancel);
+  // One progress bar for the long jobs (loading, teaching, recognizing); previews stay quiet.
+  for (JobRunner* runner : {m_jobs, m_recognize_jobs}) {
+    connect(runner, &JobRunner::progress, this,
+            [this](double f) { m_progress->setValue(static_cast<int>(f * 1000)); });
+    connect(runner, &JobRunner::busyChanged, this, [this] {
+      const bool busy = m_jobs->busy() || m_recognize_jobs->busy();
+      m_progress->setVisible(busy);
+      m_cancel->setVisible(busy);
+      if (busy)
+        m_progress->setValue(0);
+    });
+  }
+  connect(m_cancel, &QPushButton::clicked, this, [this] {
+    m_jobs->cancel();
+    cancelRecognition();
+    statusBar()->showMessage(tr("Cancelled"), 3000);
+  });
+
+  buildDocks();
+  buildActions();
+  buildTeachDock();
+  restoreSettings();
+  statusBar()->showMessage(tr("Open a scan (Ctrl+O) or drop a PCD/PLY file here"));
+}
+
+MainWindow::~MainWindow() {
+  m_live = false;
+  m_preview_jobs->cancel();
+  m_recognize_jobs->cancel();
+  m_jobs->cancel();
+  if (m_box_widget)
+    m_box_widget->Off();
+}
+
+double MainWindow::ratio() const { return m_view->devicePixelRatioF(); }
+
+void MainWindow::buildDocks() {
+  m_params = new ParameterPanel(this);
+  auto* params_dock = new QDockWidget(tr("Parameters"), this);
+  params_dock->setObjectName(QStringLiteral("ParametersDock"));
+  params_dock->setWidget(m_params);
+  addDockWidget(Qt::RightDockWidgetArea, params_dock);
+  connect(m_params, &ParameterPanel::paramsChanged, this,
+          [this](const core::RecognitionParams&, core::Stage stage) { schedulePreview(stage); });
+  connect(m_params, &ParameterPanel::presetLoaded, this,
+          [](const QString& path) { QSettings().setValue(settings::kLastPreset, path); });
+
+  m_results = new ResultsTable(this);
+  auto* results_dock = new QDockWidget(tr("Results"), this);
+  results_dock->setObjectName(QStringLiteral("ResultsDock"));
+  results_dock->setWidget(m_results);
+  addDockWidget(Qt::BottomDockWidgetArea, results_dock);
+  connect(m_results, &ResultsTable::detectionSelected, this, &MainWindow::onResultSelected);
+
+  m_devices = new DevicePanel(this);
+  auto* devices_dock = new QDockWidget(tr("Capture"), this);
+  devices_dock->setObjectName(QStringLiteral("CaptureDock"));
+  devices_dock->setWidget(m_devices);
+  addDockWidget(Qt::LeftDockWidgetArea, devices_dock);
+  connect(m_devices, &DevicePanel::frameCaptured, this,
+          [this](std::shared_ptr<const core::PointCloud> cloud, const QString& name) {
+            if (!m_live)
+              setScan(std::move(cloud), name);
+          });
+  connect(m_devices, &DevicePanel::deviceError, this,
+          [this](const QString& message) { showError(tr("Camera"), message); });
+
+  m_log = new LogDock(this);
+  addDockWidget(Qt::BottomDockWidgetArea, m_log);
+  tabifyDockWidget(results_dock, m_log);
+  results_dock->raise();
+}
+
+void MainWindow::buildActions() {
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  QAction* open = file->addAction(tr("&Open scan or model…"), this, [this] {
+    QSettings s;
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("Open"), s.value(settings::kLastDirectory).toString(),
+        tr("Scans and models (*.pcd *.ply *.spmodel);;All files (*)"));
+    if (!path.isEmpty())
+      openAny(path);
+  });
+  open->setShortcut(QKeySequence::Open);
+  m_recent_menu = file->addMenu(tr("Open &recent"));
+  rebuildRecentMenu();
+  file->addSeparator();
+  QAction* save_model = file->addAction(tr("&Save model…"), this, [this] {
+    if (!m_model)
+      return showError(tr("Save model"), tr("Teach or open a model first."));
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save model"), m_model_path,
+                                                      tr("Models (*.spmodel)"));
+    if (!path.isEmpty())
+      saveModel(path);
+  });
+  save_model->setShortcut(QKeySequence::Save);
+  file->addAction(tr("Save &scan…"), this, [this] {
+    if (!m_scan)
+      return showError(tr("Save scan"), tr("Open or capture a scan first."));
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save scan"), QString(),
+                                                      tr("Scans (*.pcd *.ply)"));
+    if (path.isEmpty())
+      return;
+    try {
+      core::saveCloud(path.toStdString(), *m_scan);
+      statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+    } catch (const std::exception& e) {
+      showError(tr("Save scan"), QString::fromUtf8(e.what()));
+    }
+  });
+  file->addAction(tr("&Export results…"), this, [this] {
+    const QString path = QFileDialog::getSaveFileName(this, tr("Export results"), QString(),
+                                                      tr("Results (*.json)"));
+    if (!path.isEmpty())
+      exportResults(path);
+  });
+  QAction* shot = file->addAction(tr("Save screens&hot…"), this, [this] {
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save screenshot"), QString(),
+                                                      tr("Images (*.png)"));
+    if (!path.isEmpty())
+      saveScreenshot(path);
+  });
+  shot->setShortcut(Qt::Key_F12);
+  file->addSeparator();
+  file->addAction(tr("&Quit"), this, &QWidget::close)->setShortcut(QKeySequence::Quit);
+
+  QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+  QAction* undo = m_undo->createUndoAction(this, tr("&Undo"));
+  undo->setShortcut(QKeySequence::Undo);
+  QAction* redo = m_undo->createRedoAction(this, tr("&Redo"));
+  redo->setShortcut(QKeySequence::Redo);
+  edit->addAction(undo);
+  edit->addAction(redo);
+
+  QMenu* teach_menu = menuBar()->addMenu(tr("&Teach"));
+  m_crop_action = teach_menu->addAction(tr("Crop &box"));
+  m_crop_action->setCheckable(true);
+  m_crop_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_B));
+  connect(m_crop_action, &QAction::toggled, this, &MainWindow::setCropBoxVisible);
+  teach_menu->addAction(tr("&Apply crop"), this, [this] { applyCrop(); })
+      ->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Return));
+  teach_menu->addAction(tr("Remove &floor"), this, &MainWindow::removeFloorFromPart)
+      ->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_F));
+  m_grip_action = teach_menu->addAction(tr("Place &grip points"));
+  m_grip_action->setCheckable(true);
+  m_grip_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_G));
+  teach_menu->addAction(tr("&Teach model"), this, &MainWindow::teach)
+      ->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_T));
+
+  QMenu* run = menuBar()->addMenu(tr("&Recognize"));
+  run->addAction(tr("&Recognize"), this, &MainWindow::recognize)->setShortcut(Qt::Key_F5);
+  run->addAction(tr("&Cancel"), this, &MainWindow::cancelRecognition)->setShortcut(Qt::Key_Escape);
+  m_live_action = run->addAction(tr("&Live"));
+  m_live_action->setCheckable(true);
+  m_live_action->setShortcut(Qt::Key_F6);
+  connect(m_live_action, &QAction::toggled, this, &MainWindow::setLiveRunning);
+
+  QMenu* view = menuBar()->addMenu(tr("&View"));
+  view->addAction(tr("&Reset camera"), m_view, &QtVtkViewport::resetCamera)
+      ->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_0));
+  view->addSeparator();
+  for (QDockWidget* dock : findChildren<QDockWidget*>())
+    view->addAction(dock->toggleViewAction());
+  QMenu* language = view->addMenu(tr("&Language"));
+  auto* group = new QActionGroup(this);
+  const QString current = QSettings().value(settings::kLanguage, QStringLiteral("en")).toString();
+  for (const auto& [code, name] : {std::pair{QStringLiteral("en"), QStringLiteral("English")},
+                                   std::pair{QStringLiteral("it"), QStringLiteral("Italiano")}}) {
+    QAction* a = language->addAction(name, this, [this, code = code] { setLanguage(code); });
+    a->setCheckable(true);
+    a->setChecked(code == current);
+    group->addAction(a);
+  }
+
+  QToolBar* tools = addToolBar(tr("Main"));
+  tools->setObjectName(QStringLiteral("MainToolBar"));
+  tools->addAction(open);
+  tools->addAction(m_crop_action);
+  tools->addAction(m_grip_action);
+  tools->addAction(undo);
+  tools->addAction(redo);
+  tools->addSeparator();
+  for (QAction* a : teach_menu->actions())
+    if (a->text() == tr("&Teach model"))
+      tools->addAction(a);
+  tools->addAction(run->actions().first());
+  tools->addAction(m_live_action);
+}
+
+void MainWindow::restoreSettings() {
+  QSettings s;
+  restoreGeometry(s.value(settings::kGeometry).toByteArray());
+  restoreState(s.value(settings::kWindowState).toByteArray());
+  const QString preset = s.value(settings::kLastPreset).toString();
+  if (!preset.isEmpty() && QFileInfo::exists(preset)) {
+    try {
+      m_params->loadPresetFile(preset);
+    } catch (const std::exception& e) {
+      core::logger()->warn("could not restore the last preset: {}", e.what());
+    }
+  }
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  setLiveRunning(false);
+  QSettings s;
+  s.setValue(settings::kGeometry, saveGeometry());
+  s.setValue(settings::kWindowState, saveState());
+  event->accept();
+}
+
+void MainWindow::addRecentFile(const QString& path) {
+  QSettings s;
+  QStringList files = s.value(settings::kRecentFiles).toStringList();
+  const QString absolute = QFileInfo(path).absoluteFilePath();
+  files.removeAll(absolute);
+  files.prepend(absolute);
+  while (files.size() > settings::kMaxRecentFiles)
+    files.removeLast();
+  s.setValue(settings::kRecentFiles, files);
+  s.setValue(settings::kLastDirectory, QFileInfo(path).absolutePath());
+  rebuildRecentMenu();
+}
+
+void MainWindow::rebuildRecentMenu() {
+  m_recent_menu->clear();
+  const QStringList files = QSettings().value(settings::kRecentFiles).toStringList();
+  for (const QString& path : files)
+    m_recent_menu->addAction(QFileInfo(path).fileName(), this, [this, path] { openAny(path); })
+        ->setToolTip(path);
+  m_recent_menu->setEnabled(!files.isEmpty());
+}
+
+void MainWindow::openAny(const QString& path) {
+  if (path.endsWith(QLatin1String(".spmodel"), Qt::CaseInsensitive))
+    openModel(path);
+  else
+    openScan(path);
+}
+
+core::LoadedCloud MainWindow::loadScanFile(const std::string& file) {
+  core::LoadedCloud loaded = core::loadCloud(file, core::LengthUnit::Millimetres);
+  // Files in metres are common (PCL samples, ROS); the extent tells, and the log says so.
+  if (!loaded.units_warning.empty() &&
+      core::guessLengthUnit(loaded.cloud) == core::LengthUnit::Metres) {
+    core::logger()->warn("{} looks like metres; converted to millimetres", file);
+    loaded = core::loadCloud(file, core::LengthUnit::Metres);
+  }
+  return loaded;
+}
+
+void MainWindow::openScan(const QString& path) {
+  statusBar()->showMessage(tr("Loading %1…").arg(path));
+  const std::string file = path.toStdString();
+  m_jobs->run<core::LoadedCloud>(
+      [file](const core::ProgressFn&) { return loadScanFile(file); },
+      [this, path](std::shared_ptr<const core::LoadedCloud> loaded) {
+        m_scan_path = path;
+        addRecentFile(path);
+        setScan(std::make_shared<const core::PointCloud>(loaded->cloud), QFileInfo(path).fileName());
+        emit scanLoaded();
+      },
+      [this, path](const QString& error) {
+        showError(tr("Open scan"), error);
+        statusBar()->showMessage(tr("Could not open %1").arg(path), 5000);
+      });
+}
+
+void MainWindow::setScan(std::shared_ptr<const core::PointCloud> scan_mm, const QString& name) {
+  m_scan = std::move(scan_mm);
+  if (m_scan_path.isEmpty() || QFileInfo(m_scan_path).fileName() != name)
+    m_scan_path = name;
+  m_undo->clear();
+  m_grips.clear();
+  m_result.reset();
+  m_results->setDetections({}, nullptr);
+  refreshGripList();
+  clearLayers({QStringLiteral("detections"), QStringLiteral("grips"), QStringLiteral("scene")});
+  setPart(m_scan);
+  m_view->resetCamera();
+  setWindowTitle(tr("scanpick — %1").arg(name));
+  core::logger()->info("scan {}: {} valid points", name.toStdString(), m_scan->validCount());
+  statusBar()->showMessage(tr("%1: %2 points").arg(name).arg(m_scan->validCount()), 5000);
+}
+
+bool MainWindow::openModel(const QString& path) {
+  try {
+    auto model = std::make_shared<const core::TaughtModel>(core::loadModel(path.toStdString()));
+    m_model = model;
+    m_model_path = path;
+    m_recognizer->setModel(model);
+    m_params->setParams(model->params);
+    addRecentFile(path);
+    core::logger()->info("model '{}' from {}: {} features, {} grip points", model->name,
+                         path.toStdString(), model->features.size(), model->grip_points.size());
+    statusBar()->showMessage(tr("Model %1 loaded").arg(QString::fromStdString(model->name)), 5000);
+    return true;
+  } catch (const std::exception& e) {
+    showError(tr("Open model"), QString::fromUtf8(e.what()));
+    return false;
+  }
+}
+
+bool MainWindow::saveModel(const QString& path) {
+  if (!m_model) {
+    showError(tr("Save model"), tr("Teach or open a model first."));
+    return false;
+  }
+  try {
+    core::saveModel(path.toStdString(), *m_model);
+    m_model_path = path;
+    core::logger()->info("saved model to {}", path.toStdString());
+    statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+    return true;
+  } catch (const std::exception& e) {
+    showError(tr("Save model"), QString::fromUtf8(e.what()));
+    return false;
+  }
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  if (event->mimeData()->hasUrls())
+    event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+  for (const QUrl& url : event->mimeData()->urls())
+    if (url.isLocalFile())
+      openAny(url.toLocalFile());
+}
+
+void MainWindow::showError(const QString& title, const QString& message) {
+  core::logger()->error("{}: {}", title.toStdString(), message.toStdString());
+  // Modeless, so a failing background job never stacks nested event loops.
+  auto* box = new QMessageBox(QMessageBox::Warning, title, message, QMessageBox::Ok, this);
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->setObjectName(QStringLiteral("errorDialog"));
+  box->open();
+}
+
+void MainWindow::setLayer(const QString& name, vtkSmartPointer<vtkProp> prop) {
+  auto it = m_layers.find(name);
+  if (it != m_layers.end()) {
+    m_view->renderer()->RemoveViewProp(it->second);
+    m_layers.erase(it);
+  }
+  if (prop) {
+    m_view->renderer()->AddViewProp(prop);
+    m_layers[name] = prop;
+  }
+  m_view->requestRender();
+}
+
+void MainWindow::clearLayers(const QStringList& names) {
+  for (const QString& name : names)
+    setLayer(name, nullptr);
+}
+
+void MainWindow::setLanguage(const QString& code) {
+  QSettings().setValue(settings::kLanguage, code);
+  QMessageBox::information(this, tr("Language"),
+                           tr("The language changes when scanpick is started again."));
+}
+
+QImage MainWindow::screenshot() { return m_view->grabFramebuffer(); }
+
+bool MainWindow::saveScreenshot(const QString& path) {
+  const QImage image = screenshot();
+  if (image.isNull() || !image.save(path)) {
+    showError(tr("Screenshot"), tr("Could not write %1: check the folder exists and is writable.")
+                                    .arg(path));
+    return false;
+  }
+  core::logger()->info("screenshot saved to {}", path.toStdString());
+  return true;
+}
+
+} // namespace scanpick::ui

@@ -1,0 +1,191 @@
+#pragma once
+/// @file MainWindow.h
+/// The scanpick main window: a 3D viewport in the centre and dockable panels (parameters,
+/// teach tools, results, capture, log). Workflows: teach a model from a scan (crop, grip points,
+/// keypoint/feature preview, save), tune parameters with live previews, recognize, capture and
+/// run live. Long work runs in background jobs (JobRunner); the window never blocks.
+
+#include "core/cloud/CloudIo.h"
+#include "core/cloud/PointCloud.h"
+#include "core/keypoints/Keypoints.h"
+#include "core/features/FeatureExtraction.h"
+#include "core/model/TaughtModel.h"
+#include "core/params/ParameterTable.h"
+#include "core/pipeline/Recognizer.h"
+
+#include <QMainWindow>
+#include <QPointer>
+#include <map>
+#include <memory>
+#include <vtkSmartPointer.h>
+
+class QAction;
+class QLabel;
+class QListWidget;
+class QMenu;
+class QProgressBar;
+class QPushButton;
+class QTimer;
+class QUndoStack;
+class vtkBoxWidget2;
+class vtkProp;
+
+namespace scanpick::ui {
+
+class DevicePanel;
+class JobRunner;
+class LogDock;
+class ParameterPanel;
+class QtVtkViewport;
+class ResultsTable;
+
+/// The keypoint/feature preview of the working cloud (teach and tune).
+struct PreviewResult {
+  std::shared_ptr<const core::Keypoints> keypoints;
+  core::FeatureExtraction features;
+  double keypoints_ms = 0;  ///< 0 when the keypoints came from the cache
+  double features_ms = 0;
+  quint64 cloud_version = 0;
+  core::KeypointParams keypoint_params;
+};
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+public:
+  explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  // --- files (all asynchronous ones report through signals) ---
+  /// Loads a PCD/PLY scan (synchronously, any thread), in millimetres; a file whose extent says
+  /// metres is converted (with a warning in the log). Throws core::Error.
+  static core::LoadedCloud loadScanFile(const std::string& path);
+  /// Loads a PCD/PLY scan in the background; emits scanLoaded or shows the error.
+  void openScan(const QString& path);
+  /// Shows `scan` as the current scan (teach source and recognition scene).
+  void setScan(std::shared_ptr<const core::PointCloud> scan_mm, const QString& name);
+  /// Loads a .spmodel file (synchronous, small); shows a dialog on failure. Returns success.
+  bool openModel(const QString& path);
+  /// Saves the taught model; returns false (and says why) on failure.
+  bool saveModel(const QString& path);
+
+  // --- teach ---
+  /// Shows or hides the interactive crop box (placed around the working cloud when shown).
+  void setCropBoxVisible(bool visible);
+  /// Moves the crop box (scan frame).
+  void setCropBox(const core::OrientedBox& box);
+  [[nodiscard]] core::OrientedBox cropBox() const;
+  /// Crops the working cloud to the box (undoable). Returns false when nothing would remain.
+  bool applyCrop();
+  /// Removes the floor from the working cloud (background job, undoable).
+  void removeFloorFromPart();
+  /// Adds a grip point (scan frame, mm) with an automatic name.
+  void addGripPoint(const Eigen::Vector3d& position_mm);
+  /// Teaches the model from the working cloud in the background; emits modelTaught.
+  void teach();
+
+  // --- recognize ---
+  /// Recognizes the taught model in the current scan; emits recognitionFinished.
+  void recognize();
+  void cancelRecognition();
+  /// Writes the last results as JSON. Returns false (and says why) on failure.
+  bool exportResults(const QString& path);
+  /// Starts or stops capture → recognize cycles on the open camera.
+  void setLiveRunning(bool running);
+
+  /// Renders the viewport into an image / a PNG file.
+  [[nodiscard]] QImage screenshot();
+  bool saveScreenshot(const QString& path);
+
+  // --- for tests and scripting ---
+  [[nodiscard]] QtVtkViewport* viewport() const { return m_view; }
+  [[nodiscard]] ParameterPanel* parameterPanel() const { return m_params; }
+  [[nodiscard]] ResultsTable* resultsTable() const { return m_results; }
+  [[nodiscard]] LogDock* logDock() const { return m_log; }
+  [[nodiscard]] JobRunner* previewJobs() const { return m_preview_jobs; }
+  [[nodiscard]] JobRunner* recognizeJobs() const { return m_recognize_jobs; }
+  [[nodiscard]] QUndoStack* undoStack() const { return m_undo; }
+  [[nodiscard]] std::shared_ptr<const core::PointCloud> scan() const { return m_scan; }
+  [[nodiscard]] std::shared_ptr<const core::PointCloud> part() const { return m_part; }
+  [[nodiscard]] std::shared_ptr<const core::TaughtModel> model() const { return m_model; }
+  [[nodiscard]] std::shared_ptr<const PreviewResult> preview() const { return m_preview; }
+  [[nodiscard]] const core::RecognitionResult* lastResult() const { return m_result.get(); }
+  [[nodiscard]] const std::vector<core::GripPoint>& gripPoints() const { return m_grips; }
+  /// Debounce delay of the live preview, ms (150 by default).
+  void setPreviewDelay(int ms);
+  /// Replaces the working cloud (used by the crop commands; undoable through them).
+  void setPart(std::shared_ptr<const core::PointCloud> part_mm);
+
+signals:
+  void scanLoaded();
+  void previewUpdated();
+  void modelTaught();
+  void recognitionFinished(bool ok);
+
+protected:
+  void closeEvent(QCloseEvent* event) override;
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
+
+private:
+  // MainWindow.cpp: shell
+  void buildActions();
+  void buildDocks();
+  void restoreSettings();
+  void addRecentFile(const QString& path);
+  void rebuildRecentMenu();
+  void openAny(const QString& path);
+  void showError(const QString& title, const QString& message);
+  void setLayer(const QString& name, vtkSmartPointer<vtkProp> prop);
+  void clearLayers(const QStringList& names);
+  void setLanguage(const QString& code);
+  [[nodiscard]] double ratio() const;
+  // MainWindowTeach.cpp
+  void buildTeachDock();
+  void schedulePreview(core::Stage first_stage);
+  void runPreview();
+  void showPart();
+  void showPreview();
+  void showGrips();
+  void refreshGripList();
+  void onViewportClick(int x, int y);
+  // MainWindowRecognize.cpp
+  void showResult(int selected);
+  void onResultSelected(int row);
+  void runLiveCycle();
+
+  QtVtkViewport* m_view = nullptr;
+  ParameterPanel* m_params = nullptr;
+  LogDock* m_log = nullptr;
+  ResultsTable* m_results = nullptr;
+  DevicePanel* m_devices = nullptr;
+  JobRunner* m_jobs = nullptr;            // loading, floor removal, teach
+  JobRunner* m_preview_jobs = nullptr;    // keypoint/feature preview
+  JobRunner* m_recognize_jobs = nullptr;  // recognition (single and live)
+  QTimer* m_preview_timer = nullptr;
+  QUndoStack* m_undo = nullptr;
+  QMenu* m_recent_menu = nullptr;
+  QLabel* m_status_counts = nullptr;
+  QLabel* m_status_timings = nullptr;
+  QProgressBar* m_progress = nullptr;
+  QPushButton* m_cancel = nullptr;
+  QListWidget* m_grip_list = nullptr;
+  QAction* m_crop_action = nullptr;
+  QAction* m_grip_action = nullptr;
+  QAction* m_live_action = nullptr;
+  vtkSmartPointer<vtkBoxWidget2> m_box_widget;
+  std::map<QString, vtkSmartPointer<vtkProp>> m_layers;
+
+  std::shared_ptr<const core::PointCloud> m_scan;
+  QString m_scan_path;
+  std::shared_ptr<const core::PointCloud> m_part;  // working cloud of the teach workflow
+  quint64 m_part_version = 0;
+  std::vector<core::GripPoint> m_grips;            // scan frame
+  std::shared_ptr<const core::TaughtModel> m_model;
+  QString m_model_path;
+  std::shared_ptr<core::Recognizer> m_recognizer;
+  std::shared_ptr<const PreviewResult> m_preview;
+  std::shared_ptr<const core::RecognitionResult> m_result;
+  bool m_live = false;
+};
+
+} // namespace scanpick::ui

@@ -1,0 +1,214 @@
+// Recognize and live: background recognition with progress and cancel, the detections drawn in
+// distinct colours over the grey scene, the results table, export, and capture → recognize loops.
+#include "ui/MainWindow.h"
+
+#include "core/common/Log.h"
+#include "core/pipeline/ResultsJson.h"
+#include "ui/jobs/JobRunner.h"
+#include "ui/panels/DevicePanel.h"
+#include "ui/panels/ParameterPanel.h"
+#include "ui/panels/ResultsTable.h"
+#include "ui/viewport/Presenters.h"
+#include "ui/viewport/QtVtkViewport.h"
+
+#include <QAction>
+#include <QElapsedTimer>
+#include <QLabel>
+#include <QStatusBar>
+#include <QTimer>
+#include <QUndoStack>
+#include <vtkActor.h>
+#include <vtkAssembly.h>
+#include <vtkProperty.h>
+
+#ifdef SCANPICK_UI_WITH_DEVICES
+#include "devices/Camera.h"
+#endif
+
+namespace scanpick::ui {
+namespace {
+
+/// One live cycle: the captured scene and what was found in it.
+struct LiveCycle {
+  std::shared_ptr<const core::PointCloud> scene;
+  core::RecognitionResult result;
+  double cycle_ms = 0;
+};
+
+QString timingsText(const core::StageTimings& t) {
+  return MainWindow::tr("preprocess %1 · clustering %2 · keypoints %3 · features %4 · matching %5 "
+                        "· total %6 ms")
+      .arg(t.preprocess_ms, 0, 'f', 0)
+      .arg(t.clustering_ms, 0, 'f', 0)
+      .arg(t.keypoints_ms, 0, 'f', 0)
+      .arg(t.features_ms, 0, 'f', 0)
+      .arg(t.matching_ms, 0, 'f', 0)
+      .arg(t.total_ms, 0, 'f', 0);
+}
+
+} // namespace
+
+void MainWindow::recognize() {
+  if (!m_model)
+    return showError(tr("Recognize"), tr("Teach a model or open one (.spmodel) first."));
+  if (!m_scan)
+    return showError(tr("Recognize"), tr("Open or capture a scene first."));
+  const auto scene = m_scan;
+  const auto recognizer = m_recognizer;
+  const core::RecognitionParams params = m_params->params();
+  const core::SensorModel sensor = m_model->sensor;
+  statusBar()->showMessage(tr("Recognizing…"));
+  const quint64 gen = m_recognize_jobs->run<core::RecognitionResult>(
+      [scene, recognizer, params, sensor](const core::ProgressFn& progress) {
+        return recognizer->recognize(*scene, sensor, params, progress);
+      },
+      [this](std::shared_ptr<const core::RecognitionResult> result) {
+        m_result = std::move(result);
+        m_results->setDetections(m_result->detections, m_model.get());
+        showResult(-1);
+        m_status_counts->setText(tr("%n detection(s)", nullptr,
+                                    static_cast<int>(m_result->detections.size())));
+        m_status_timings->setText(timingsText(m_result->timings));
+        core::logger()->info("recognized {} instance(s) in {:.0f} ms", m_result->detections.size(),
+                             m_result->timings.total_ms);
+        statusBar()->showMessage(tr("Found %n instance(s)", nullptr,
+                                    static_cast<int>(m_result->detections.size())), 8000);
+      },
+      [this](const QString& e) { showError(tr("Recognize"), e); });
+  // One signal for every ending (done, error, cancelled), so callers and tests can wait on it.
+  auto* connection = new QMetaObject::Connection;
+  *connection = connect(m_recognize_jobs, &JobRunner::jobFinished, this,
+                        [this, gen, connection](quint64 finished, bool accepted) {
+                          if (finished != gen)
+                            return;
+                          disconnect(*connection);
+                          delete connection;
+                          emit recognitionFinished(accepted);
+                        });
+}
+
+void MainWindow::cancelRecognition() {
+  if (m_recognize_jobs->busy()) {
+    m_recognize_jobs->cancel();
+    core::logger()->info("recognition cancelled");
+    statusBar()->showMessage(tr("Recognition cancelled"), 5000);
+  }
+  if (m_live)
+    m_live_action->setChecked(false);
+}
+
+void MainWindow::showResult(int selected) {
+  if (!m_result || !m_scan)
+    return;
+  clearLayers({QStringLiteral("scan"), QStringLiteral("keypoints"), QStringLiteral("features"),
+               QStringLiteral("grips")});
+  setLayer(QStringLiteral("part"),
+           makeCloudActor(*m_scan, QColor(200, 200, 200), 1.5, ratio(), false));
+  auto assembly = vtkSmartPointer<vtkAssembly>::New();
+  const double axis_mm = m_model ? std::max(5.0, m_model->diameter_mm * 0.15) : 10.0;
+  for (int i = 0; i < static_cast<int>(m_result->detections.size()); ++i) {
+    const core::Detection& d = m_result->detections[i];
+    const bool highlight = selected < 0 || selected == i;
+    const QColor colour = detectionColour(i);
+    if (m_model) {
+      auto cloud = makeCloudActor(m_model->cloud_mm, colour, highlight ? 3.0 : 2.0, ratio(), false,
+                                  d.T_scene_model);
+      cloud->GetProperty()->SetOpacity(highlight ? 1.0 : 0.25);
+      assembly->AddPart(cloud);
+    }
+    auto axes = makeGripAxesActor(d.grip_points_scene, axis_mm, ratio(), d.T_scene_model.linear());
+    axes->GetProperty()->SetOpacity(highlight ? 1.0 : 0.3);
+    assembly->AddPart(axes);
+  }
+  setLayer(QStringLiteral("detections"), assembly);
+}
+
+void MainWindow::onResultSelected(int row) {
+  showResult(row);
+  if (m_result && row >= 0 && row < static_cast<int>(m_result->detections.size()))
+    statusBar()->showMessage(
+        tr("Detection %1: score %2").arg(row + 1).arg(m_result->detections[row].score, 0, 'f', 3),
+        5000);
+}
+
+bool MainWindow::exportResults(const QString& path) {
+  if (!m_result || !m_model) {
+    showError(tr("Export results"), tr("Run a recognition first (F5)."));
+    return false;
+  }
+  try {
+    core::saveResults(path.toStdString(), *m_result, *m_model, m_scan_path.toStdString(),
+                      m_model_path.toStdString());
+    core::logger()->info("results written to {}", path.toStdString());
+    statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+    return true;
+  } catch (const std::exception& e) {
+    showError(tr("Export results"), QString::fromUtf8(e.what()));
+    return false;
+  }
+}
+
+void MainWindow::setLiveRunning(bool running) {
+  if (m_live_action->isChecked() != running) {
+    m_live_action->setChecked(running);  // re-enters through toggled
+    return;
+  }
+  if (!running) {
+    m_live = false;
+    return;
+  }
+#ifdef SCANPICK_UI_WITH_DEVICES
+  if (!m_model || !m_devices->camera()) {
+    m_live_action->setChecked(false);
+    showError(tr("Live"), tr("Live needs a model and an open camera (Capture panel)."));
+    return;
+  }
+  m_live = true;
+  core::logger()->info("live recognition started");
+  runLiveCycle();
+#else
+  m_live_action->setChecked(false);
+  showError(tr("Live"), tr("This build has no camera support."));
+#endif
+}
+
+void MainWindow::runLiveCycle() {
+#ifdef SCANPICK_UI_WITH_DEVICES
+  const auto camera = m_devices->camera();
+  if (!m_live || !camera || !m_model) {
+    m_live_action->setChecked(false);
+    return;
+  }
+  const auto recognizer = m_recognizer;
+  const core::RecognitionParams params = m_params->params();
+  const core::SensorModel sensor = m_model->sensor;
+  // Each cycle schedules the next one when it ends, so cycles never overlap.
+  m_recognize_jobs->run<LiveCycle>(
+      [camera, recognizer, params, sensor](const core::ProgressFn& progress) {
+        QElapsedTimer timer;
+        timer.start();
+        LiveCycle c;
+        c.scene = std::make_shared<const core::PointCloud>(
+            camera->capture(std::chrono::seconds(5)).cloud);
+        c.result = recognizer->recognize(*c.scene, sensor, params, progress);
+        c.cycle_ms = static_cast<double>(timer.nsecsElapsed()) / 1e6;
+        return c;
+      },
+      [this](std::shared_ptr<const LiveCycle> c) {
+        m_scan = c->scene;
+        m_result = std::shared_ptr<const core::RecognitionResult>(c, &c->result);
+        m_results->setDetections(m_result->detections, m_model.get());
+        showResult(-1);
+        m_status_counts->setText(tr("%n detection(s)", nullptr,
+                                    static_cast<int>(m_result->detections.size())));
+        m_status_timings->setText(tr("cycle %1 ms").arg(c->cycle_ms, 0, 'f', 0));
+        QTimer::singleShot(0, this, &MainWindow::runLiveCycle);
+      },
+      [this](const QString& e) {
+        m_live_action->setChecked(false);
+        showError(tr("Live"), e);
+      });
+#endif
+}
+
+} // namespace scanpick::ui

@@ -1,0 +1,409 @@
+// Teach and tune: crop box, undoable crops and floor removal, grip points, the debounced
+// keypoint/feature preview and teaching the model.
+#include "ui/MainWindow.h"
+
+#include "core/common/Log.h"
+#include "core/preprocess/Downsample.h"
+#include "core/preprocess/FloorRemoval.h"
+#include "ui/Settings.h"
+#include "ui/jobs/JobRunner.h"
+#include "ui/panels/ParameterPanel.h"
+#include "ui/viewport/Presenters.h"
+#include "ui/viewport/QtVtkInteractor.h"
+#include "ui/viewport/QtVtkViewport.h"
+
+#include <QAction>
+#include <QDockWidget>
+#include <QElapsedTimer>
+#include <QFileInfo>
+#include <QLabel>
+#include <QListWidget>
+#include <QMouseEvent>
+#include <QPushButton>
+#include <QSettings>
+#include <QStatusBar>
+#include <QTimer>
+#include <QUndoCommand>
+#include <QUndoStack>
+#include <QVBoxLayout>
+#include <vtkActor.h>
+#include <vtkBoxRepresentation.h>
+#include <vtkBoxWidget2.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkMatrix4x4.h>
+#include <vtkPointPicker.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkRenderer.h>
+#include <vtkTransform.h>
+
+namespace scanpick::ui {
+namespace {
+
+/// Replaces the working cloud; undo puts the previous one back.
+class ReplacePartCommand : public QUndoCommand {
+public:
+  ReplacePartCommand(MainWindow* window, std::shared_ptr<const core::PointCloud> before,
+                     std::shared_ptr<const core::PointCloud> after, const QString& text)
+      : QUndoCommand(text), m_window(window), m_before(std::move(before)), m_after(std::move(after)) {}
+  void undo() override { m_window->setPart(m_before); }
+  void redo() override { m_window->setPart(m_after); }
+
+private:
+  MainWindow* m_window;
+  std::shared_ptr<const core::PointCloud> m_before, m_after;
+};
+
+/// Forwards single clicks (press and release within a few pixels) on the viewport.
+class ClickFilter : public QObject {
+public:
+  ClickFilter(QObject* parent, std::function<void(QPoint)> on_click)
+      : QObject(parent), m_on_click(std::move(on_click)) {}
+  bool eventFilter(QObject*, QEvent* event) override {
+    if (event->type() == QEvent::MouseButtonPress) {
+      m_press = static_cast<QMouseEvent*>(event)->position().toPoint();
+    } else if (event->type() == QEvent::MouseButtonRelease) {
+      const auto* e = static_cast<QMouseEvent*>(event);
+      if (e->button() == Qt::LeftButton && (e->position().toPoint() - m_press).manhattanLength() < 4)
+        m_on_click(e->position().toPoint());
+    }
+    return false;
+  }
+
+private:
+  std::function<void(QPoint)> m_on_click;
+  QPoint m_press;
+};
+
+double pointSize() { return QSettings().value(settings::kPointSize, 2.0).toDouble(); }
+
+} // namespace
+
+void MainWindow::buildTeachDock() {
+  auto* panel = new QWidget(this);
+  auto* layout = new QVBoxLayout(panel);
+  layout->addWidget(new QLabel(tr("Grip points (double-click to rename):"), panel));
+  m_grip_list = new QListWidget(panel);
+  m_grip_list->setObjectName(QStringLiteral("gripList"));
+  layout->addWidget(m_grip_list, 1);
+  auto* remove = new QPushButton(tr("Remove grip point"), panel);
+  layout->addWidget(remove);
+  connect(remove, &QPushButton::clicked, this, [this] {
+    const int row = m_grip_list->currentRow();
+    if (row >= 0 && row < static_cast<int>(m_grips.size())) {
+      m_grips.erase(m_grips.begin() + row);
+      refreshGripList();
+      showGrips();
+    }
+  });
+  connect(m_grip_list, &QListWidget::itemChanged, this, [this](QListWidgetItem* item) {
+    const int row = m_grip_list->row(item);
+    if (row >= 0 && row < static_cast<int>(m_grips.size()))
+      m_grips[row].name = item->text().toStdString();
+  });
+  auto* dock = new QDockWidget(tr("Teach"), this);
+  dock->setObjectName(QStringLiteral("TeachDock"));
+  dock->setWidget(panel);
+  addDockWidget(Qt::LeftDockWidgetArea, dock);
+  m_view->installEventFilter(new ClickFilter(this, [this](QPoint p) {
+    if (m_grip_action->isChecked())
+      onViewportClick(p.x(), p.y());
+  }));
+}
+
+void MainWindow::setPreviewDelay(int ms) { m_preview_timer->setInterval(ms); }
+
+void MainWindow::setPart(std::shared_ptr<const core::PointCloud> part_mm) {
+  m_part = std::move(part_mm);
+  ++m_part_version;
+  showPart();
+  schedulePreview(core::Stage::Keypoints);
+}
+
+void MainWindow::showPart() {
+  if (!m_part) {
+    clearLayers({QStringLiteral("part"), QStringLiteral("scan")});
+    return;
+  }
+  setLayer(QStringLiteral("part"), makeCloudActor(*m_part, Qt::white, pointSize(), ratio(), true));
+  // The rest of the scan stays visible, dim, so the operator sees what the crop left out.
+  if (m_scan && m_part != m_scan)
+    setLayer(QStringLiteral("scan"),
+             makeCloudActor(*m_scan, QColor(90, 90, 100), 1.0, ratio(), false));
+  else
+    setLayer(QStringLiteral("scan"), nullptr);
+}
+
+void MainWindow::setCropBoxVisible(bool visible) {
+  if (!m_box_widget) {
+    m_box_widget = vtkSmartPointer<vtkBoxWidget2>::New();
+    vtkNew<vtkBoxRepresentation> rep;
+    rep->SetPlaceFactor(1.0);
+    m_box_widget->SetRepresentation(rep);
+    m_box_widget->SetInteractor(m_view->interactor());
+  }
+  if (visible && m_part) {
+    const Eigen::AlignedBox3f box = core::boundingBox(*m_part);
+    core::OrientedBox oriented;
+    oriented.T_scan_box.translation() = box.center();
+    oriented.half_extents_mm = box.sizes() / 2 * 1.02f + Eigen::Vector3f::Constant(0.5f);
+    setCropBox(oriented);
+  }
+  m_box_widget->SetEnabled(visible && m_part ? 1 : 0);
+  if (m_crop_action->isChecked() != (visible && m_part))
+    m_crop_action->setChecked(visible && m_part);
+  m_view->requestRender();
+}
+
+void MainWindow::setCropBox(const core::OrientedBox& box) {
+  if (!m_box_widget)
+    setCropBoxVisible(false);
+  auto* rep = vtkBoxRepresentation::SafeDownCast(m_box_widget->GetRepresentation());
+  // Placed as the unit cube, then moved: the transform fully describes the box.
+  double unit[6] = {-0.5, 0.5, -0.5, 0.5, -0.5, 0.5};
+  rep->PlaceWidget(unit);
+  vtkNew<vtkTransform> t;
+  const Eigen::Matrix4d m = box.T_scan_box.matrix().cast<double>();
+  vtkNew<vtkMatrix4x4> matrix;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      matrix->SetElement(r, c, m(r, c));
+  t->SetMatrix(matrix);
+  t->Scale(2.0 * box.half_extents_mm.x(), 2.0 * box.half_extents_mm.y(),
+           2.0 * box.half_extents_mm.z());
+  rep->SetTransform(t);
+  m_view->requestRender();
+}
+
+core::OrientedBox MainWindow::cropBox() const {
+  core::OrientedBox box;
+  if (!m_box_widget)
+    return box;
+  auto* rep = vtkBoxRepresentation::SafeDownCast(m_box_widget->GetRepresentation());
+  vtkNew<vtkPolyData> poly;
+  rep->GetPolyData(poly);
+  // Corners 0..7 of vtkBoxRepresentation: 0 (min), 1 (+x), 3 (+y), 4 (+z).
+  const auto corner = [&](int i) {
+    double p[3];
+    poly->GetPoints()->GetPoint(i, p);
+    return Eigen::Vector3f(static_cast<float>(p[0]), static_cast<float>(p[1]),
+                           static_cast<float>(p[2]));
+  };
+  const Eigen::Vector3f o = corner(0), ex = corner(1) - o, ey = corner(3) - o, ez = corner(4) - o;
+  Eigen::Matrix3f R;
+  R.col(0) = ex.normalized();
+  R.col(1) = ey.normalized();
+  R.col(2) = ez.normalized();
+  box.T_scan_box.linear() = R;
+  box.T_scan_box.translation() = o + (ex + ey + ez) / 2;
+  box.half_extents_mm = Eigen::Vector3f(ex.norm(), ey.norm(), ez.norm()) / 2;
+  return box;
+}
+
+bool MainWindow::applyCrop() {
+  if (!m_part || !m_box_widget || !m_box_widget->GetEnabled()) {
+    statusBar()->showMessage(tr("Show the crop box first (Ctrl+B)"), 5000);
+    return false;
+  }
+  auto cropped =
+      std::make_shared<const core::PointCloud>(core::cropToOrientedBox(*m_part, cropBox()));
+  if (cropped->validCount() == 0) {
+    showError(tr("Crop"), tr("The crop box holds no point: move or enlarge it."));
+    return false;
+  }
+  core::logger()->info("crop: {} of {} points kept", cropped->validCount(), m_part->validCount());
+  m_undo->push(new ReplacePartCommand(this, m_part, cropped, tr("Crop")));
+  setCropBoxVisible(false);
+  return true;
+}
+
+void MainWindow::removeFloorFromPart() {
+  if (!m_part)
+    return;
+  const auto part = m_part;
+  const core::RecognitionParams params = m_params->params();
+  statusBar()->showMessage(tr("Removing the floor…"));
+  m_jobs->run<core::FloorRemovalResult>(
+      [part, params](const core::ProgressFn& progress) {
+        core::FloorParams floor = params.floor;
+        floor.enabled = true;
+        return core::removeFloor(*part, floor, params.seed, progress);
+      },
+      [this, part](std::shared_ptr<const core::FloorRemovalResult> r) {
+        core::logger()->info("floor removal: {} planes, {} points removed", r->planes.size(),
+                             r->removed_points);
+        if (r->removed_points == 0) {
+          statusBar()->showMessage(tr("No plane large enough to remove"), 5000);
+          return;
+        }
+        m_undo->push(new ReplacePartCommand(
+            this, part, std::make_shared<const core::PointCloud>(r->remaining), tr("Remove floor")));
+        statusBar()->showMessage(tr("Removed %1 floor points").arg(r->removed_points), 5000);
+      },
+      [this](const QString& e) { showError(tr("Remove floor"), e); });
+}
+
+void MainWindow::onViewportClick(int x, int y) {
+  const auto it = m_layers.find(QStringLiteral("part"));
+  if (it == m_layers.end())
+    return;
+  vtkNew<vtkPointPicker> picker;
+  picker->SetTolerance(0.005);
+  picker->PickFromListOn();
+  picker->AddPickList(it->second);
+  const double r = ratio();
+  const int* size = m_view->renderWindow()->GetSize();
+  if (!picker->Pick(x * r, size[1] - y * r - 1, 0, m_view->renderer()) || picker->GetPointId() < 0)
+    return;
+  double p[3];
+  picker->GetPickPosition(p);
+  addGripPoint(Eigen::Vector3d(p[0], p[1], p[2]));
+}
+
+void MainWindow::addGripPoint(const Eigen::Vector3d& position_mm) {
+  core::GripPoint grip;
+  grip.name = tr("grip %1").arg(m_grips.size() + 1).toStdString();
+  grip.position_mm = position_mm;
+  m_grips.push_back(grip);
+  core::logger()->info("grip point '{}' at ({:.1f}, {:.1f}, {:.1f}) mm", grip.name, position_mm.x(),
+                       position_mm.y(), position_mm.z());
+  refreshGripList();
+  showGrips();
+}
+
+void MainWindow::refreshGripList() {
+  const QSignalBlocker block(m_grip_list);
+  m_grip_list->clear();
+  for (const core::GripPoint& g : m_grips) {
+    auto* item = new QListWidgetItem(QString::fromStdString(g.name), m_grip_list);
+    item->setFlags(item->flags() | Qt::ItemIsEditable);
+    item->setToolTip(QStringLiteral("(%1, %2, %3) mm")
+                         .arg(g.position_mm.x(), 0, 'f', 1)
+                         .arg(g.position_mm.y(), 0, 'f', 1)
+                         .arg(g.position_mm.z(), 0, 'f', 1));
+  }
+}
+
+void MainWindow::showGrips() {
+  const double length = m_part ? std::max(5.0, core::boundingBox(*m_part).sizes().norm() * 0.06)
+                               : 10.0;
+  setLayer(QStringLiteral("grips"),
+           m_grips.empty() ? nullptr : makeGripAxesActor(m_grips, length, ratio()));
+}
+
+void MainWindow::schedulePreview(core::Stage first_stage) {
+  // Matching and refinement do not change the keypoint/feature preview.
+  if (first_stage > core::Stage::Features || !m_part)
+    return;
+  m_preview_timer->start();
+}
+
+void MainWindow::runPreview() {
+  if (!m_part)
+    return;
+  const auto part = m_part;
+  const quint64 version = m_part_version;
+  const core::RecognitionParams params = m_params->params();
+  // Keypoints are reused when only feature parameters changed.
+  std::shared_ptr<const core::Keypoints> cached;
+  if (m_preview && m_preview->cloud_version == version &&
+      m_preview->keypoint_params == params.keypoints)
+    cached = m_preview->keypoints;
+  m_preview_jobs->run<PreviewResult>(
+      [part, version, params, cached](const core::ProgressFn& progress) {
+        PreviewResult r;
+        r.cloud_version = version;
+        r.keypoint_params = params.keypoints;
+        QElapsedTimer timer;
+        timer.start();
+        if (cached) {
+          r.keypoints = cached;
+        } else {
+          const core::PointCloud cloud = params.downsample.voxel_mm > 0
+                                             ? core::voxelDownsample(*part, params.downsample.voxel_mm)
+                                             : *part;
+          r.keypoints = std::make_shared<const core::Keypoints>(
+              core::extractKeypoints(cloud, params.keypoints, core::subProgress(progress, 0, 0.6)));
+          r.keypoints_ms = static_cast<double>(timer.nsecsElapsed()) / 1e6;
+        }
+        timer.restart();
+        r.features = core::extractFeatures(r.keypoints->points_mm, params.features, params.seed,
+                                           core::subProgress(progress, 0.6, 1.0));
+        r.features_ms = static_cast<double>(timer.nsecsElapsed()) / 1e6;
+        return r;
+      },
+      [this](std::shared_ptr<const PreviewResult> r) {
+        m_preview = std::move(r);
+        showPreview();
+        emit previewUpdated();
+      },
+      [this](const QString& error) {
+        // Tuning often passes through invalid combinations: say so without a dialog.
+        core::logger()->warn("preview: {}", error.toStdString());
+        statusBar()->showMessage(tr("Preview: %1").arg(error), 8000);
+        clearLayers({QStringLiteral("keypoints"), QStringLiteral("features")});
+      });
+}
+
+void MainWindow::showPreview() {
+  if (!m_preview)
+    return;
+  int lines = 0, circles = 0;
+  for (const core::Feature& f : m_preview->features.features)
+    (f.type == core::FeatureType::Line ? lines : circles)++;
+  setLayer(QStringLiteral("keypoints"),
+           makePointsActor(m_preview->keypoints->points_mm, QColor(255, 220, 0), pointSize() + 2,
+                           ratio()));
+  setLayer(QStringLiteral("features"),
+           makeFeaturesActor(m_preview->features.features, QColor(0, 230, 255),
+                             QColor(255, 60, 220), 3.0, ratio()));
+  m_status_counts->setText(tr("keypoints %1 · lines %2 · circles %3")
+                               .arg(m_preview->keypoints->points_mm.size())
+                               .arg(lines)
+                               .arg(circles));
+  m_status_timings->setText(
+      m_preview->keypoints_ms > 0
+          ? tr("keypoints %1 ms · features %2 ms")
+                .arg(m_preview->keypoints_ms, 0, 'f', 0)
+                .arg(m_preview->features_ms, 0, 'f', 0)
+          : tr("keypoints cached · features %1 ms").arg(m_preview->features_ms, 0, 'f', 0));
+}
+
+void MainWindow::teach() {
+  if (!m_part) {
+    showError(tr("Teach"), tr("Open a scan and crop the part first."));
+    return;
+  }
+  core::TeachOptions options;
+  options.name = m_scan_path.isEmpty() ? "part" : QFileInfo(m_scan_path).completeBaseName().toStdString();
+  // The working cloud is already cropped; its own bounds (padded) keep every point.
+  Eigen::AlignedBox3f bounds = core::boundingBox(*m_part);
+  bounds.min() -= Eigen::Vector3f::Constant(1.0f);
+  bounds.max() += Eigen::Vector3f::Constant(1.0f);
+  options.crop_box_mm = bounds;
+  options.grips_scan = m_grips;
+  const auto part = m_part;
+  const core::RecognitionParams params = m_params->params();
+  statusBar()->showMessage(tr("Teaching…"));
+  m_jobs->run<core::TaughtModel>(
+      [part, options, params](const core::ProgressFn& progress) {
+        return core::teach(*part, options, params, progress);
+      },
+      [this](std::shared_ptr<const core::TaughtModel> model) {
+        m_model = model;
+        m_recognizer->setModel(model);
+        core::logger()->info("taught '{}': {} points, {} keypoints, {} features, {} grip points",
+                             model->name, model->cloud_mm.size(), model->keypoints_mm.size(),
+                             model->features.size(), model->grip_points.size());
+        // The taught features, drawn where they lie in the teach scan.
+        setLayer(QStringLiteral("features"),
+                 makeFeaturesActor(model->features, QColor(0, 230, 255), QColor(255, 60, 220), 3.0,
+                                   ratio(), model->T_teach_model));
+        statusBar()->showMessage(
+            tr("Model taught: %1 features. Save it with Ctrl+S.").arg(model->features.size()), 8000);
+        emit modelTaught();
+      },
+      [this](const QString& e) { showError(tr("Teach"), e); });
+}
+
+} // namespace scanpick::ui

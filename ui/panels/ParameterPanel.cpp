@@ -1,0 +1,256 @@
+#include "ui/panels/ParameterPanel.h"
+
+#include "core/common/Error.h"
+#include "core/common/Log.h"
+#include "core/params/ParamsJson.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QCoreApplication>
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QMessageBox>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSpinBox>
+#include <QVBoxLayout>
+#include <cmath>
+
+#ifndef SCANPICK_PRESETS_DIR
+#define SCANPICK_PRESETS_DIR ""
+#endif
+
+namespace scanpick::ui {
+namespace {
+
+int decimalsFor(double step) {
+  int decimals = 0;
+  while (decimals < 6 && std::abs(step * std::pow(10.0, decimals) -
+                                  std::round(step * std::pow(10.0, decimals))) > 1e-9)
+    ++decimals;
+  return std::max(decimals, 1);
+}
+
+QString qs(const std::string& s) { return QString::fromStdString(s); }
+
+} // namespace
+
+ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
+  auto* outer = new QVBoxLayout(this);
+  outer->setContentsMargins(4, 4, 4, 4);
+
+  auto* preset_row = new QHBoxLayout;
+  m_presets = new QComboBox(this);
+  m_presets->setObjectName(QStringLiteral("presetCombo"));
+  m_presets->setToolTip(tr("Bundled parameter presets"));
+  auto* load = new QPushButton(tr("Load…"), this);
+  auto* save = new QPushButton(tr("Save…"), this);
+  preset_row->addWidget(m_presets, 1);
+  preset_row->addWidget(load);
+  preset_row->addWidget(save);
+  outer->addLayout(preset_row);
+  fillPresetList();
+  connect(m_presets, &QComboBox::activated, this, [this](int index) {
+    const QString path = m_presets->itemData(index).toString();
+    if (path.isEmpty())
+      return;
+    try {
+      loadPresetFile(path);
+    } catch (const std::exception& e) {
+      QMessageBox::warning(this, tr("Preset"), QString::fromUtf8(e.what()));
+    }
+  });
+  connect(load, &QPushButton::clicked, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Load preset"), presetsDirectory(),
+                                                      tr("Presets (*.json)"));
+    if (path.isEmpty())
+      return;
+    try {
+      loadPresetFile(path);
+    } catch (const std::exception& e) {
+      QMessageBox::warning(this, tr("Preset"), QString::fromUtf8(e.what()));
+    }
+  });
+  connect(save, &QPushButton::clicked, this, [this] {
+    const QString path =
+        QFileDialog::getSaveFileName(this, tr("Save preset"), QString(), tr("Presets (*.json)"));
+    if (path.isEmpty())
+      return;
+    try {
+      savePresetFile(path, QFileInfo(path).completeBaseName());
+    } catch (const std::exception& e) {
+      QMessageBox::warning(this, tr("Preset"), QString::fromUtf8(e.what()));
+    }
+  });
+
+  auto* scroll = new QScrollArea(this);
+  scroll->setWidgetResizable(true);
+  auto* body = new QWidget(scroll);
+  auto* body_layout = new QVBoxLayout(body);
+  std::map<core::Stage, QFormLayout*> forms;
+  for (const core::ParamInfo& info : core::parameterTable()) {
+    auto& form = forms[info.stage];
+    if (!form) {
+      auto* group = new QGroupBox(
+          QCoreApplication::translate("scanpick::core", core::stageName(info.stage).c_str()), body);
+      form = new QFormLayout(group);
+      form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+      body_layout->addWidget(group);
+    }
+    QWidget* editor = makeEditor(info);
+    editor->setObjectName(qs(info.key));
+    editor->setToolTip(qs(info.description));
+    m_editors[info.key] = editor;
+    form->addRow(qs(info.label), editor);
+  }
+  auto* misc = new QGroupBox(tr("Random"), body);
+  auto* misc_form = new QFormLayout(misc);
+  m_seed = new QSpinBox(misc);
+  m_seed->setObjectName(QStringLiteral("seed"));
+  m_seed->setRange(0, std::numeric_limits<int>::max());
+  m_seed->setToolTip(tr("Seed of every random choice: the same scan, parameters and seed give "
+                        "the same result."));
+  misc_form->addRow(tr("Seed"), m_seed);
+  body_layout->addWidget(misc);
+  body_layout->addStretch(1);
+  connect(m_seed, &QSpinBox::valueChanged, this, [this](int value) {
+    if (m_updating)
+      return;
+    const core::RecognitionParams before = m_params;
+    m_params.seed = static_cast<std::uint64_t>(value);
+    if (const auto stage = core::firstChangedStage(before, m_params))
+      emit paramsChanged(m_params, *stage);
+  });
+  scroll->setWidget(body);
+  outer->addWidget(scroll, 1);
+  refreshEditors();
+}
+
+QWidget* ParameterPanel::makeEditor(const core::ParamInfo& info) {
+  switch (info.type) {
+  case core::ParamType::Bool: {
+    auto* box = new QCheckBox(this);
+    connect(box, &QCheckBox::toggled, this,
+            [this, &info](bool on) { editorChanged(info, on ? 1.0 : 0.0); });
+    return box;
+  }
+  case core::ParamType::Enum: {
+    auto* combo = new QComboBox(this);
+    for (const std::string& choice : info.choices)
+      combo->addItem(qs(choice));
+    connect(combo, &QComboBox::currentIndexChanged, this,
+            [this, &info](int index) { editorChanged(info, index); });
+    return combo;
+  }
+  case core::ParamType::Int: {
+    auto* spin = new QSpinBox(this);
+    spin->setRange(static_cast<int>(info.min_value), static_cast<int>(info.max_value));
+    spin->setSingleStep(std::max(1, static_cast<int>(info.step)));
+    if (!info.unit.empty())
+      spin->setSuffix(QStringLiteral(" ") + qs(info.unit));
+    spin->setKeyboardTracking(false);
+    connect(spin, &QSpinBox::valueChanged, this, [this, &info](int v) { editorChanged(info, v); });
+    return spin;
+  }
+  case core::ParamType::Double:
+  default: {
+    auto* spin = new QDoubleSpinBox(this);
+    spin->setDecimals(decimalsFor(info.step));
+    spin->setRange(info.min_value, info.max_value);
+    spin->setSingleStep(info.step);
+    if (!info.unit.empty())
+      spin->setSuffix(QStringLiteral(" ") + qs(info.unit));
+    spin->setKeyboardTracking(false);
+    connect(spin, &QDoubleSpinBox::valueChanged, this,
+            [this, &info](double v) { editorChanged(info, v); });
+    return spin;
+  }
+  }
+}
+
+void ParameterPanel::editorChanged(const core::ParamInfo& info, double value) {
+  if (m_updating)
+    return;
+  const core::RecognitionParams before = m_params;
+  info.set(m_params, value);
+  if (const auto stage = core::firstChangedStage(before, m_params))
+    emit paramsChanged(m_params, *stage);
+}
+
+void ParameterPanel::refreshEditors() {
+  m_updating = true;
+  for (const core::ParamInfo& info : core::parameterTable()) {
+    QWidget* w = m_editors.at(info.key);
+    const double v = info.get(m_params);
+    if (auto* box = qobject_cast<QCheckBox*>(w))
+      box->setChecked(v >= 0.5);
+    else if (auto* combo = qobject_cast<QComboBox*>(w))
+      combo->setCurrentIndex(static_cast<int>(std::lround(v)));
+    else if (auto* ispin = qobject_cast<QSpinBox*>(w))
+      ispin->setValue(static_cast<int>(std::lround(v)));
+    else if (auto* dspin = qobject_cast<QDoubleSpinBox*>(w))
+      dspin->setValue(v);
+  }
+  m_seed->setValue(static_cast<int>(std::min<std::uint64_t>(m_params.seed, INT32_MAX)));
+  m_updating = false;
+}
+
+void ParameterPanel::setParams(const core::RecognitionParams& params) {
+  m_params = params;
+  refreshEditors();
+}
+
+bool ParameterPanel::setValue(const std::string& key, double value) {
+  const core::ParamInfo* info = core::findParameter(key);
+  if (!info)
+    return false;
+  const core::RecognitionParams before = m_params;
+  info->set(m_params, value);
+  refreshEditors();
+  if (const auto stage = core::firstChangedStage(before, m_params))
+    emit paramsChanged(m_params, *stage);
+  return true;
+}
+
+QWidget* ParameterPanel::editor(const std::string& key) const {
+  const auto it = m_editors.find(key);
+  return it == m_editors.end() ? nullptr : it->second;
+}
+
+void ParameterPanel::loadPresetFile(const QString& path) {
+  const core::Preset preset = core::loadPreset(path.toStdString());
+  const core::RecognitionParams before = m_params;
+  setParams(preset.params);
+  core::logger()->info("loaded preset '{}' from {}", preset.name, path.toStdString());
+  emit presetLoaded(path);
+  emit paramsChanged(m_params,
+                     core::firstChangedStage(before, m_params).value_or(core::Stage::Preprocess));
+}
+
+void ParameterPanel::savePresetFile(const QString& path, const QString& name) const {
+  core::savePreset(path.toStdString(), core::Preset{name.toStdString(), "saved from scanpick", m_params});
+  core::logger()->info("saved preset to {}", path.toStdString());
+}
+
+QString ParameterPanel::presetsDirectory() {
+  // Next to an installed binary first, then the source tree the build came from.
+  const QString installed = QCoreApplication::applicationDirPath() + "/../share/scanpick/presets";
+  if (QDir(installed).exists())
+    return QDir(installed).canonicalPath();
+  return QStringLiteral(SCANPICK_PRESETS_DIR);
+}
+
+void ParameterPanel::fillPresetList() {
+  m_presets->clear();
+  m_presets->addItem(tr("(choose a preset)"), QString());
+  const QDir dir(presetsDirectory());
+  for (const QFileInfo& file : dir.entryInfoList({QStringLiteral("*.json")}, QDir::Files, QDir::Name))
+    m_presets->addItem(file.completeBaseName(), file.absoluteFilePath());
+}
+
+} // namespace scanpick::ui

@@ -1,0 +1,50 @@
+#include "ui/panels/ResultsTable.h"
+
+#include <QHeaderView>
+#include <cmath>
+
+namespace scanpick::ui {
+
+ResultsTable::ResultsTable(QWidget* parent) : QTableWidget(parent) {
+  setObjectName(QStringLiteral("resultsTable"));
+  setColumnCount(5);
+  setHorizontalHeaderLabels({tr("Score"), tr("Position x, y, z (mm)"),
+                             tr("Orientation r, p, y (°)"), tr("Cluster"), tr("Grip points (mm)")});
+  setSelectionBehavior(QAbstractItemView::SelectRows);
+  setSelectionMode(QAbstractItemView::SingleSelection);
+  setEditTriggers(QAbstractItemView::NoEditTriggers);
+  horizontalHeader()->setStretchLastSection(true);
+  verticalHeader()->setDefaultSectionSize(22);
+  connect(this, &QTableWidget::itemSelectionChanged, this, [this] {
+    const auto rows = selectionModel()->selectedRows();
+    emit detectionSelected(rows.isEmpty() ? -1 : rows.first().row());
+  });
+}
+
+void ResultsTable::setDetections(const std::vector<core::Detection>& detections,
+                                 const core::TaughtModel* /*model*/) {
+  const QSignalBlocker block(this);
+  clearContents();
+  setRowCount(static_cast<int>(detections.size()));
+  const auto fmt = [](double v) { return QString::number(v, 'f', 1); };
+  for (int row = 0; row < static_cast<int>(detections.size()); ++row) {
+    const core::Detection& d = detections[row];
+    const Eigen::Vector3d t = d.T_scene_model.translation();
+    // Roll-pitch-yaw (X-Y-Z fixed axes): the convention robot controllers usually take.
+    const Eigen::Vector3d ypr = d.T_scene_model.rotation().eulerAngles(2, 1, 0) * 180.0 / M_PI;
+    QStringList grips;
+    for (const core::GripPoint& g : d.grip_points_scene)
+      grips << QStringLiteral("%1 (%2, %3, %4)")
+                   .arg(QString::fromStdString(g.name), fmt(g.position_mm.x()),
+                        fmt(g.position_mm.y()), fmt(g.position_mm.z()));
+    setItem(row, 0, new QTableWidgetItem(QString::number(d.score, 'f', 3)));
+    setItem(row, 1, new QTableWidgetItem(QStringLiteral("%1, %2, %3").arg(fmt(t.x()), fmt(t.y()), fmt(t.z()))));
+    setItem(row, 2, new QTableWidgetItem(
+                        QStringLiteral("%1, %2, %3").arg(fmt(ypr[2]), fmt(ypr[1]), fmt(ypr[0]))));
+    setItem(row, 3, new QTableWidgetItem(QString::number(d.cluster)));
+    setItem(row, 4, new QTableWidgetItem(grips.join(QStringLiteral("; "))));
+  }
+  resizeColumnsToContents();
+}
+
+} // namespace scanpick::ui
