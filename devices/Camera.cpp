@@ -4,13 +4,20 @@ namespace scanpick::devices {
 
 const char* toString(DeviceErrorKind kind) {
   switch (kind) {
-  case DeviceErrorKind::NotFound: return "not-found";
-  case DeviceErrorKind::Busy: return "busy";
-  case DeviceErrorKind::Permission: return "permission";
-  case DeviceErrorKind::Timeout: return "timeout";
-  case DeviceErrorKind::StreamEnded: return "stream-ended";
-  case DeviceErrorKind::Protocol: return "protocol";
-  case DeviceErrorKind::Unsupported: return "unsupported";
+  case DeviceErrorKind::NotFound:
+    return "not-found";
+  case DeviceErrorKind::Busy:
+    return "busy";
+  case DeviceErrorKind::Permission:
+    return "permission";
+  case DeviceErrorKind::Timeout:
+    return "timeout";
+  case DeviceErrorKind::StreamEnded:
+    return "stream-ended";
+  case DeviceErrorKind::Protocol:
+    return "protocol";
+  case DeviceErrorKind::Unsupported:
+    return "unsupported";
   }
   return "unknown";
 }
@@ -46,29 +53,29 @@ void Camera::startStream(FrameCallback on_frame, StreamErrorCallback on_error,
     m_thread.join(); // a stream that ended by itself
   m_stop = false;
   m_streaming = true;
-  m_thread = std::thread([this, on_frame = std::move(on_frame), on_error = std::move(on_error),
-                          timeout] {
-    while (!m_stop) {
-      try {
-        Frame frame;
-        {
-          std::lock_guard lock(m_mutex);
-          frame = grabFrame(timeout);
+  m_thread =
+      std::thread([this, on_frame = std::move(on_frame), on_error = std::move(on_error), timeout] {
+        while (!m_stop) {
+          try {
+            Frame frame;
+            {
+              std::lock_guard lock(m_mutex);
+              frame = grabFrame(timeout);
+            }
+            if (on_frame)
+              on_frame(frame);
+          } catch (const DeviceError& e) {
+            if (!m_stop && on_error)
+              on_error(e);
+            break;
+          } catch (const std::exception& e) {
+            if (!m_stop && on_error)
+              on_error(DeviceError(DeviceErrorKind::Protocol, e.what()));
+            break;
+          }
         }
-        if (on_frame)
-          on_frame(frame);
-      } catch (const DeviceError& e) {
-        if (!m_stop && on_error)
-          on_error(e);
-        break;
-      } catch (const std::exception& e) {
-        if (!m_stop && on_error)
-          on_error(DeviceError(DeviceErrorKind::Protocol, e.what()));
-        break;
-      }
-    }
-    m_streaming = false;
-  });
+        m_streaming = false;
+      });
 }
 
 void Camera::stopStream() {

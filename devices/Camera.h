@@ -69,11 +69,11 @@ struct Frame {
 
 /// A device found by enumeration.
 struct DeviceInfo {
-  std::string id;          ///< id to pass to openCamera ("phoxi:1711004", "kinect:0", ...)
-  std::string backend;     ///< "aravis", "freenect", "openni2", "usb", "file"
-  std::string model;       ///< human-readable model
-  std::string serial;      ///< serial number, empty when unknown
-  std::string note;        ///< e.g. "no permission: install resources/udev/51-kinect.rules"
+  std::string id;      ///< id to pass to openCamera ("phoxi:1711004", "kinect:0", ...)
+  std::string backend; ///< "aravis", "freenect", "openni2", "usb", "file"
+  std::string model;   ///< human-readable model
+  std::string serial;  ///< serial number, empty when unknown
+  std::string note;    ///< e.g. "no permission: install resources/udev/51-kinect.rules"
 };
 
 /// Called on the device thread for each frame of a stream.

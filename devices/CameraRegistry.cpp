@@ -15,7 +15,8 @@ namespace scanpick::devices {
 namespace {
 
 std::string validForms() {
-  std::string s = "use phoxi:<serial or IP>, kinect:<index>, oni:<file.oni or URI>, file:<cloud file or folder>";
+  std::string s = "use phoxi:<serial or IP>, kinect:<index>, oni:<file.oni or URI>, file:<cloud "
+                  "file or folder>";
 #ifdef SCANPICK_WITH_PHOXI_API
   s += ", phoxi-api:<serial>";
 #endif
@@ -41,7 +42,8 @@ std::vector<std::string> cameraIdPrefixes() {
   return p;
 }
 
-std::vector<DeviceInfo> enumerateDevices(const EnumerateOptions& options, std::vector<std::string>* warnings) {
+std::vector<DeviceInfo> enumerateDevices(const EnumerateOptions& options,
+                                         std::vector<std::string>* warnings) {
   std::vector<DeviceInfo> out;
   if (options.aravis)
     tryBackend("GigE Vision", warnings, [&] {
@@ -63,7 +65,8 @@ std::vector<DeviceInfo> enumerateDevices(const EnumerateOptions& options, std::v
           d.note = "USB " + usb.port_path;
           const UsbAccess access = probeAccess(usb);
           if (access == UsbAccess::Permission)
-            d.note += ", no permission: install resources/udev/51-kinect.rules (see docs/devices.md)";
+            d.note +=
+                ", no permission: install resources/udev/51-kinect.rules (see docs/devices.md)";
           else if (access == UsbAccess::Busy)
             d.note += ", busy: another program or the gspca_kinect driver holds it";
         }
@@ -88,7 +91,9 @@ std::vector<DeviceInfo> enumerateDevices(const EnumerateOptions& options, std::v
 std::unique_ptr<Camera> openCamera(const std::string& id) {
   const auto colon = id.find(':');
   if (colon == std::string::npos || colon + 1 >= id.size())
-    throw DeviceError(DeviceErrorKind::NotFound, "camera id '" + id + "' is not of the form <kind>:<address>: " + validForms());
+    throw DeviceError(DeviceErrorKind::NotFound,
+                      "camera id '" + id +
+                          "' is not of the form <kind>:<address>: " + validForms());
   const std::string kind = id.substr(0, colon);
   const std::string rest = id.substr(colon + 1);
   if (kind == "phoxi")
@@ -97,7 +102,8 @@ std::unique_ptr<Camera> openCamera(const std::string& id) {
     int index = -1;
     const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), index);
     if (ec != std::errc() || end != rest.data() + rest.size() || index < 0)
-      throw DeviceError(DeviceErrorKind::NotFound, "Kinect id '" + id + "' needs a number: kinect:0 is the first Kinect");
+      throw DeviceError(DeviceErrorKind::NotFound,
+                        "Kinect id '" + id + "' needs a number: kinect:0 is the first Kinect");
     return std::make_unique<KinectCamera>(index);
   }
   if (kind == "oni")
@@ -108,7 +114,8 @@ std::unique_ptr<Camera> openCamera(const std::string& id) {
   if (kind == "phoxi-api")
     return std::make_unique<PhoXiApiCamera>(rest);
 #endif
-  throw DeviceError(DeviceErrorKind::NotFound, "unknown camera kind '" + kind + "' in '" + id + "': " + validForms());
+  throw DeviceError(DeviceErrorKind::NotFound,
+                    "unknown camera kind '" + kind + "' in '" + id + "': " + validForms());
 }
 
 } // namespace scanpick::devices

@@ -16,9 +16,9 @@ namespace scanpick::devices {
 
 /// What enumerate() looks at; all on by default.
 struct EnumerateOptions {
-  bool aravis = true;   ///< GigE Vision cameras (PhoXi scanners)
-  bool kinect = true;   ///< Kinect v1 via libfreenect and libusb
-  bool openni2 = true;  ///< OpenNI2 devices
+  bool aravis = true;           ///< GigE Vision cameras (PhoXi scanners)
+  bool kinect = true;           ///< Kinect v1 via libfreenect and libusb
+  bool openni2 = true;          ///< OpenNI2 devices
   int aravis_timeout_ms = 1000; ///< GigE Vision discovery wait
 };
 

@@ -24,7 +24,8 @@ std::string frameMetadataJson(const Frame& frame) {
   j["frame_index"] = m.frame_index;
   if (m.intrinsics) {
     const Intrinsics& k = *m.intrinsics;
-    j["intrinsics"] = {{"width", k.width}, {"height", k.height}, {"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy}};
+    j["intrinsics"] = {{"width", k.width}, {"height", k.height}, {"fx", k.fx},
+                       {"fy", k.fy},       {"cx", k.cx},         {"cy", k.cy}};
   } else {
     j["intrinsics"] = nullptr;
   }
@@ -38,16 +39,19 @@ void saveFrame(const std::filesystem::path& pcd_path, const Frame& frame) {
   core::writeFileAtomic(json_path, frameMetadataJson(frame));
 }
 
-std::filesystem::path framePath(const std::filesystem::path& out, std::size_t index, std::size_t count) {
+std::filesystem::path framePath(const std::filesystem::path& out, std::size_t index,
+                                std::size_t count) {
   if (count == 1)
     return out;
   char suffix[32];
   std::snprintf(suffix, sizeof suffix, "-%03zu", index);
-  std::filesystem::path p = out.parent_path() / (out.stem().string() + suffix + out.extension().string());
+  std::filesystem::path p =
+      out.parent_path() / (out.stem().string() + suffix + out.extension().string());
   return p;
 }
 
-std::vector<std::filesystem::path> captureToFiles(Camera& camera, const std::filesystem::path& out, std::size_t count,
+std::vector<std::filesystem::path> captureToFiles(Camera& camera, const std::filesystem::path& out,
+                                                  std::size_t count,
                                                   std::chrono::milliseconds timeout) {
   std::vector<std::filesystem::path> written;
   for (std::size_t i = 0; i < count; ++i) {
@@ -57,8 +61,9 @@ std::vector<std::filesystem::path> captureToFiles(Camera& camera, const std::fil
     } catch (const DeviceError& e) {
       if (written.empty())
         throw;
-      throw DeviceError(e.kind(), std::string(e.what()) + " (" + std::to_string(written.size()) + " of " +
-                                      std::to_string(count) + " frame(s) were saved before this)");
+      throw DeviceError(e.kind(), std::string(e.what()) + " (" + std::to_string(written.size()) +
+                                      " of " + std::to_string(count) +
+                                      " frame(s) were saved before this)");
     }
     const std::filesystem::path path = framePath(out, i, count);
     saveFrame(path, frame);

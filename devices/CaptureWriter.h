@@ -22,13 +22,15 @@ void saveFrame(const std::filesystem::path& pcd_path, const Frame& frame);
 
 /// Output path of frame `index` of `count`: `out` itself when count == 1, else
 /// "<stem>-000<ext>", "<stem>-001<ext>" ...
-std::filesystem::path framePath(const std::filesystem::path& out, std::size_t index, std::size_t count);
+std::filesystem::path framePath(const std::filesystem::path& out, std::size_t index,
+                                std::size_t count);
 
 /// Captures `count` frames from `camera` (each within `timeout`) and saves them with saveFrame.
 /// Frames are saved as they arrive: on an error the frames already saved stay (each one
 /// complete, never a partial file) and the DeviceError propagates, its message extended with
 /// how many were saved. Returns the PCD paths written.
 std::vector<std::filesystem::path> captureToFiles(Camera& camera, const std::filesystem::path& out,
-                                                  std::size_t count, std::chrono::milliseconds timeout);
+                                                  std::size_t count,
+                                                  std::chrono::milliseconds timeout);
 
 } // namespace scanpick::devices

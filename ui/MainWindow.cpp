@@ -30,6 +30,7 @@
 #include <QToolBar>
 #include <QUndoStack>
 #include <vtkBoxWidget2.h>
+#include <vtkCamera.h>
 #include <vtkProp.h>
 #include <vtkRenderer.h>
 
@@ -344,6 +345,11 @@ void MainWindow::setScan(std::shared_ptr<const core::PointCloud> scan_mm, const 
   refreshGripList();
   clearLayers({QStringLiteral("detections"), QStringLiteral("grips"), QStringLiteral("scene")});
   setPart(m_scan);
+  // Look as the sensor does: scans are in the camera frame (z forward, y down).
+  vtkCamera* camera = m_view->renderer()->GetActiveCamera();
+  camera->SetPosition(0, 0, 0);
+  camera->SetFocalPoint(0, 0, 1);
+  camera->SetViewUp(0, -1, 0);
   m_view->resetCamera();
   setWindowTitle(tr("scanpick — %1").arg(name));
   core::logger()->info("scan {}: {} valid points", name.toStdString(), m_scan->validCount());

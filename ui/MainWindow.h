@@ -110,6 +110,8 @@ public:
   [[nodiscard]] std::shared_ptr<const PreviewResult> preview() const { return m_preview; }
   [[nodiscard]] const core::RecognitionResult* lastResult() const { return m_result.get(); }
   [[nodiscard]] const std::vector<core::GripPoint>& gripPoints() const { return m_grips; }
+  /// Runs the keypoint/feature preview now (normally debounced), cancelling a running one.
+  void refreshPreview() { runPreview(); }
   /// Debounce delay of the live preview, ms (150 by default).
   void setPreviewDelay(int ms);
   /// Replaces the working cloud (used by the crop commands; undoable through them).

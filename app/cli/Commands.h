@@ -12,4 +12,5 @@ void registerRecognizeCommand(CLI::App& app);  ///< recognize (RecognizeCommand.
 void registerDeviceCommands(CLI::App& app);    ///< devices, capture (DeviceCommands.cpp)
 void registerDemoCommand(CLI::App& app);       ///< demo: the README's main job (DemoCommand.cpp)
 void registerParamsCommand(CLI::App& app);     ///< params: the parameter table (ParamsCommand.cpp)
+void registerBenchCommand(CLI::App& app);      ///< bench: recognition timings (BenchCommand.cpp)
 } // namespace scanpick::cli

@@ -28,7 +28,8 @@ int runDevices() {
   for (const auto& w : warnings)
     std::cerr << "note: " << w << "\n";
   if (found.empty()) {
-    std::cout << "no cameras found (PhoXi over GigE Vision, Kinect v1, OpenNI2). Files can be replayed with "
+    std::cout << "no cameras found (PhoXi over GigE Vision, Kinect v1, OpenNI2). Files can be "
+                 "replayed with "
                  "--device file:<cloud or folder>, recordings with --device oni:<file.oni>.\n";
     return kOk;
   }
@@ -45,7 +46,8 @@ int runDevices() {
 
 int runCapture(const CaptureOptions& o) {
   auto camera = devices::openCamera(o.device);
-  const auto files = devices::captureToFiles(*camera, o.out, o.frames, std::chrono::milliseconds(o.timeout_ms));
+  const auto files =
+      devices::captureToFiles(*camera, o.out, o.frames, std::chrono::milliseconds(o.timeout_ms));
   for (const auto& f : files)
     std::cout << f.string() << "\n";
   return kOk;
@@ -56,19 +58,27 @@ int runCapture(const CaptureOptions& o) {
 
 void registerDeviceCommands(CLI::App& app) {
 #ifdef SCANPICK_WITH_DEVICES
-  addCommand(app, "devices", "List attached cameras of every backend (exit 0 also when none)", runDevices);
+  addCommand(app, "devices", "List attached cameras of every backend (exit 0 also when none)",
+             runDevices);
 
   auto options = std::make_shared<CaptureOptions>();
-  CLI::App* capture = addCommand(app, "capture",
-                                 "Capture organized clouds (mm) from a camera into PCD files with a JSON sidecar",
-                                 [options] { return runCapture(*options); });
-  capture->add_option("--device", options->device,
-                      "camera id: phoxi:<serial|ip>, kinect:<index>, oni:<file.oni|uri>, file:<cloud|folder>")
+  CLI::App* capture =
+      addCommand(app, "capture",
+                 "Capture organized clouds (mm) from a camera into PCD files with a JSON sidecar",
+                 [options] { return runCapture(*options); });
+  capture
+      ->add_option(
+          "--device", options->device,
+          "camera id: phoxi:<serial|ip>, kinect:<index>, oni:<file.oni|uri>, file:<cloud|folder>")
       ->required();
-  capture->add_option("--out", options->out, "output .pcd; with --frames N > 1: <stem>-000.pcd, <stem>-001.pcd ...")
+  capture
+      ->add_option("--out", options->out,
+                   "output .pcd; with --frames N > 1: <stem>-000.pcd, <stem>-001.pcd ...")
       ->required();
-  capture->add_option("--frames", options->frames, "number of frames")->check(CLI::Range(1, 100000));
-  capture->add_option("--timeout-ms", options->timeout_ms, "longest wait for each frame, milliseconds")
+  capture->add_option("--frames", options->frames, "number of frames")
+      ->check(CLI::Range(1, 100000));
+  capture
+      ->add_option("--timeout-ms", options->timeout_ms, "longest wait for each frame, milliseconds")
       ->check(CLI::Range(1, 3600000));
 #else
   (void)app;

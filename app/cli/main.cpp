@@ -30,6 +30,9 @@ int main(int argc, char** argv) {
 #ifdef SCANPICK_HAS_PARAMSCOMMAND
   scanpick::cli::registerParamsCommand(app);
 #endif
+#ifdef SCANPICK_HAS_BENCHCOMMAND
+  scanpick::cli::registerBenchCommand(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -52,9 +52,9 @@ SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& resul
                               const GroundTruth& teach, const Tolerances& tolerances,
                               const std::string& name) {
   if (teach.instances.size() != 1)
-    throw Error("teach ground truth " + teach.source + " holds " +
-                std::to_string(teach.instances.size()) +
-                " instances; a teach scene must hold exactly one (pass the teach scene's .gt.json)");
+    throw Error(
+        "teach ground truth " + teach.source + " holds " + std::to_string(teach.instances.size()) +
+        " instances; a teach scene must hold exactly one (pass the teach scene's .gt.json)");
   const TruthInstance& taught = teach.instances.front();
   const auto part_it = truth.parts.contains(taught.part) ? truth.parts.find(taught.part)
                                                          : teach.parts.find(taught.part);
@@ -104,7 +104,7 @@ SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& resul
       if (e.within_tolerance && !matched[i] && (!match_error || cost < match_cost)) {
         match_cost = cost;
         match_error = std::move(e);
-        outcome.instance_id = static_cast<int>(i);  // index for now, id below
+        outcome.instance_id = static_cast<int>(i); // index for now, id below
       }
     }
     if (match_error) {
@@ -158,13 +158,13 @@ Summary summarize(const std::vector<SceneEvaluation>& scenes, const std::string&
   // prefix of the score order, so pooled prefixes give each threshold's precision and recall.
   std::stable_sort(pooled.begin(), pooled.end(),
                    [](const Pooled& a, const Pooled& b) { return a.score > b.score; });
-  std::vector<std::pair<double, double>> curve;  // (recall, precision) per threshold
+  std::vector<std::pair<double, double>> curve; // (recall, precision) per threshold
   int tp = 0, recalled = 0;
   for (std::size_t k = 0; k < pooled.size(); ++k) {
     tp += pooled[k].tp ? 1 : 0;
     recalled += pooled[k].recall ? 1 : 0;
     if (k + 1 < pooled.size() && pooled[k + 1].score == pooled[k].score)
-      continue;  // a threshold keeps all detections of equal score
+      continue; // a threshold keeps all detections of equal score
     const double precision = static_cast<double>(tp) / static_cast<double>(k + 1);
     const double recall =
         s.visible_instances > 0 ? static_cast<double>(recalled) / s.visible_instances : 0.0;
@@ -263,7 +263,8 @@ std::vector<GroundTruth> loadTeachTruths(const std::vector<std::filesystem::path
     if (std::filesystem::is_directory(path)) {
       auto found = findTeachTruths(path);
       if (found.empty())
-        throw Error("folder " + quoted(path) + " holds no teach ground truth (*.gt.json of kind "
+        throw Error("folder " + quoted(path) +
+                    " holds no teach ground truth (*.gt.json of kind "
                     "\"teach\")");
       std::move(found.begin(), found.end(), std::back_inserter(teach));
     } else {
@@ -282,7 +283,7 @@ std::vector<GroundTruth> loadTeachTruths(const std::vector<std::filesystem::path
       if (!scenes.empty()) {
         const std::string sensor = loadGroundTruth(scenes.front()).sensor_preset;
         auto suite = std::filesystem::absolute(suite_dir).lexically_normal();
-        if (!suite.has_filename())  // "out/phoxi-bin/" names the same folder as "out/phoxi-bin"
+        if (!suite.has_filename()) // "out/phoxi-bin/" names the same folder as "out/phoxi-bin"
           suite = suite.parent_path();
         const auto dir = suite.parent_path() / "teach" / sensor;
         if (!sensor.empty() && std::filesystem::is_directory(dir))
@@ -302,13 +303,15 @@ std::vector<GroundTruth> loadTeachTruths(const std::vector<std::filesystem::path
 
 EvalReport evaluateSuite(const std::filesystem::path& suite_dir,
                          const std::filesystem::path& results_dir,
-                         const std::vector<GroundTruth>& teach_truths,
-                         const Tolerances& tolerances, const ProgressFn& progress) {
+                         const std::vector<GroundTruth>& teach_truths, const Tolerances& tolerances,
+                         const ProgressFn& progress) {
   if (!std::filesystem::is_directory(suite_dir))
-    throw Error("suite folder '" + suite_dir.string() + "' does not exist (create it with "
+    throw Error("suite folder '" + suite_dir.string() +
+                "' does not exist (create it with "
                 "scanpick-cli synth-suite)");
   if (!std::filesystem::is_directory(results_dir))
-    throw Error("results folder '" + results_dir.string() + "' does not exist (write it with "
+    throw Error("results folder '" + results_dir.string() +
+                "' does not exist (write it with "
                 "scanpick-cli recognize)");
   std::vector<std::filesystem::path> truth_paths;
   for (const auto& entry : std::filesystem::directory_iterator(suite_dir)) {

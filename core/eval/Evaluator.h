@@ -21,7 +21,7 @@ struct DetectionOutcome {
   int detection_id = 0;
   double score = 0.0;
   bool true_positive = false;
-  int instance_id = -1;          ///< matched instance (true positives only), else -1
+  int instance_id = -1;           ///< matched instance (true positives only), else -1
   bool counts_for_recall = false; ///< the matched instance is visible enough for recall
   /// Error to the nearest instance of the part (matched or not), for diagnosis; absent when the
   /// scene holds no instance of the part.
@@ -31,12 +31,12 @@ struct DetectionOutcome {
 
 /// One scene's evaluation.
 struct SceneEvaluation {
-  std::string name;              ///< scene name (ground-truth file stem)
-  std::string part;              ///< part that was searched (from the teach ground truth)
-  int instances = 0;             ///< instances of that part in the scene
-  int visible_instances = 0;     ///< of those, at least Tolerances::min_visible_fraction visible
-  std::vector<DetectionOutcome> outcomes;  ///< in matching order (score descending)
-  std::optional<double> total_ms;          ///< results' timings_ms.total
+  std::string name;          ///< scene name (ground-truth file stem)
+  std::string part;          ///< part that was searched (from the teach ground truth)
+  int instances = 0;         ///< instances of that part in the scene
+  int visible_instances = 0; ///< of those, at least Tolerances::min_visible_fraction visible
+  std::vector<DetectionOutcome> outcomes; ///< in matching order (score descending)
+  std::optional<double> total_ms;         ///< results' timings_ms.total
 };
 
 /// Median, 95th percentile (linear interpolation between order statistics) and maximum.
@@ -50,18 +50,18 @@ Stats computeStats(std::vector<double> values);
 
 /// Metrics over a set of scenes.
 struct Summary {
-  std::string label;  ///< "all" or a part name
+  std::string label; ///< "all" or a part name
   int scenes = 0, detections = 0, true_positives = 0, instances = 0, visible_instances = 0;
-  int recalled_visible = 0;            ///< visible instances matched by a true positive
-  std::optional<double> precision;     ///< true positives / detections (none without detections)
-  std::optional<double> recall;        ///< recalled_visible / visible_instances
+  int recalled_visible = 0;        ///< visible instances matched by a true positive
+  std::optional<double> precision; ///< true positives / detections (none without detections)
+  std::optional<double> recall;    ///< recalled_visible / visible_instances
   /// Highest recall reached by a score threshold whose precision is ≥ 0.99 (0 when none) and
   /// that threshold (the lowest kept score).
   double recall_at_99_precision = 0.0;
   std::optional<double> threshold_at_99_precision;
-  double average_precision = 0.0;      ///< area under the interpolated precision-recall curve
-  Stats translation_mm, rotation_deg, grip_mm;  ///< over true positives
-  Stats time_ms;                                ///< per scene with timings
+  double average_precision = 0.0; ///< area under the interpolated precision-recall curve
+  Stats translation_mm, rotation_deg, grip_mm; ///< over true positives
+  Stats time_ms;                               ///< per scene with timings
 };
 
 /// Metrics over `scenes` (label names the group).
@@ -72,7 +72,7 @@ struct EvalReport {
   Tolerances tolerances;
   std::vector<SceneEvaluation> scenes;
   Summary overall;
-  std::vector<Summary> per_part;  ///< one per searched part, by name
+  std::vector<Summary> per_part; ///< one per searched part, by name
 };
 
 /// Evaluates one scene. The searched part and T_teach_part are the single instance of `teach`
@@ -104,8 +104,8 @@ EvalReport evaluateFiles(const std::filesystem::path& truth_path,
 /// missing (naming it).
 EvalReport evaluateSuite(const std::filesystem::path& suite_dir,
                          const std::filesystem::path& results_dir,
-                         const std::vector<GroundTruth>& teach_truths,
-                         const Tolerances& tolerances, const ProgressFn& progress = {});
+                         const std::vector<GroundTruth>& teach_truths, const Tolerances& tolerances,
+                         const ProgressFn& progress = {});
 
 /// Teach ground truths in a folder (`*.gt.json` whose scene kind is "teach"), sorted by name.
 std::vector<GroundTruth> findTeachTruths(const std::filesystem::path& dir);

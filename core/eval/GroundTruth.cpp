@@ -92,9 +92,8 @@ GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& sourc
     const auto& value = instances[i];
     const std::string at = source + ": instances[" + std::to_string(i) + "]";
     TruthInstance instance;
-    instance.id = value.contains("id")
-                      ? static_cast<int>(readNumber(value["id"], at + ".id"))
-                      : static_cast<int>(i);
+    instance.id = value.contains("id") ? static_cast<int>(readNumber(value["id"], at + ".id"))
+                                       : static_cast<int>(i);
     instance.part = readString(requireField(value, "part", at), at + ".part");
     if (!truth.parts.contains(instance.part))
       throw Error(at + ": part '" + instance.part + "' is not described in 'parts'");

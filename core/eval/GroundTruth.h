@@ -26,7 +26,7 @@ struct NamedPoint {
 
 /// A rotation axis of continuous symmetry, in the part frame.
 struct ContinuousAxis {
-  Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();  ///< a point on the axis
+  Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();   ///< a point on the axis
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< unit direction
 };
 
@@ -40,27 +40,27 @@ struct PartSymmetry {
 /// One part type of a scene.
 struct PartInfo {
   std::string name;
-  double diameter_mm = 0.0;                  ///< largest distance between two points of the part
-  std::vector<NamedPoint> grip_points_part;  ///< grip points in the part frame
+  double diameter_mm = 0.0;                 ///< largest distance between two points of the part
+  std::vector<NamedPoint> grip_points_part; ///< grip points in the part frame
   PartSymmetry symmetry;
 };
 
 /// One placed instance.
 struct TruthInstance {
   int id = 0;
-  std::string part;                                          ///< key into GroundTruth::parts
+  std::string part; ///< key into GroundTruth::parts
   Eigen::Isometry3d T_scene_part = Eigen::Isometry3d::Identity();
-  double visible_fraction = 1.0;                             ///< [0, 1], see file-formats.md
+  double visible_fraction = 1.0; ///< [0, 1], see file-formats.md
   long long visible_points = 0;
 };
 
 /// A ground-truth file's content.
 struct GroundTruth {
-  std::string source;  ///< file it came from (for messages)
-  std::string kind;    ///< "bin", "scatter" or "teach"
+  std::string source; ///< file it came from (for messages)
+  std::string kind;   ///< "bin", "scatter" or "teach"
   std::uint64_t seed = 0;
-  std::string cloud;   ///< scan file name, relative to the ground-truth file
-  std::string sensor_preset;  ///< sensor.preset ("phoxi-m-1032", ...; "" when absent)
+  std::string cloud;         ///< scan file name, relative to the ground-truth file
+  std::string sensor_preset; ///< sensor.preset ("phoxi-m-1032", ...; "" when absent)
   std::map<std::string, PartInfo> parts;
   std::vector<TruthInstance> instances;
 };

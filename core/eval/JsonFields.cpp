@@ -45,9 +45,8 @@ void checkFormatAndVersion(const nlohmann::json& doc, std::string_view format, i
     throw Error(source + " has no integer \"version\" field (see docs/file-formats.md)");
   const auto version = doc["version"].get<long long>();
   if (version > max_version)
-    throw Error(source + " has version " + std::to_string(version) +
-                "; this scanpick reads \"" + expected + "\" up to version " +
-                std::to_string(max_version) + ": update scanpick");
+    throw Error(source + " has version " + std::to_string(version) + "; this scanpick reads \"" +
+                expected + "\" up to version " + std::to_string(max_version) + ": update scanpick");
   if (version < 1)
     throw Error(source + " has invalid version " + std::to_string(version) +
                 " (versions start at 1)");
@@ -59,8 +58,7 @@ const nlohmann::json& requireField(const nlohmann::json& object, std::string_vie
     throw Error(where + ": expected a JSON object, got " + object.dump());
   const auto it = object.find(key);
   if (it == object.end())
-    throw Error(where + ": missing field '" + std::string(key) +
-                "' (see docs/file-formats.md)");
+    throw Error(where + ": missing field '" + std::string(key) + "' (see docs/file-formats.md)");
   return *it;
 }
 

@@ -85,9 +85,8 @@ PoseError symmetricPoseError(const Eigen::Isometry3d& T_scene_part_est,
       // the remaining rotation is then the angle between the two axis directions.
       const auto& axis = *part.symmetry.continuous_axis;
       const Eigen::Matrix3d relative = candidate.linear().transpose() * T_scene_part_est.linear();
-      candidate = candidate *
-                  rotationAboutLine(axis.point_mm, axis.direction,
-                                    twistAngle(relative, axis.direction));
+      candidate = candidate * rotationAboutLine(axis.point_mm, axis.direction,
+                                                twistAngle(relative, axis.direction));
     }
     PoseError e;
     e.T_scene_part_equivalent = candidate;

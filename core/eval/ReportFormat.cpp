@@ -16,8 +16,8 @@ Json optionalToJson(const std::optional<double>& value) {
 }
 
 Json statsToJson(const Stats& s) {
-  return {{"count", s.count}, {"mean", s.mean}, {"median", s.median}, {"p95", s.p95},
-          {"max", s.max}};
+  return {
+      {"count", s.count}, {"mean", s.mean}, {"median", s.median}, {"p95", s.p95}, {"max", s.max}};
 }
 
 Json summaryToJson(const Summary& s) {
@@ -71,13 +71,13 @@ void writeStatsRow(std::ostringstream& out, const std::string& what, const Stats
 
 nlohmann::ordered_json reportToJson(const EvalReport& report) {
   Json doc{{"format", "scanpick-eval"},
-                     {"version", 1},
-                     {"units", "mm"},
-                     {"tolerances",
-                      {{"translation_fraction_of_diameter", report.tolerances.translation_fraction},
-                       {"rotation_deg", report.tolerances.rotation_deg},
-                       {"min_visible_fraction", report.tolerances.min_visible_fraction}}},
-                     {"overall", summaryToJson(report.overall)}};
+           {"version", 1},
+           {"units", "mm"},
+           {"tolerances",
+            {{"translation_fraction_of_diameter", report.tolerances.translation_fraction},
+             {"rotation_deg", report.tolerances.rotation_deg},
+             {"min_visible_fraction", report.tolerances.min_visible_fraction}}},
+           {"overall", summaryToJson(report.overall)}};
   doc["per_part"] = Json::array();
   for (const auto& s : report.per_part)
     doc["per_part"].push_back(summaryToJson(s));
@@ -86,11 +86,10 @@ nlohmann::ordered_json reportToJson(const EvalReport& report) {
     Json detections = Json::array();
     for (const auto& o : scene.outcomes) {
       Json d{{"id", o.detection_id},
-                       {"score", o.score},
-                       {"true_positive", o.true_positive},
-                       {"instance", o.true_positive ? Json(o.instance_id) : nullptr},
-                       {"nearest_instance",
-                        o.error ? Json(o.nearest_instance_id) : Json(nullptr)}};
+             {"score", o.score},
+             {"true_positive", o.true_positive},
+             {"instance", o.true_positive ? Json(o.instance_id) : nullptr},
+             {"nearest_instance", o.error ? Json(o.nearest_instance_id) : Json(nullptr)}};
       if (o.error) {
         d["translation_error_mm"] = o.error->translation_mm;
         d["rotation_error_deg"] = o.error->rotation_deg;
@@ -116,9 +115,9 @@ std::string reportToTable(const EvalReport& report, bool details) {
       << " deg (symmetry-aware); recall over instances at least "
       << format("%g", t.min_visible_fraction * 100.0) << " % visible\n\n";
 
-  out << pad("part", 18, true) << pad("scenes", 7) << pad("det", 6) << pad("TP", 6)
-      << pad("FP", 6) << pad("visible", 9) << pad("precision", 11) << pad("recall", 8)
-      << pad("R@P99", 8) << pad("AP", 7) << "\n";
+  out << pad("part", 18, true) << pad("scenes", 7) << pad("det", 6) << pad("TP", 6) << pad("FP", 6)
+      << pad("visible", 9) << pad("precision", 11) << pad("recall", 8) << pad("R@P99", 8)
+      << pad("AP", 7) << "\n";
   std::vector<const Summary*> rows{&report.overall};
   if (report.per_part.size() > 1)
     for (const auto& s : report.per_part)
@@ -132,8 +131,8 @@ std::string reportToTable(const EvalReport& report, bool details) {
         << pad(format("%.3f", s->average_precision), 7) << "\n";
 
   for (const Summary* s : rows) {
-    out << "\nerrors of true positives (" << s->label << ")" << pad("median", 10)
-        << pad("p95", 10) << pad("max", 10) << pad("n", 7) << "\n";
+    out << "\nerrors of true positives (" << s->label << ")" << pad("median", 10) << pad("p95", 10)
+        << pad("max", 10) << pad("n", 7) << "\n";
     writeStatsRow(out, "translation at origin (mm)", s->translation_mm);
     writeStatsRow(out, "rotation (deg)", s->rotation_deg);
     writeStatsRow(out, "at grip points (mm)", s->grip_mm);

@@ -17,8 +17,8 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
   const auto& model = requireField(doc, "model", source);
   if (model.contains("name") && model["name"].is_string())
     results.model_name = model["name"].get<std::string>();
-  results.T_teach_model = readRigidTransform(requireField(model, "T_teach_model", source + ": model"),
-                                             source + ": model.T_teach_model");
+  results.T_teach_model = readRigidTransform(
+      requireField(model, "T_teach_model", source + ": model"), source + ": model.T_teach_model");
 
   const auto& detections = requireField(doc, "detections", source);
   if (!detections.is_array())
@@ -40,7 +40,8 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
         const std::string gat = at + ".grip_points[" + std::to_string(g) + "]";
         NamedPoint p;
         p.name = grips[g].value("name", "");
-        p.position_mm = readVector3(requireField(grips[g], "position_mm", gat), gat + ".position_mm");
+        p.position_mm =
+            readVector3(requireField(grips[g], "position_mm", gat), gat + ".position_mm");
         d.grip_points_scene.push_back(std::move(p));
       }
     }

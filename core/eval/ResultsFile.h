@@ -22,18 +22,18 @@ struct ResultDetection {
   int id = 0;
   double score = 0.0;
   Eigen::Isometry3d T_scene_model = Eigen::Isometry3d::Identity();
-  std::vector<NamedPoint> grip_points_scene;  ///< as reported (informative only)
+  std::vector<NamedPoint> grip_points_scene; ///< as reported (informative only)
 };
 
 /// A results file's content.
 struct ResultsFile {
-  std::string source;      ///< file it came from (for messages)
-  std::string scene;       ///< scan the results belong to
-  std::string model_name;  ///< taught model's name ("" when absent)
+  std::string source;     ///< file it came from (for messages)
+  std::string scene;      ///< scan the results belong to
+  std::string model_name; ///< taught model's name ("" when absent)
   /// The model frame in the frame of the scan the model was taught from.
   Eigen::Isometry3d T_teach_model = Eigen::Isometry3d::Identity();
   std::vector<ResultDetection> detections;
-  std::optional<double> total_ms;  ///< timings_ms.total, when present
+  std::optional<double> total_ms; ///< timings_ms.total, when present
 };
 
 /// Validates and converts a parsed results document. Required: format, version,

@@ -3,7 +3,9 @@
 #include "core/cloud/PointCloud.h"
 #include "core/common/Error.h"
 
+#include <pcl/console/print.h>
 #include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/search/kdtree.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/mlesac.h>
@@ -20,11 +22,15 @@
 #include <random>
 #include <string>
 
+#include <tbb/parallel_invoke.h>
+
 namespace scanpick::core {
 namespace {
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 constexpr double kTwoPi = 6.283185307179586;
+/// Most keypoints a RANSAC search scores its trials on (see extractFeatures).
+constexpr std::size_t kMaxSearchPoints = 3000;
 
 /// PCL seeds its samplers with a constant; these expose the generator so our seed drives it.
 template <typename Model> class Seeded : public Model {
@@ -33,6 +39,7 @@ public:
   void seed(std::uint64_t s) { this->rng_alg_.seed(static_cast<unsigned>(s ^ (s >> 32))); }
 };
 using LineModel = Seeded<pcl::SampleConsensusModelLine<pcl::PointXYZ>>;
+using SearchPtr = pcl::search::Search<pcl::PointXYZ>::Ptr;
 using CircleModel = Seeded<pcl::SampleConsensusModelCircle3D<pcl::PointXYZ>>;
 
 std::uint64_t mix(std::uint64_t x) {  // splitmix64
@@ -113,13 +120,20 @@ struct Candidate {
   std::vector<int> inliers;
 };
 
-std::optional<Candidate> bestLine(const Cloud::Ptr& cloud, const std::vector<int>& remaining,
-                                  const FeatureParams& params, double gap, std::uint64_t seed) {
-  auto model = std::make_shared<LineModel>(cloud, pcl::Indices(remaining.begin(), remaining.end()));
-  model->seed(seed);
+std::optional<Candidate> bestLine(const Cloud::Ptr& cloud, const std::vector<int>& sample,
+                                  const std::vector<int>& remaining, const FeatureParams& params,
+                                  double gap, std::uint64_t seed, const SearchPtr& near) {
+  auto search = std::make_shared<LineModel>(cloud, pcl::Indices(sample.begin(), sample.end()));
+  search->seed(seed);
+  if (near)
+    search->setSamplesMaxDist(params.sample_radius_mm, near);
   Eigen::VectorXf c;
-  if (!runEstimator(model, params, params.line_threshold_mm, c))
+  if (!runEstimator(search, params, params.line_threshold_mm, c))
     return std::nullopt;
+  // Inliers and refinement over every remaining keypoint, not only the search sample.
+  auto model = sample.size() == remaining.size()
+                   ? search
+                   : std::make_shared<LineModel>(cloud, pcl::Indices(remaining.begin(), remaining.end()));
   pcl::Indices inliers;
   model->selectWithinDistance(c, params.line_threshold_mm, inliers);
   if (inliers.size() < 2)
@@ -162,14 +176,22 @@ bool circleValid(const Eigen::VectorXf& c, const FeatureParams& params) {
          c[3] <= params.max_circle_radius_mm && c.tail<3>().norm() > 0;
 }
 
-std::optional<Candidate> bestCircle(const Cloud::Ptr& cloud, const std::vector<int>& remaining,
-                                    const FeatureParams& params, double gap, std::uint64_t seed) {
-  auto model = std::make_shared<CircleModel>(cloud, pcl::Indices(remaining.begin(), remaining.end()));
-  model->seed(seed);
-  model->setRadiusLimits(params.min_circle_radius_mm, params.max_circle_radius_mm);
+std::optional<Candidate> bestCircle(const Cloud::Ptr& cloud, const std::vector<int>& sample,
+                                    const std::vector<int>& remaining, const FeatureParams& params,
+                                    double gap, std::uint64_t seed, const SearchPtr& near) {
+  auto search = std::make_shared<CircleModel>(cloud, pcl::Indices(sample.begin(), sample.end()));
+  search->seed(seed);
+  if (near)
+    search->setSamplesMaxDist(params.sample_radius_mm, near);
+  search->setRadiusLimits(params.min_circle_radius_mm, params.max_circle_radius_mm);
   Eigen::VectorXf c;
-  if (!runEstimator(model, params, params.circle_threshold_mm, c) || !circleValid(c, params))
+  if (!runEstimator(search, params, params.circle_threshold_mm, c) || !circleValid(c, params))
     return std::nullopt;
+  auto model = search;
+  if (sample.size() != remaining.size()) {
+    model = std::make_shared<CircleModel>(cloud, pcl::Indices(remaining.begin(), remaining.end()));
+    model->setRadiusLimits(params.min_circle_radius_mm, params.max_circle_radius_mm);
+  }
   pcl::Indices inliers;
   model->selectWithinDistance(c, params.circle_threshold_mm, inliers);
   if (inliers.size() < 3)
@@ -237,6 +259,8 @@ FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_
   if (params.min_circle_radius_mm > params.max_circle_radius_mm)
     throw Error("the minimum circle radius is larger than the maximum: check "
                 "features.min_circle_radius_mm and features.max_circle_radius_mm");
+  // PCL reports every degenerate RANSAC sample on stderr; those are expected here.
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   FeatureExtraction result;
   auto cloud = std::make_shared<Cloud>();
   std::vector<int> remaining;
@@ -270,11 +294,37 @@ FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_
       std::mt19937_64 rng(round_seed);
       std::shuffle(candidates.begin(), candidates.end(), rng);
     }
+    // Each RANSAC trial counts its inliers over the candidates, so a large object (or a whole
+    // Kinect scene) with tens of thousands of keypoints cost trials x keypoints per round. The
+    // trials are therefore scored on a seeded sample of at most kMaxSearchPoints keypoints; the
+    // winner's inliers are then selected among all remaining keypoints. Below the bound this is
+    // exactly the thesis's search.
+    if (candidates.size() > kMaxSearchPoints) {
+      std::mt19937_64 rng(mix(round_seed + 3));
+      std::vector<int> sample;
+      sample.reserve(kMaxSearchPoints);
+      std::sample(candidates.begin(), candidates.end(), std::back_inserter(sample),
+                  kMaxSearchPoints, rng);
+      candidates.swap(sample);
+    }
+    // Localized sampling: the sample's other points come from the candidates near its first.
+    SearchPtr near;
+    if (params.sample_radius_mm > 0) {
+      near = std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>(true);
+      near->setInputCloud(cloud, std::make_shared<pcl::Indices>(candidates.begin(), candidates.end()));
+    }
+    // The two searches are independent (own models and seeds): run them side by side.
     std::optional<Candidate> line, circle;
-    if (params.lines && candidates.size() >= 2)
-      line = bestLine(cloud, candidates, params, line_gap, mix(round_seed + 1));
-    if (params.circles && candidates.size() >= 3)
-      circle = bestCircle(cloud, candidates, params, circle_gap, mix(round_seed + 2));
+    tbb::parallel_invoke(
+        [&] {
+          if (params.lines && candidates.size() >= 2)
+            line = bestLine(cloud, candidates, remaining, params, line_gap, mix(round_seed + 1), near);
+        },
+        [&] {
+          if (params.circles && candidates.size() >= 3)
+            circle = bestCircle(cloud, candidates, remaining, params, circle_gap,
+                                mix(round_seed + 2), near);
+        });
     std::optional<Candidate>* best = nullptr;
     if (line && line->inliers.size() >= min_support)
       best = &line;

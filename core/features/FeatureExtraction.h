@@ -32,6 +32,9 @@ struct FeatureExtraction {
 /// Lines: centre = midpoint of the extreme inliers, direction = unit axis, size = length.
 /// Circles: least-squares refined centre, unit normal, radius; radii outside
 /// [min_circle_radius_mm, max_circle_radius_mm] are never accepted.
+/// Each search scores its trials on at most 3000 of the remaining keypoints (a seeded sample;
+/// all of them below that) and then selects the winner's inliers among all remaining keypoints,
+/// which bounds the cost of large objects and whole Kinect scenes.
 /// Same keypoints, parameters and `seed` give the same features. Throws Error for non-positive
 /// thresholds or an inverted radius range, Cancelled when `progress` asks to stop.
 FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_mm,

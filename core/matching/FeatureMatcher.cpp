@@ -125,7 +125,36 @@ struct RollHypothesis {
 struct TaskBest {
   int count = -1;
   MatchCandidate candidate;
+  /// With several hypotheses: distinct poses, most confirmed features first, at most
+  /// params.hypotheses of them.
+  std::vector<std::pair<int, MatchCandidate>> alternatives;
 };
+
+/// Two poses are the same hypothesis when they agree within the matching tolerances.
+bool samePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const MatchingParams& p) {
+  if ((a.translation() - b.translation()).norm() > p.position_tolerance_mm)
+    return false;
+  return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle() <=
+         p.orientation_tolerance_rad;
+}
+
+/// Adds (count, c) to `list` (sorted by count, descending, stable) unless an equal pose with at
+/// least as many features is there; an equal pose with fewer is replaced. Keeps at most `k`.
+void keepAlternative(std::vector<std::pair<int, MatchCandidate>>& list, int count,
+                     MatchCandidate c, std::size_t k, const MatchingParams& p) {
+  for (auto it = list.begin(); it != list.end(); ++it)
+    if (samePose(it->second.T_scene_model, c.T_scene_model, p)) {
+      if (it->first >= count)
+        return;
+      list.erase(it);
+      break;
+    }
+  auto pos = std::find_if(list.begin(), list.end(),
+                          [&](const auto& e) { return e.first < count; });
+  list.insert(pos, {count, std::move(c)});
+  if (list.size() > k)
+    list.resize(k);
+}
 
 class Search {
 public:
@@ -137,6 +166,8 @@ public:
     const auto n_model = static_cast<int>(m_prep.model.size());
     const Feature& m1 = m_prep.model[static_cast<std::size_t>(i)];
     const double step_rad = std::max(p.roll_step_deg, 0.01) * M_PI / 180.0;
+    const auto k_alternatives = static_cast<std::size_t>(std::max(1, p.hypotheses));
+    const bool several = k_alternatives > 1;
     TaskBest best;
     for (int j = 0; j < n_scene; ++j) {
       // A task with a lower M1 already confirmed every model feature: nothing here can win.
@@ -168,16 +199,26 @@ public:
           const Eigen::Isometry3d T =
               fitFeaturePairs(m_prep.model, m_prep.scene, {{i, j}, {h.m2, h.t2}}, guess);
           // Later hypotheses of this task lose ties; other tasks' winners only prune strictly.
-          const int need = std::max(best.count + 1, m_global_best.load(std::memory_order_relaxed));
+          // With several hypotheses, poses one feature short of the best stay in the running.
+          const int global = m_global_best.load(std::memory_order_relaxed);
+          const int need = several ? std::max(2, global - 1) : std::max(best.count + 1, global);
           int count = 0;
           MatchCandidate c = scoreWithBound(m_prep, T, need, &count);
-          if (count < 0 || count <= best.count)
+          if (count < 0 || (!several && count <= best.count))
             continue;
           c.seed1 = {i, j};
           c.seed2 = {h.m2, h.t2};
+          raiseGlobal(count);
+          if (several) {
+            if (count > best.count) {
+              best.count = count;
+              best.candidate = c;
+            }
+            keepAlternative(best.alternatives, count, std::move(c), k_alternatives, p);
+            continue;
+          }
           best.count = count;
           best.candidate = std::move(c);
-          raiseGlobal(count);
           if (count == n_model) {
             lowerPerfect(i);
             return best;
@@ -202,8 +243,11 @@ private:
     const Vec3 o_perp = o - o.dot(axis) * axis;
     const bool position_sets_roll = rho >= p.position_tolerance_mm;
     // Parallel to M1 and on its axis: every roll predicts the same T2, so M2 cannot fix the roll
-    // (the thesis's ambiguity of two parallel lines).
-    if (!position_sets_roll && o_perp.norm() < std::sin(p.orientation_tolerance_rad))
+    // (the thesis's ambiguity of two parallel lines). With several verified hypotheses (beyond
+    // the thesis) the pair is still taken at roll 0: for a part turned about that axis (a cup's
+    // rim and base circles) any roll is as good, and for others verification judges it.
+    const bool roll_free = !position_sets_roll && o_perp.norm() < std::sin(p.orientation_tolerance_rad);
+    if (roll_free && p.hypotheses <= 1)
       return std::nullopt;
     const double tol_size = sizeTolerance(p, m_prep.model[su(k)].type);
     const double vn = v.norm();
@@ -226,7 +270,9 @@ private:
       const auto signedAngle = [&](const Vec3& from, const Vec3& to) {
         return std::atan2(axis.dot(from.cross(to)), from.dot(to));
       };
-      if (position_sets_roll) {
+      if (roll_free) {
+        rolls[n_rolls++] = 0.0;
+      } else if (position_sets_roll) {
         rolls[n_rolls++] = signedAngle(v_perp, q_perp);
       } else {
         const Vec3 d = m_prep.sd[su(t)];
@@ -286,7 +332,8 @@ std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
                                                      const FeatureList& scene,
                                                      const MatchingParams& params,
                                                      const std::vector<char>& scene_available,
-                                                     const ProgressFn& progress) {
+                                                     const ProgressFn& progress,
+                                                     const PoseVerifier& verify) {
   if (!scene_available.empty() && scene_available.size() != scene.size())
     throw Error("scene feature mask has " + std::to_string(scene_available.size()) +
                 " entries for " + std::to_string(scene.size()) + " features");
@@ -313,45 +360,82 @@ std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
       winner = &r;
   if (!winner)
     return std::nullopt;
-  MatchCandidate best = winner->candidate;
   // Refinement on all confirmed pairs: the two seed pairs fix the pose, the others average out
   // the errors of individual features. Kept only while it does not lose confirmations.
-  for (int iteration = 0; iteration < 3 && best.matched_features.size() >= 2; ++iteration) {
-    const Eigen::Isometry3d T =
-        fitFeaturePairs(model, scene, best.matched_features, best.T_scene_model);
-    int count = 0;
-    MatchCandidate refined = scoreWithBound(prep, T, 0, &count);
-    if (refined.matched_features.size() < best.matched_features.size())
-      break;
-    refined.seed1 = best.seed1;
-    refined.seed2 = best.seed2;
-    const bool same_pairs = refined.matched_features == best.matched_features;
-    best = std::move(refined);
-    if (same_pairs)
-      break;
+  const auto refine = [&](MatchCandidate best) {
+    for (int iteration = 0; iteration < 3 && best.matched_features.size() >= 2; ++iteration) {
+      const Eigen::Isometry3d T = refineOnFeatureGeometry(
+          model, scene, best.matched_features,
+          fitFeaturePairs(model, scene, best.matched_features, best.T_scene_model));
+      int count = 0;
+      MatchCandidate refined = scoreWithBound(prep, T, 0, &count);
+      if (refined.matched_features.size() < best.matched_features.size())
+        break;
+      refined.seed1 = best.seed1;
+      refined.seed2 = best.seed2;
+      const bool same_pairs = refined.matched_features == best.matched_features;
+      best = std::move(refined);
+      if (same_pairs)
+        break;
+    }
+    return best;
+  };
+  if (!verify)
+    return refine(winner->candidate);
+  if (params.hypotheses <= 1) {
+    MatchCandidate best = refine(winner->candidate);
+    best.coverage = verify(best.T_scene_model);
+    return best;
   }
-  return best;
+  // Pool the tasks' alternatives in task order (deterministic), keep the distinct poses within
+  // one feature of the best, verify each and take the best verified one.
+  std::vector<std::pair<int, MatchCandidate>> pool;
+  const auto k = static_cast<std::size_t>(params.hypotheses);
+  for (const auto& r : results)
+    for (const auto& [count, c] : r.alternatives)
+      if (count >= winner->count - 1)
+        keepAlternative(pool, count, c, k, params);
+  std::vector<MatchCandidate> verified(pool.size());
+  tbb::parallel_for(std::size_t{0}, pool.size(), [&](std::size_t a) {
+    verified[a] = refine(pool[a].second);
+    verified[a].coverage = verify(verified[a].T_scene_model);
+  });
+  std::size_t chosen = 0;
+  for (std::size_t a = 1; a < verified.size(); ++a) {
+    const auto& c = verified[a];
+    const auto& b = verified[chosen];
+    if (c.coverage > b.coverage + 1e-9 ||
+        (std::abs(c.coverage - b.coverage) <= 1e-9 &&
+         c.matched_features.size() > b.matched_features.size()))
+      chosen = a;
+  }
+  return verified[chosen];
 }
 
 std::vector<MatchCandidate> matchFeatures(const FeatureList& model, const FeatureList& scene,
                                           const MatchingParams& params,
-                                          const ProgressFn& progress) {
+                                          const ProgressFn& progress, const PoseVerifier& verify) {
   std::vector<MatchCandidate> out;
   std::vector<char> available(scene.size(), 1);
   const int rounds = std::max(1, params.max_instances_per_cluster);
   for (int round = 0; round < rounds; ++round) {
     auto candidate = findBestTransformation(model, scene, params, available,
                                             subProgress(progress, double(round) / rounds,
-                                                        double(round + 1) / rounds));
+                                                        double(round + 1) / rounds),
+                                            verify);
     if (!candidate || candidate->score < params.score_threshold || candidate->score <= 0.0)
       break;
     for (const auto& [m, s] : candidate->matched_features)
       available[static_cast<std::size_t>(s)] = 0;
+    // A pose the points do not confirm is dropped, but its features stay used: they belong to
+    // something that is not a good instance, and the next round may find one elsewhere.
+    if (verify && candidate->coverage < params.min_coverage)
+      continue;
     out.push_back(std::move(*candidate));
   }
   reportProgress(progress, 1.0);
-  std::stable_sort(out.begin(), out.end(), [](const MatchCandidate& a, const MatchCandidate& b) {
-    return a.score > b.score;
+  std::stable_sort(out.begin(), out.end(), [&](const MatchCandidate& a, const MatchCandidate& b) {
+    return verify ? a.coverage > b.coverage : a.score > b.score;
   });
   return out;
 }

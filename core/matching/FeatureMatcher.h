@@ -14,7 +14,8 @@
 /// - an M2 that is parallel to M1 and lies on M1's axis constrains no roll and is skipped (the
 ///   thesis's two-parallel-lines ambiguity);
 /// - the transform is a least-squares fit over the two pairs (RigidFit.h), and the winner is
-///   refined on all its confirmed pairs;
+///   refined on all its confirmed pairs (Umeyama, then a Gauss-Newton fit in which a line's
+///   position along itself, which occlusion moves, hardly counts: refineOnFeatureGeometry);
 /// - a scene feature confirms at most one model feature when scoring;
 /// - the outer loop over M1 runs in parallel (TBB); ties are broken by (M1, T1, sign, roll bin)
 ///   order, so results never depend on scheduling.
@@ -24,6 +25,7 @@
 #include "core/params/Parameters.h"
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -42,7 +44,13 @@ struct MatchCandidate {
   std::vector<std::pair<int, int>> matched_features;
   /// The seed pairs (M1, T1) and (M2, T2) that produced the hypothesis.
   std::pair<int, int> seed1{-1, -1}, seed2{-1, -1};
+  /// Point-level verification of the pose (PoseVerifier), or -1 when not verified.
+  double coverage = -1.0;
 };
+
+/// Point-level check of a pose beyond the thesis: returns a quality in [0, 1] (e.g. the share
+/// of visible model points confirmed by scene points). Must be thread-safe and deterministic.
+using PoseVerifier = std::function<double(const Eigen::Isometry3d& T_scene_model)>;
 
 /// Scores `T_scene_model`: each model feature (in index order) is moved into the scene and
 /// confirmed by the closest still unused scene feature of the same type whose centre is within
@@ -56,19 +64,26 @@ MatchCandidate scoreTransformation(const FeatureList& model, const FeatureList& 
 /// Algorithm 8 on one scene (cluster): the best-scoring transform, refined on its confirmed pairs,
 /// or nullopt when no pair of pairs matches (fewer than two model or scene features, or no
 /// compatible descriptors). No score threshold is applied here. Deterministic.
+/// With `verify` and `params.hypotheses` > 1 (beyond the thesis), up to that many distinct poses
+/// confirming at least (best count − 1) features are kept, each refined and verified, and the
+/// best verified one wins (ties: more features, then search order); its `coverage` is set.
 /// Throws Cancelled when `progress` asks to stop.
 std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
                                                      const FeatureList& scene,
                                                      const MatchingParams& params,
                                                      const std::vector<char>& scene_available = {},
-                                                     const ProgressFn& progress = {});
+                                                     const ProgressFn& progress = {},
+                                                     const PoseVerifier& verify = {});
 
 /// Multi-instance matching on one cluster (k-means may merge touching parts): takes the best
 /// candidate, removes its confirmed scene features, and searches again, up to
 /// `params.max_instances_per_cluster` times while the score reaches `params.score_threshold`.
-/// Returns the accepted candidates, best first.
+/// With `verify` (beyond the thesis), candidates whose coverage is below `params.min_coverage`
+/// are not returned (their features are still used up). Returns the accepted candidates, best
+/// first (by coverage when verified, else by score).
 std::vector<MatchCandidate> matchFeatures(const FeatureList& model, const FeatureList& scene,
                                           const MatchingParams& params,
-                                          const ProgressFn& progress = {});
+                                          const ProgressFn& progress = {},
+                                          const PoseVerifier& verify = {});
 
 } // namespace scanpick::core

@@ -66,3 +66,73 @@ Eigen::Isometry3d fitFeaturePairs(const FeatureList& model, const FeatureList& s
 }
 
 } // namespace scanpick::core
+
+namespace scanpick::core {
+
+Eigen::Isometry3d refineOnFeatureGeometry(const FeatureList& model, const FeatureList& scene,
+                                          const std::vector<std::pair<int, int>>& pairs,
+                                          const Eigen::Isometry3d& T_init, int iterations) {
+  if (pairs.size() < 2)
+    return T_init;
+  // Along a line only its direction and its perpendicular position are trusted: the line's
+  // extent (and so its centre) moves with occlusion. That direction keeps a small weight so that
+  // all-parallel-lines poses stay defined.
+  constexpr double kAlongWeight = 0.05;
+  Eigen::Isometry3d T = T_init;
+  for (int it = 0; it < iterations; ++it) {
+    Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+    // Residual r(p) = W (T p − q) for a moved model point p and its scene target q, with a
+    // small-angle update T ← exp([ω]×, v) T: ∂(Tp)/∂(ω, v) = [−[Tp]×, I].
+    const auto add = [&](const Eigen::Vector3d& p_model, const Eigen::Vector3d& q,
+                         const Eigen::Matrix3d& W) {
+      const Eigen::Vector3d p = T * p_model;
+      Eigen::Matrix<double, 3, 6> J;
+      J.leftCols<3>() << 0, p.z(), -p.y(), -p.z(), 0, p.x(), p.y(), -p.x(), 0;
+      J.rightCols<3>() = Eigen::Matrix3d::Identity();
+      const Eigen::Matrix<double, 3, 6> WJ = W * J;
+      const Eigen::Vector3d r = W * (p - q);
+      H += WJ.transpose() * WJ;
+      g += WJ.transpose() * r;
+    };
+    for (const auto& [mi, si] : pairs) {
+      const Feature& m = model[static_cast<std::size_t>(mi)];
+      const Feature& t = scene[static_cast<std::size_t>(si)];
+      const Eigen::Vector3d mc = m.centre_mm.cast<double>(), tc = t.centre_mm.cast<double>();
+      const Eigen::Vector3d md = m.direction.cast<double>().normalized();
+      Eigen::Vector3d td = t.direction.cast<double>().normalized();
+      if ((T.linear() * md).dot(td) < 0.0)
+        td = -td;
+      const double arm = armOf(m);
+      if (m.type == FeatureType::Line) {
+        const Eigen::Matrix3d W =
+            Eigen::Matrix3d::Identity() - (1.0 - kAlongWeight) * td * td.transpose();
+        add(mc, tc, W);
+        add(mc + arm * md, tc + arm * td, W);
+        add(mc - arm * md, tc - arm * td, W);
+      } else {
+        const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+        add(mc, tc, I);
+        add(mc + arm * md, tc + arm * td, I);
+        add(mc - arm * md, tc - arm * td, I);
+      }
+    }
+    const Eigen::Matrix<double, 6, 1> delta = H.ldlt().solve(-g);
+    if (!delta.allFinite())
+      return T;
+    Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+    const Eigen::Vector3d w = delta.head<3>();
+    if (w.norm() > 1e-15)
+      step.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
+    step.translation() = delta.tail<3>();
+    T = step * T;
+    if (delta.norm() < 1e-9)
+      break;
+  }
+  // Re-orthonormalize against rounding.
+  const Eigen::Quaterniond q(T.linear());
+  T.linear() = q.normalized().toRotationMatrix();
+  return T;
+}
+
+} // namespace scanpick::core

@@ -30,4 +30,13 @@ Eigen::Isometry3d fitFeaturePairs(const FeatureList& model, const FeatureList& s
                                   const std::vector<std::pair<int, int>>& pairs,
                                   const Eigen::Isometry3d& T_guess);
 
+/// Beyond the thesis: Gauss-Newton refinement of T_scene_model on the matched features' geometry.
+/// Circles pull their centre and axis onto the scene circle's; lines pull their axis and their
+/// perpendicular position onto the scene line, while the position along the line (its centre,
+/// which moves with occlusion and RANSAC's extreme inliers) keeps 5 % weight. Returns T_init
+/// for fewer than two pairs; at most `iterations` steps (default 5).
+Eigen::Isometry3d refineOnFeatureGeometry(const FeatureList& model, const FeatureList& scene,
+                                          const std::vector<std::pair<int, int>>& pairs,
+                                          const Eigen::Isometry3d& T_init, int iterations = 5);
+
 } // namespace scanpick::core

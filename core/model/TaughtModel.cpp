@@ -43,14 +43,19 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
   scan_mm.validate();
   if (!options.crop_box_mm && !options.crop_oriented)
     throw Error("no crop box given: draw a box around the part (or pass --crop-box)");
-  PointCloud part = options.crop_oriented ? cropToOrientedBox(scan_mm, *options.crop_oriented)
-                                          : cropToBox(scan_mm, *options.crop_box_mm);
-  reportProgress(progress, 0.05);
-  if (options.remove_floor && part.validCount() >= kMinTeachPoints) {
+  // The floor is found in the whole scan, where the table is the dominant plane: inside a tight
+  // crop a large flat face of the part may hold more points than the table and would go instead.
+  PointCloud floorless;
+  const PointCloud* source = &scan_mm;
+  if (options.remove_floor && scan_mm.validCount() >= kMinTeachPoints) {
     FloorParams floor = params.floor;
     floor.enabled = true;
-    part = removeFloor(part, floor, params.seed, subProgress(progress, 0.05, 0.25)).remaining;
+    floorless = removeFloor(scan_mm, floor, params.seed, subProgress(progress, 0.0, 0.2)).remaining;
+    source = &floorless;
   }
+  PointCloud part = options.crop_oriented ? cropToOrientedBox(*source, *options.crop_oriented)
+                                          : cropToBox(*source, *options.crop_box_mm);
+  reportProgress(progress, 0.25);
   part = dropInvalid(voxelDownsample(part, params.downsample.voxel_mm));
   if (part.size() < kMinTeachPoints)
     throw Error("the crop holds " + std::to_string(part.size()) + " points (at least " +

@@ -45,7 +45,9 @@ struct TeachOptions {
   std::string name = "part";
   std::optional<Eigen::AlignedBox3f> crop_box_mm;  ///< axis-aligned crop in the scan frame
   std::optional<OrientedBox> crop_oriented;        ///< or an oriented one (used if set)
-  bool remove_floor = false;       ///< run floor removal (params.floor) inside the crop
+  /// Run floor removal (params.floor) on the whole scan before cropping (the table is its
+  /// dominant plane there; inside a tight crop a flat face of the part could be taken instead).
+  bool remove_floor = false;
   std::vector<GripPoint> grips_scan;  ///< grip points in the scan frame, mm
   SensorModel sensor;              ///< sensor of the scan (stored with the model)
   LengthUnit source_units = LengthUnit::Millimetres;

@@ -38,20 +38,24 @@ std::string pad(const std::string& text, std::size_t width) {
 
 std::string formatParamValue(const ParamInfo& info, double value) {
   switch (info.type) {
-  case ParamType::Bool: return value != 0.0 ? "on" : "off";
+  case ParamType::Bool:
+    return value != 0.0 ? "on" : "off";
   case ParamType::Enum: {
     const auto index = static_cast<std::size_t>(std::lround(value));
     return index < info.choices.size() ? info.choices[index] : number(value);
   }
-  case ParamType::Int: return number(std::round(value));
-  case ParamType::Double: return number(value);
+  case ParamType::Int:
+    return number(std::round(value));
+  case ParamType::Double:
+    return number(value);
   }
   return number(value);
 }
 
 std::string formatParamRange(const ParamInfo& info) {
   switch (info.type) {
-  case ParamType::Bool: return "on/off";
+  case ParamType::Bool:
+    return "on/off";
   case ParamType::Enum: {
     std::string out;
     for (std::size_t i = 0; i < info.choices.size(); ++i)
@@ -59,7 +63,8 @@ std::string formatParamRange(const ParamInfo& info) {
     return out;
   }
   case ParamType::Int:
-  case ParamType::Double: return number(info.min_value) + " – " + number(info.max_value);
+  case ParamType::Double:
+    return number(info.min_value) + " – " + number(info.max_value);
   }
   return {};
 }

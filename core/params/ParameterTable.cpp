@@ -164,6 +164,11 @@ std::vector<ParamInfo> buildTable() {
            "A line's or circle's inliers are cut where neighbours along it are farther apart than "
            "this and only the largest connected run is kept, so collinear edges of different "
            "objects do not merge; 0 = automatic.")));
+  t.push_back(entry(&RP::features, &FeatureParams::sample_radius_mm,
+      make("features.sample_radius_mm", "Sample radius", "mm", Stage::Features, D, 0, 1000, 1,
+           "Beyond the thesis: the other points of a RANSAC sample are drawn within this "
+           "distance of its first point, so features are found in far fewer trials; 0 = uniform "
+           "sampling (the thesis).")));
   // --- Feature matching (§3.4) ---
   t.push_back(entry(&RP::matching, &MatchingParams::length_tolerance_mm,
       make("matching.length_tolerance_mm", "Matching length Δl", "mm", Stage::Matching, D, 0, 500,
@@ -195,6 +200,20 @@ std::vector<ParamInfo> buildTable() {
            50, 1,
            "Searches per scene cluster: after a detection its features are removed and the "
            "cluster is searched again, since clustering may merge touching parts.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::verify_tolerance_mm,
+      make("matching.verify_tolerance_mm", "Verify distance", "mm", Stage::Matching, D, 0, 50,
+           0.1,
+           "Beyond the thesis: a pose is verified by the share of model points with a scene "
+           "point within this distance, less those the camera sees through (organized scans); "
+           "0 = off (the thesis's feature score only).")));
+  t.push_back(entry(&RP::matching, &MatchingParams::min_coverage,
+      make("matching.min_coverage", "Min coverage", "", Stage::Matching, D, 0, 1, 0.01,
+           "With verification on: detections confirming a smaller share of their visible model "
+           "points are rejected.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::hypotheses,
+      make("matching.hypotheses", "Hypotheses", "", Stage::Matching, I, 1, 64, 1,
+           "Distinct poses per search re-ranked by verification; 1 = the thesis (the best "
+           "feature score alone decides).")));
   // --- Refinement (beyond the thesis) ---
   t.push_back(entry(&RP::refine, &RefineParams::enabled,
       make("refine.enabled", "ICP refinement", "", Stage::Refine, B, 0, 1, 1,

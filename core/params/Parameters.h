@@ -66,6 +66,10 @@ struct FeatureParams {
   /// farther apart than this, and only the largest run is kept; 0 = automatic (the larger of
   /// 3 x threshold and 4 x the median keypoint spacing).
   double run_gap_mm = 0.0;
+  /// Beyond the thesis: a RANSAC sample's other points are drawn within this distance of its
+  /// first point (keypoints lie on edges, so a near pair is likely on one edge), which finds
+  /// features in far fewer trials; 0 = uniform sampling over all keypoints (the thesis).
+  double sample_radius_mm = 0.0;
   bool operator==(const FeatureParams&) const = default;
 };
 
@@ -79,6 +83,14 @@ struct MatchingParams {
   double score_threshold = 0.1;          ///< detections scoring below are rejected ("Score")
   int max_detections = 0;                ///< 0 = no limit
   int max_instances_per_cluster = 4;     ///< repeated searches per cluster (merged parts)
+  /// Beyond the thesis: point-level verification. A pose is checked by the share of the model's
+  /// visible points that have a scene point within this distance (mm); 0 = off (the thesis).
+  double verify_tolerance_mm = 0.0;
+  /// With verification on, detections confirming a smaller share of visible points are dropped.
+  double min_coverage = 0.0;
+  /// Distinct pose hypotheses per search that verification re-ranks (1 = the thesis: the best
+  /// feature score alone decides, so a 180° flip of two parallel circles can win).
+  int hypotheses = 1;
   bool operator==(const MatchingParams&) const = default;
 };
 
@@ -93,13 +105,15 @@ struct RefineParams {
   /// A visible model point with a scene point this close counts as an inlier (mm).
   double inlier_distance_mm = 1.0;
   /// Stop when an iteration moves no model point by more than this (mm).
-  double convergence_mm = 0.001;
+  double convergence_mm = 0.005;
   /// Model points used (deterministic voxel subsample of the taught cloud).
   int model_points = 2000;
   /// Point-to-plane (true) or point-to-point (false) error.
   bool point_to_plane = true;
-  /// A settled pose counts as converged only with at least this inlier share, [0, 1].
-  double min_inlier_fraction = 0.5;
+  /// A settled pose counts as converged only with at least this inlier share, [0, 1]. High on
+  /// purpose: a part seen edge-on along an extrusion can settle a few mm off along it with
+  /// ~0.85 of its points still confirmed (the true pose: ~0.98 when unoccluded).
+  double min_inlier_fraction = 0.9;
   bool operator==(const RefineParams&) const = default;
 };
 

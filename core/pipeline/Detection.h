@@ -2,6 +2,7 @@
 /// @file Detection.h
 /// What recognition reports for each found instance of the taught part.
 
+#include "core/common/GripPoint.h"
 #include <Eigen/Geometry>
 #include <string>
 #include <utility>
@@ -9,18 +10,19 @@
 
 namespace scanpick::core {
 
-/// A named point on the part where a gripper may take it (millimetres).
-struct GripPoint {
-  std::string name;
-  Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();
-  bool operator==(const GripPoint&) const = default;
-};
 
 /// One recognized instance.
 struct Detection {
   /// Maps model coordinates (the taught model's frame, mm) into the scene frame (mm).
   Eigen::Isometry3d T_scene_model = Eigen::Isometry3d::Identity();
-  double score = 0.0;  ///< share of model features confirmed in the scene, [0, 1]
+  /// Confidence in [0, 1]: the share of model features confirmed in the scene (the thesis), or,
+  /// with point-level verification on (matching.verify_tolerance_mm > 0), `coverage`.
+  double score = 0.0;
+  double feature_score = 0.0;  ///< share of model features confirmed in the scene, [0, 1]
+  /// Share of the model points visible at this pose with a scene point within
+  /// matching.verify_tolerance_mm (after refinement, if on), [0, 1]; -1 when not verified.
+  double coverage = -1.0;
+  bool refined = false;  ///< the pose was refined by ICP (refine.enabled)
   /// Matched (model feature index, scene feature index) pairs behind the pose.
   std::vector<std::pair<int, int>> matched_features;
   std::vector<GripPoint> grip_points_scene;  ///< the model's grip points mapped into the scene

@@ -7,6 +7,7 @@
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "core/preprocess/SceneSplit.h"
+#include "core/refine/PoseRefinement.h"
 
 #include <tbb/parallel_for.h>
 
@@ -104,7 +105,99 @@ struct Recognizer::Cache {
   std::shared_ptr<const std::vector<Keypoints>> keypoints;
   std::optional<FeatureKey> feature_key;
   std::shared_ptr<const std::vector<FeatureList>> features;
+  /// Verification and refinement: the preprocessed scene indexed (key: pre_key) and the model's
+  /// point subsample (key: model and point count).
+  std::optional<PreKey> index_key;
+  std::shared_ptr<const SceneIndex> scene_index;
+  std::shared_ptr<const TaughtModel> refine_model_for;
+  int refine_model_points = 0;
+  std::shared_ptr<const RefineModel> refine_model;
+  /// Verification: the model's valid points, strided to at most refine.model_points.
+  std::shared_ptr<const std::vector<Eigen::Vector3f>> verify_points;
 };
+
+namespace {
+/// Builds (or keeps from the cache) the scene index and the model's point subsample used by
+/// verification and refinement.
+void prepareVerificationImpl(std::optional<PreKey>& index_key,
+                             std::shared_ptr<const SceneIndex>& scene_index,
+                             std::shared_ptr<const TaughtModel>& refine_model_for, int& refine_model_points,
+                             std::shared_ptr<const RefineModel>& refine_model,
+                             std::shared_ptr<const std::vector<Eigen::Vector3f>>& verify_points,
+                             const PointCloud& pre, const std::shared_ptr<const TaughtModel>& model,
+                             const PreKey& pre_key,
+                             const RecognitionParams& params) {
+  if (index_key != pre_key || !scene_index) {
+    SceneIndexOptions options;
+    options.normal_radius_mm = params.keypoints.normal_radius_mm;
+    scene_index = std::make_shared<const SceneIndex>(pre, options);
+    index_key = pre_key;
+  }
+  const int points = std::max(10, params.refine.model_points);
+  if (refine_model_for != model || refine_model_points != points || !verify_points ||
+      (params.refine.enabled && !refine_model)) {
+    refine_model.reset();
+    if (params.refine.enabled)
+      refine_model = std::make_shared<const RefineModel>(
+          model->cloud_mm, points, Eigen::Vector3d(model->T_teach_model.inverse().translation()));
+    // Wire-like models (the thesis's ideal part) have no surface normals, so verification takes
+    // the points themselves, evenly strided.
+    std::vector<Eigen::Vector3f> valid;
+    for (const auto& p : model->cloud_mm.points_mm)
+      if (isValid(p))
+        valid.push_back(p);
+    const std::size_t stride = std::max<std::size_t>(1, (valid.size() + points - 1) / points);
+    auto strided = std::make_shared<std::vector<Eigen::Vector3f>>();
+    for (std::size_t i = 0; i < valid.size(); i += stride)
+      strided->push_back(valid[i]);
+    verify_points = std::move(strided);
+    refine_model_for = model;
+    refine_model_points = points;
+  }
+}
+/// Point-level verification of a pose (beyond the thesis): a model point (of the subsample) is
+/// confirmed when a scene point lies within `tolerance_mm`; on an organized scene whose size is
+/// the sensor's, an unconfirmed point is a violation when the camera sees the
+/// scene clearly behind it at its pixel (more than 3 x tolerance farther), i.e. looks through
+/// where the pose puts material (a hole, or the floor beside a part). Returns (confirmed −
+/// violations) ÷ model points, clamped to [0, 1]. Dividing by all points (not only those facing
+/// the camera) keeps a pose that turns the taught side away, such as a flip, from scoring on the
+/// few points left facing.
+double verifyPose(const std::vector<Eigen::Vector3f>& model_points, const SceneIndex& index,
+                  const PointCloud& scene, const SensorModel& sensor,
+                  const Eigen::Isometry3d& T_scene_model, double tolerance_mm) {
+  const bool organized = scene.height > 1 && static_cast<int>(scene.width) == sensor.width &&
+                         static_cast<int>(scene.height) == sensor.height && sensor.fx > 0;
+  const Eigen::Isometry3f T = T_scene_model.cast<float>();
+  const auto tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
+  const auto margin = static_cast<float>(3.0 * tolerance_mm);
+  std::size_t confirmed = 0, violations = 0;
+  for (const auto& x : model_points) {
+    const Eigen::Vector3f p = T * x;
+    if (index.nearest(p, tol_sq) >= 0) {
+      ++confirmed;
+      continue;
+    }
+    // A point on the far side of the part needs no normal test: where the camera sees through
+    // it, it sees through the near side too.
+    if (!organized || p.z() <= 0.0f)
+      continue;
+    const Eigen::Vector2d uv = sensor.project(p.cast<double>());
+    const long u = std::lround(uv.x()), v = std::lround(uv.y());
+    if (u < 0 || v < 0 || u >= sensor.width || v >= sensor.height)
+      continue;
+    const Eigen::Vector3f& s = scene.points_mm[static_cast<std::size_t>(v) * scene.width +
+                                               static_cast<std::size_t>(u)];
+    if (isValid(s) && s.z() > p.z() + margin)
+      ++violations;
+  }
+  if (model_points.empty())
+    return 0.0;
+  const double q = (double(confirmed) - double(violations)) / double(model_points.size());
+  return std::clamp(q, 0.0, 1.0);
+}
+
+} // namespace
 
 void Recognizer::setModel(std::shared_ptr<const TaughtModel> model) {
   const std::lock_guard lock(m_mutex);
@@ -194,25 +287,40 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     cache.feature_key = feature_key;
     result.timings.features_ms = msSince(t0);
   }
+  const bool verifying = params.matching.verify_tolerance_mm > 0;
+  if ((verifying || params.refine.enabled) && cache.pre && cache.pre->validCount() > 0) {
+    const auto t0 = Clock::now();
+    prepareVerificationImpl(cache.index_key, cache.scene_index, cache.refine_model_for,
+                            cache.refine_model_points, cache.refine_model, cache.verify_points,
+                            *cache.pre, model,
+                            pre_key, params);
+    result.timings.matching_ms += msSince(t0);
+  }
   {
     const std::lock_guard lock(m_mutex);
     m_cache = std::make_shared<Cache>(cache);
   }
 
   const auto t_match = Clock::now();
+  PoseVerifier verify;
+  if (verifying && cache.scene_index && cache.verify_points)
+    verify = [&](const Eigen::Isometry3d& T) {
+      return verifyPose(*cache.verify_points, *cache.scene_index, scene_mm, sensor, T,
+                        params.matching.verify_tolerance_mm);
+    };
   std::vector<std::vector<MatchCandidate>> candidates(objects.size());
-  forEachObject(objects.size(), progress, 0.8, 1.0, [&](std::size_t i) {
-    candidates[i] = matchFeatures(model->features, (*cache.features)[i], params.matching);
+  forEachObject(objects.size(), progress, 0.8, 0.95, [&](std::size_t i) {
+    candidates[i] = matchFeatures(model->features, (*cache.features)[i], params.matching, {}, verify);
   });
   for (std::size_t i = 0; i < candidates.size(); ++i)
     for (const auto& c : candidates[i]) {
       Detection d;
       d.T_scene_model = c.T_scene_model;
-      d.score = c.score;
+      d.feature_score = c.score;
+      d.coverage = c.coverage;
+      d.score = verify ? c.coverage : c.score;
       d.matched_features = c.matched_features;
       d.cluster = static_cast<int>(i);
-      for (const auto& g : model->grip_points)
-        d.grip_points_scene.push_back({g.name, c.T_scene_model * g.position_mm});
       result.detections.push_back(std::move(d));
     }
   std::stable_sort(result.detections.begin(), result.detections.end(),
@@ -221,10 +329,29 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   if (params.matching.max_detections > 0 &&
       result.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
     result.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
-  result.timings.matching_ms = msSince(t_match);
-  if (params.refine.enabled)
-    logger()->warn("ICP refinement is not available in this build; poses are from the feature "
-                   "matching (refined on all matched features)");
+  result.timings.matching_ms += msSince(t_match);
+  if (params.refine.enabled && cache.scene_index && cache.refine_model) {
+    const auto t0 = Clock::now();
+    tbb::parallel_for(std::size_t{0}, result.detections.size(), [&](std::size_t k) {
+      Detection& d = result.detections[k];
+      const RefinementResult r =
+          refinePose(*cache.refine_model, *cache.scene_index, d.T_scene_model, params.refine);
+      d.T_scene_model = r.T_scene_model;
+      d.refined = true;
+      if (verifying) {
+        d.coverage = verifyPose(*cache.verify_points, *cache.scene_index, scene_mm, sensor,
+                                d.T_scene_model, params.matching.verify_tolerance_mm);
+        d.score = d.coverage;
+      }
+    });
+    std::stable_sort(result.detections.begin(), result.detections.end(),
+                     [](const Detection& a, const Detection& b) { return a.score > b.score; });
+    result.timings.refine_ms = msSince(t0);
+  }
+  for (auto& d : result.detections)
+    for (const auto& g : model->grip_points)
+      d.grip_points_scene.push_back({g.name, d.T_scene_model * g.position_mm});
+  reportProgress(progress, 1.0);
 
   result.preprocessed = cache.pre;
   result.floor_points_removed = cache.floor_removed;

@@ -17,13 +17,15 @@ using VoxelKey = std::array<std::int64_t, 3>;
 
 VoxelKey voxelOf(const Eigen::Vector3f& p, const Eigen::Vector3f& origin, double voxel_mm) {
   const Eigen::Vector3d q = (p - origin).cast<double>() / voxel_mm;
-  return {static_cast<std::int64_t>(std::floor(q.x())), static_cast<std::int64_t>(std::floor(q.y())),
+  return {static_cast<std::int64_t>(std::floor(q.x())),
+          static_cast<std::int64_t>(std::floor(q.y())),
           static_cast<std::int64_t>(std::floor(q.z()))};
 }
 
 /// (voxel, point index) pairs sorted by voxel then index: deterministic whatever the input order.
-std::vector<std::pair<VoxelKey, std::uint32_t>> sortedVoxels(
-    const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& origin, double voxel_mm) {
+std::vector<std::pair<VoxelKey, std::uint32_t>>
+sortedVoxels(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& origin,
+             double voxel_mm) {
   std::vector<std::pair<VoxelKey, std::uint32_t>> keyed(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     keyed[i] = {voxelOf(points[i], origin, voxel_mm), static_cast<std::uint32_t>(i)};
@@ -67,7 +69,8 @@ RefineModel::RefineModel(const PointCloud& model_mm, int max_points,
       normals.push_back(full.normals()[i]);
     }
   if (points.size() < 3)
-    throw Error("Only " + std::to_string(points.size()) + " model points have a surface normal: "
+    throw Error("Only " + std::to_string(points.size()) +
+                " model points have a surface normal: "
                 "the model is too sparse for refinement (teach from a denser scan).");
 
   if (points.size() <= static_cast<std::size_t>(max_points)) {
@@ -96,9 +99,9 @@ RefineModel::RefineModel(const PointCloud& model_mm, int max_points,
         ++end;
       const auto& key = keyed[begin].first;
       const Eigen::Vector3d centre =
-          origin.cast<double>() +
-          hi * Eigen::Vector3d(static_cast<double>(key[0]) + 0.5, static_cast<double>(key[1]) + 0.5,
-                               static_cast<double>(key[2]) + 0.5);
+          origin.cast<double>() + hi * Eigen::Vector3d(static_cast<double>(key[0]) + 0.5,
+                                                       static_cast<double>(key[1]) + 0.5,
+                                                       static_cast<double>(key[2]) + 0.5);
       std::uint32_t best = keyed[begin].second;
       double best_d = (points[best].cast<double>() - centre).squaredNorm();
       for (std::size_t j = begin + 1; j < end; ++j) {

@@ -55,7 +55,7 @@ private:
 /// fewer than 5 points or a degenerate (linear) neighbourhood.
 template <typename Gather>
 Eigen::Vector3f planeNormal(const Eigen::Vector3f& centre, const Eigen::Vector3d& viewpoint,
-                            Gather&& gather) {
+                            float& variation, Gather&& gather) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
   int count = 0;
@@ -76,6 +76,7 @@ Eigen::Vector3f planeNormal(const Eigen::Vector3f& centre, const Eigen::Vector3d
   // A neighbourhood that is a line (an edge of valid pixels) has no defined plane.
   if (!(eig.eigenvalues()(1) > 1e-3 * eig.eigenvalues()(2)))
     return invalidPoint();
+  variation = static_cast<float>(eig.eigenvalues()(0) / std::max(1e-30, eig.eigenvalues().sum()));
   Eigen::Vector3d n = eig.eigenvectors().col(0).normalized();
   if (n.dot(viewpoint - c) < 0)
     n = -n;
@@ -137,6 +138,7 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
   reportProgress(progress, 0.1);
 
   m_normals.assign(indexed.size(), invalidPoint());
+  m_variation.assign(indexed.size(), 0.0f);
   const Eigen::Vector3d viewpoint = options.viewpoint_mm;
   const bool own_normals = options.use_cloud_normals && scene_mm.normals.size() == scene_mm.size();
   const float radius_sq = static_cast<float>(options.normal_radius_mm * options.normal_radius_mm);
@@ -163,7 +165,7 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
       if (scene_mm.isOrganized()) {
         const int row = static_cast<int>(src / scene_mm.width);
         const int col = static_cast<int>(src % scene_mm.width);
-        m_normals[i] = planeNormal(p, viewpoint, [&](auto&& add) {
+        m_normals[i] = planeNormal(p, viewpoint, m_variation[i], [&](auto&& add) {
           for (int r = std::max(0, row - w); r <= std::min(height - 1, row + w); ++r)
             for (int c = std::max(0, col - w); c <= std::min(width - 1, col + w); ++c) {
               const std::int64_t j = pixel_to_index[static_cast<std::size_t>(r) * scene_mm.width +
@@ -174,7 +176,7 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
         });
       } else {
         const std::size_t found = m_tree->tree.knnSearch(p.data(), k, ids.data(), dists.data());
-        m_normals[i] = planeNormal(p, viewpoint, [&](auto&& add) {
+        m_normals[i] = planeNormal(p, viewpoint, m_variation[i], [&](auto&& add) {
           for (std::size_t j = 0; j < found; ++j)
             if (dists[j] <= radius_sq)
               add(indexed[ids[j]]);
@@ -182,9 +184,22 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
       }
     }
   });
+
+  // Most of a scan is locally flat, so the median variation measures the sensor noise.
+  std::vector<float> estimated;
+  for (std::size_t i = 0; i < m_variation.size(); ++i)
+    if (m_variation[i] > 0.0f)
+      estimated.push_back(m_variation[i]);
+  if (!estimated.empty()) {
+    const auto middle = estimated.begin() + static_cast<std::ptrdiff_t>(estimated.size() / 2);
+    std::nth_element(estimated.begin(), middle, estimated.end());
+    m_typical_variation = *middle;
+  }
 }
 
-const std::vector<Eigen::Vector3f>& SceneIndex::points() const { return m_tree->points; }
+const std::vector<Eigen::Vector3f>& SceneIndex::points() const {
+  return m_tree->points;
+}
 
 SceneIndex::~SceneIndex() = default;
 SceneIndex::SceneIndex(SceneIndex&&) noexcept = default;

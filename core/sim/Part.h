@@ -2,6 +2,7 @@
 /// @file Part.h
 /// A part the virtual scanner can drop into a bin: its closed mesh, grip points and symmetries.
 
+#include "core/common/GripPoint.h"
 #include "core/sim/Mesh.h"
 
 #include <Eigen/Geometry>
@@ -11,11 +12,6 @@
 
 namespace scanpick::core {
 
-/// A named point on the part, in the part frame (mm), e.g. where a gripper should take it.
-struct GripPoint {
-  std::string name;
-  Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();
-};
 
 /// An axis of continuous rotational symmetry, in the part frame.
 struct SymmetryAxis {

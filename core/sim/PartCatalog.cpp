@@ -31,10 +31,14 @@ Part support() {
   p.name = "support";
   // Leg A lies in the xy plane; the 180° turn about the bisector (1,0,1) maps it onto leg B, which
   // is both the way leg B is built and the part's symmetry.
-  std::vector<PlateCell> cells = rectangleCells(0, 80, -40, 40, 2, 2, 8);
+  // Leg A starts at x = 0.5 so that the legs overlap without sharing a vertex: an exported mesh
+  // then splits back into the same closed components.
+  std::vector<PlateCell> cells = rectangleCells(0.5, 80, -40, 40, 2, 2, 8);
   for (auto& c : cells)
     if (c.center_mm.x() > 40)
       c.hole_radius_mm = 6;
+  for (auto& c : cells)
+    c.center_mm.x() = c.center_mm.x() > 40 ? 60.0 : c.center_mm.x();
   const TriangleMesh leg_a = extrudeCells(cells, 0, 5, kHoleSegments);
   const Eigen::Isometry3d S = rotationAbout(Eigen::Vector3d::Zero(), Eigen::Vector3d(1, 0, 1), kPi);
   p.components.push_back(leg_a);
@@ -94,7 +98,7 @@ Part coatRack() {
   // Suction cup under the plate (solid; its stem is sunk into the plate).
   p.components.push_back(revolveProfile({{0, 1}, {7, 1}, {7, -2}, {20, -7}, {20, -8}, {0, -8}}, 48));
   // The hook: a stem out of the plate, an arm along +y and a lip.
-  p.components.push_back(boxMesh({-4, -10, 3.5}, {4, -2, 24}));
+  p.components.push_back(boxMesh({-4, -10, 3.5}, {4, -2, 23.5}));
   p.components.push_back(boxMesh({-4, -10, 20}, {4, 10, 24}));
   p.components.push_back(boxMesh({-4, 6, 23.5}, {4, 10, 30}));
   p.grip_points = {{"mark-a", {-20, 8, 4}}, {"mark-b", {20, 8, 4}}, {"hook", {0, 0, 22}}};

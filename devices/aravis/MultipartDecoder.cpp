@@ -14,18 +14,24 @@ namespace {
 std::size_t bytesPerPixel(std::uint32_t format) {
   switch (format) {
   case pfnc::kMono8:
-  case pfnc::kConfidence8: return 1;
+  case pfnc::kConfidence8:
+    return 1;
   case pfnc::kMono10:
   case pfnc::kMono12:
   case pfnc::kMono16:
-  case pfnc::kConfidence16: return 2;
-  case pfnc::kRgb8: return 3;
+  case pfnc::kConfidence16:
+    return 2;
+  case pfnc::kRgb8:
+    return 3;
   case pfnc::kCoord3dA32f:
   case pfnc::kCoord3dB32f:
   case pfnc::kCoord3dC32f:
-  case pfnc::kConfidence32f: return 4;
-  case pfnc::kCoord3dAbc32f: return 12;
-  default: return 0;
+  case pfnc::kConfidence32f:
+    return 4;
+  case pfnc::kCoord3dAbc32f:
+    return 12;
+  default:
+    return 0;
   }
 }
 
@@ -36,10 +42,11 @@ std::string hex(std::uint32_t v) {
 }
 
 DeviceError protocol(const std::string& what) {
-  return DeviceError(DeviceErrorKind::Protocol,
-                     "the scanner sent " + what +
-                         ": check that the firmware is 1.13 or newer and that Range is Coord3D_ABC32f or "
-                         "Coord3D_C32f");
+  return DeviceError(
+      DeviceErrorKind::Protocol,
+      "the scanner sent " + what +
+          ": check that the firmware is 1.13 or newer and that Range is Coord3D_ABC32f or "
+          "Coord3D_C32f");
 }
 
 template <typename T> T readLe(const std::byte* p) {
@@ -56,24 +63,33 @@ float floatAt(const BufferPart& part, std::size_t i, std::size_t component = 0) 
 
 PartKind guessPartKind(std::uint32_t pixel_format, bool range_seen) {
   switch (pixel_format) {
-  case pfnc::kCoord3dAbc32f: return range_seen ? PartKind::Normal : PartKind::Range;
-  case pfnc::kCoord3dC32f: return range_seen ? PartKind::Unknown : PartKind::Range;
-  case pfnc::kCoord3dA32f: return PartKind::CoordinateMapA;
-  case pfnc::kCoord3dB32f: return PartKind::CoordinateMapB;
+  case pfnc::kCoord3dAbc32f:
+    return range_seen ? PartKind::Normal : PartKind::Range;
+  case pfnc::kCoord3dC32f:
+    return range_seen ? PartKind::Unknown : PartKind::Range;
+  case pfnc::kCoord3dA32f:
+    return PartKind::CoordinateMapA;
+  case pfnc::kCoord3dB32f:
+    return PartKind::CoordinateMapB;
   case pfnc::kConfidence8:
   case pfnc::kConfidence16:
-  case pfnc::kConfidence32f: return PartKind::Confidence;
+  case pfnc::kConfidence32f:
+    return PartKind::Confidence;
   case pfnc::kMono8:
   case pfnc::kMono10:
   case pfnc::kMono12:
   case pfnc::kMono16:
-  case pfnc::kRgb8: return PartKind::Intensity;
-  default: return PartKind::Unknown;
+  case pfnc::kRgb8:
+    return PartKind::Intensity;
+  default:
+    return PartKind::Unknown;
   }
 }
 
-core::PointCloud decodeParts(std::span<const BufferPart> parts, const std::optional<ProjectedCParams>& projected) {
-  const auto range_it = std::find_if(parts.begin(), parts.end(), [](const BufferPart& p) { return p.kind == PartKind::Range; });
+core::PointCloud decodeParts(std::span<const BufferPart> parts,
+                             const std::optional<ProjectedCParams>& projected) {
+  const auto range_it = std::find_if(parts.begin(), parts.end(),
+                                     [](const BufferPart& p) { return p.kind == PartKind::Range; });
   if (range_it == parts.end())
     throw protocol("no Range part (enable ComponentSelector=Range, ComponentEnable=true)");
   const BufferPart& range = *range_it;
@@ -89,11 +105,12 @@ core::PointCloud decodeParts(std::span<const BufferPart> parts, const std::optio
     if (bpp == 0)
       throw protocol("pixel format " + hex(part.pixel_format) + " which scanpick cannot decode");
     if (part.width != range.width || part.height != range.height)
-      throw protocol("parts of different sizes (" + std::to_string(part.width) + "x" + std::to_string(part.height) +
-                     " vs Range " + std::to_string(range.width) + "x" + std::to_string(range.height) + ")");
+      throw protocol("parts of different sizes (" + std::to_string(part.width) + "x" +
+                     std::to_string(part.height) + " vs Range " + std::to_string(range.width) +
+                     "x" + std::to_string(range.height) + ")");
     if (part.data.size() < n * bpp)
-      throw protocol("a truncated part (" + std::to_string(part.data.size()) + " bytes, " + std::to_string(n * bpp) +
-                     " expected)");
+      throw protocol("a truncated part (" + std::to_string(part.data.size()) + " bytes, " +
+                     std::to_string(n * bpp) + " expected)");
     if (part.kind == PartKind::CoordinateMapA)
       map_a = &part;
     if (part.kind == PartKind::CoordinateMapB)
@@ -123,7 +140,8 @@ core::PointCloud decodeParts(std::span<const BufferPart> parts, const std::optio
       const double b = map_b ? floatAt(*map_b, i) : static_cast<double>(i / range.width);
       cloud.points_mm[i] = {
           static_cast<float>(z * (a - projected->principal_u_px) / projected->focal_length_px),
-          static_cast<float>(z * (b - projected->principal_v_px) / (projected->focal_length_px * projected->aspect_ratio)),
+          static_cast<float>(z * (b - projected->principal_v_px) /
+                             (projected->focal_length_px * projected->aspect_ratio)),
           z};
     }
   } else {
@@ -135,7 +153,8 @@ core::PointCloud decodeParts(std::span<const BufferPart> parts, const std::optio
     switch (part.kind) {
     case PartKind::Normal:
       if (part.pixel_format != pfnc::kCoord3dAbc32f)
-        throw protocol("a Normal part in " + hex(part.pixel_format) + " format (Coord3D_ABC32f expected)");
+        throw protocol("a Normal part in " + hex(part.pixel_format) +
+                       " format (Coord3D_ABC32f expected)");
       cloud.normals.resize(n);
       for (std::size_t i = 0; i < n; ++i)
         cloud.normals[i] = {floatAt(part, i, 0), floatAt(part, i, 1), floatAt(part, i, 2)};
@@ -143,13 +162,15 @@ core::PointCloud decodeParts(std::span<const BufferPart> parts, const std::optio
     case PartKind::Confidence:
       cloud.confidence.resize(n);
       for (std::size_t i = 0; i < n; ++i) {
-        double c = part.pixel_format == pfnc::kConfidence8    ? static_cast<double>(readLe<std::uint8_t>(d + i))
-                   : part.pixel_format == pfnc::kConfidence16 ? readLe<std::uint16_t>(d + 2 * i)
+        double c = part.pixel_format == pfnc::kConfidence8
+                       ? static_cast<double>(readLe<std::uint8_t>(d + i))
+                   : part.pixel_format == pfnc::kConfidence16  ? readLe<std::uint16_t>(d + 2 * i)
                    : part.pixel_format == pfnc::kConfidence32f ? readLe<float>(d + 4 * i)
                                                                : -1.0;
         if (c < 0.0)
           throw protocol("a Confidence part in " + hex(part.pixel_format) + " format");
-        cloud.confidence[i] = static_cast<std::uint8_t>(std::clamp(std::isfinite(c) ? c : 0.0, 0.0, 255.0));
+        cloud.confidence[i] =
+            static_cast<std::uint8_t>(std::clamp(std::isfinite(c) ? c : 0.0, 0.0, 255.0));
       }
       break;
     case PartKind::Intensity:
@@ -163,12 +184,14 @@ core::PointCloud decodeParts(std::span<const BufferPart> parts, const std::optio
         cloud.intensity.resize(n);
         const bool wide = bytesPerPixel(part.pixel_format) == 2;
         for (std::size_t i = 0; i < n; ++i)
-          cloud.intensity[i] = wide ? readLe<std::uint16_t>(d + 2 * i) : readLe<std::uint8_t>(d + i);
+          cloud.intensity[i] =
+              wide ? readLe<std::uint16_t>(d + 2 * i) : readLe<std::uint8_t>(d + i);
       } else {
         throw protocol("an Intensity part in " + hex(part.pixel_format) + " format");
       }
       break;
-    default: break;
+    default:
+      break;
     }
   }
   return cloud;

@@ -32,7 +32,15 @@ inline constexpr std::uint32_t kConfidence32f = 0x012000C8;
 } // namespace pfnc
 
 /// What a part carries (GenICam ComponentSelector names).
-enum class PartKind { Unknown, Range, Intensity, Confidence, Normal, CoordinateMapA, CoordinateMapB };
+enum class PartKind {
+  Unknown,
+  Range,
+  Intensity,
+  Confidence,
+  Normal,
+  CoordinateMapA,
+  CoordinateMapB
+};
 
 /// One part of a buffer. `data` is row-major, tightly packed, little-endian.
 struct BufferPart {
@@ -46,10 +54,10 @@ struct BufferPart {
 /// x = z (A - principal_u) / focal, y = z (B - principal_v) / (focal aspect), where A/B are the
 /// CoordinateMapA/B parts, or the column/row index when those parts are absent.
 struct ProjectedCParams {
-  double focal_length_px = 0;   ///< Scan3dFocalLength
-  double aspect_ratio = 1;      ///< Scan3dAspectRatio
-  double principal_u_px = 0;    ///< Scan3dPrincipalPointU
-  double principal_v_px = 0;    ///< Scan3dPrincipalPointV
+  double focal_length_px = 0; ///< Scan3dFocalLength
+  double aspect_ratio = 1;    ///< Scan3dAspectRatio
+  double principal_u_px = 0;  ///< Scan3dPrincipalPointU
+  double principal_v_px = 0;  ///< Scan3dPrincipalPointV
 };
 
 /// Kind of a part whose component id is unknown, guessed from its pixel format and order:

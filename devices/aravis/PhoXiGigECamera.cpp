@@ -3,8 +3,9 @@
 #include "devices/aravis/MultipartDecoder.h"
 
 #include <arv.h>
-
+#include <future>
 #include <map>
+#include <thread>
 
 namespace scanpick::devices {
 namespace {
@@ -35,7 +36,9 @@ struct ErrorSlot {
   [[nodiscard]] std::string text() const { return error ? error->message : ""; }
 };
 
-std::string textOr(const char* s) { return s ? s : ""; }
+std::string textOr(const char* s) {
+  return s ? s : "";
+}
 
 } // namespace
 
@@ -48,7 +51,8 @@ struct PhoXiGigECamera::Impl {
   std::map<guint, PartKind> component_kinds; // ComponentIDValue -> component
   std::optional<ProjectedCParams> projected;
   std::uint64_t frame_index = 0;
-  bool lost = false; // control channel dead: skip device writes on close
+  bool lost = false;                // control channel dead: skip device writes on close
+  std::future<std::string> pending; // a trigger still waiting for a dead scanner
 
   [[nodiscard]] bool has(const char* feature) const {
     ErrorSlot e;
@@ -59,8 +63,9 @@ struct PhoXiGigECamera::Impl {
     ErrorSlot e;
     arv_camera_set_string(camera.get(), feature, value, e.out());
     if (e)
-      throw DeviceError(DeviceErrorKind::Protocol, "the scanner refused " + std::string(feature) + "=" + value +
-                                                       " (" + e.text() + "): update its firmware to 1.13 or newer");
+      throw DeviceError(DeviceErrorKind::Protocol, "the scanner refused " + std::string(feature) +
+                                                       "=" + value + " (" + e.text() +
+                                                       "): update its firmware to 1.13 or newer");
   }
 
   /// Enables the components scanpick uses and records their ids for decoding multipart buffers.
@@ -73,7 +78,8 @@ struct PhoXiGigECamera::Impl {
                                                        {"Normal", PartKind::Normal}};
     for (const auto& [component, kind] : wanted) {
       ErrorSlot e;
-      if (!arv_camera_is_enumeration_entry_available(camera.get(), "ComponentSelector", component, e.out()))
+      if (!arv_camera_is_enumeration_entry_available(camera.get(), "ComponentSelector", component,
+                                                     e.out()))
         continue;
       setString("ComponentSelector", component);
       arv_camera_set_boolean(camera.get(), "ComponentEnable", TRUE, e.out());
@@ -88,15 +94,18 @@ struct PhoXiGigECamera::Impl {
 
   void configureRange() {
     ErrorSlot e;
-    if (arv_camera_is_enumeration_entry_available(camera.get(), "PixelFormat", "Coord3D_ABC32f", e.out())) {
+    if (arv_camera_is_enumeration_entry_available(camera.get(), "PixelFormat", "Coord3D_ABC32f",
+                                                  e.out())) {
       if (has("Scan3dCoordinateSystemReference") || has("Scan3dOutputMode")) {
         ErrorSlot ignored; // CalibratedABC_Grid is the default; set it when offered
-        arv_camera_set_string(camera.get(), "Scan3dOutputMode", "CalibratedABC_Grid", ignored.out());
+        arv_camera_set_string(camera.get(), "Scan3dOutputMode", "CalibratedABC_Grid",
+                              ignored.out());
       }
       setString("PixelFormat", "Coord3D_ABC32f");
       return;
     }
-    if (arv_camera_is_enumeration_entry_available(camera.get(), "PixelFormat", "Coord3D_C32f", e.out())) {
+    if (arv_camera_is_enumeration_entry_available(camera.get(), "PixelFormat", "Coord3D_C32f",
+                                                  e.out())) {
       setString("PixelFormat", "Coord3D_C32f");
       ProjectedCParams p;
       p.focal_length_px = arv_camera_get_float(camera.get(), "Scan3dFocalLength", e.out());
@@ -104,15 +113,18 @@ struct PhoXiGigECamera::Impl {
       p.principal_u_px = arv_camera_get_float(camera.get(), "Scan3dPrincipalPointU", e.out());
       p.principal_v_px = arv_camera_get_float(camera.get(), "Scan3dPrincipalPointV", e.out());
       if (e)
-        throw DeviceError(DeviceErrorKind::Unsupported,
-                          "the scanner streams Coord3D_C32f but lacks the Scan3d projection parameters (" + e.text() +
-                              "): switch it to Coord3D_ABC32f (CalibratedABC_Grid)");
+        throw DeviceError(
+            DeviceErrorKind::Unsupported,
+            "the scanner streams Coord3D_C32f but lacks the Scan3d projection parameters (" +
+                e.text() + "): switch it to Coord3D_ABC32f (CalibratedABC_Grid)");
       projected = p;
       return;
     }
-    throw DeviceError(DeviceErrorKind::Unsupported,
-                      "'" + name + "' offers neither Coord3D_ABC32f nor Coord3D_C32f: it is not a 3D scanner "
-                                   "(or its firmware is older than 1.13)");
+    throw DeviceError(
+        DeviceErrorKind::Unsupported,
+        "'" + name +
+            "' offers neither Coord3D_ABC32f nor Coord3D_C32f: it is not a 3D scanner "
+            "(or its firmware is older than 1.13)");
   }
 
   void configureTrigger() {
@@ -130,21 +142,25 @@ struct PhoXiGigECamera::Impl {
 
   void startStream() {
     ErrorSlot e;
-    if (arv_camera_is_gv_device(camera.get()) && arv_camera_gv_is_multipart_supported(camera.get(), e.out()) && !e)
+    if (arv_camera_is_gv_device(camera.get()) &&
+        arv_camera_gv_is_multipart_supported(camera.get(), e.out()) && !e)
       arv_camera_gv_set_multipart(camera.get(), TRUE, e.out());
     const guint payload = arv_camera_get_payload(camera.get(), e.out());
     if (e || payload == 0)
-      throw DeviceError(DeviceErrorKind::Protocol, "cannot read the payload size of '" + name + "': " + e.text());
+      throw DeviceError(DeviceErrorKind::Protocol,
+                        "cannot read the payload size of '" + name + "': " + e.text());
     stream.reset(arv_camera_create_stream(camera.get(), nullptr, nullptr, e.out()));
     if (!stream)
-      throw DeviceError(DeviceErrorKind::Busy, "cannot open a stream from '" + name + "' (" + e.text() +
-                                                   "): close other GigE Vision programs (PhoXi Control's "
-                                                   "viewer, arv-viewer) and check the firewall allows UDP");
+      throw DeviceError(DeviceErrorKind::Busy,
+                        "cannot open a stream from '" + name + "' (" + e.text() +
+                            "): close other GigE Vision programs (PhoXi Control's "
+                            "viewer, arv-viewer) and check the firewall allows UDP");
     for (int i = 0; i < 4; ++i)
       arv_stream_push_buffer(stream.get(), arv_buffer_new(payload, nullptr));
     arv_camera_start_acquisition(camera.get(), e.out());
     if (e)
-      throw DeviceError(DeviceErrorKind::Protocol, "'" + name + "' refused to start acquisition: " + e.text());
+      throw DeviceError(DeviceErrorKind::Protocol,
+                        "'" + name + "' refused to start acquisition: " + e.text());
   }
 
   /// After a timeout: is the scanner still answering on its control channel?
@@ -165,15 +181,20 @@ struct PhoXiGigECamera::Impl {
         arv_buffer_get_part_region(buffer, i, &x, &y, &w, &h);
         const std::uint32_t format = arv_buffer_get_part_pixel_format(buffer, i);
         const auto it = component_kinds.find(arv_buffer_get_part_component_id(buffer, i));
-        const PartKind kind = it != component_kinds.end() ? it->second : guessPartKind(format, range_seen);
+        const PartKind kind =
+            it != component_kinds.end() ? it->second : guessPartKind(format, range_seen);
         range_seen = range_seen || kind == PartKind::Range;
-        out.push_back({kind, format, static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h),
+        out.push_back({kind,
+                       format,
+                       static_cast<std::uint32_t>(w),
+                       static_cast<std::uint32_t>(h),
                        {static_cast<const std::byte*>(data), size}});
       }
     } else {
       size_t size = 0;
       const void* data = arv_buffer_get_data(buffer, &size);
-      out.push_back({PartKind::Range, arv_buffer_get_image_pixel_format(buffer),
+      out.push_back({PartKind::Range,
+                     arv_buffer_get_image_pixel_format(buffer),
                      static_cast<std::uint32_t>(arv_buffer_get_image_width(buffer)),
                      static_cast<std::uint32_t>(arv_buffer_get_image_height(buffer)),
                      {static_cast<const std::byte*>(data), size}});
@@ -187,10 +208,11 @@ PhoXiGigECamera::PhoXiGigECamera(const std::string& name) : m_impl(std::make_uni
   ErrorSlot e;
   m_impl->camera.reset(arv_camera_new(name.c_str(), e.out()));
   if (!m_impl->camera)
-    throw DeviceError(DeviceErrorKind::NotFound,
-                      "no GigE Vision scanner '" + name + "' answers (" + e.text() +
-                          "): check that it is powered, on the same subnet as this computer, and that "
-                          "'scanpick-cli devices' lists it; use its serial number or IP address");
+    throw DeviceError(
+        DeviceErrorKind::NotFound,
+        "no GigE Vision scanner '" + name + "' answers (" + e.text() +
+            "): check that it is powered, on the same subnet as this computer, and that "
+            "'scanpick-cli devices' lists it; use its serial number or IP address");
   m_impl->serial = textOr(arv_camera_get_device_serial_number(m_impl->camera.get(), e.out()));
   m_impl->model = textOr(arv_camera_get_model_name(m_impl->camera.get(), e.out()));
   m_impl->vendor = textOr(arv_camera_get_vendor_name(m_impl->camera.get(), e.out()));
@@ -210,6 +232,18 @@ void PhoXiGigECamera::close() {
     ErrorSlot e;
     arv_camera_stop_acquisition(m_impl->camera.get(), e.out()); // may fail if the scanner is gone
   }
+  if (m_impl->lost && m_impl->camera) {
+    // Aravis says goodbye to a dead scanner with GVCP retries (about 12 s); do that in the
+    // background so the caller can reopen at once. GObject unref is thread-safe.
+    std::thread([stream = std::move(m_impl->stream), camera = std::move(m_impl->camera),
+                 pending = std::move(m_impl->pending)]() mutable {
+      if (pending.valid())
+        pending.wait();
+      stream.reset();
+      camera.reset();
+    }).detach();
+    return;
+  }
   m_impl->stream.reset();
   m_impl->camera.reset();
 }
@@ -226,30 +260,47 @@ Frame PhoXiGigECamera::grabFrame(std::chrono::milliseconds timeout) {
   // Drop frames that arrived before this request (free-running devices), then trigger.
   while (ArvBuffer* stale = arv_stream_try_pop_buffer(m_impl->stream.get()))
     arv_stream_push_buffer(m_impl->stream.get(), stale);
-  if (m_impl->software_trigger) {
-    arv_camera_execute_command(m_impl->camera.get(), "TriggerSoftware", e.out());
-    if (e)
-      throw DeviceError(DeviceErrorKind::StreamEnded,
-                        "the scanner '" + m_impl->name + "' did not accept the trigger (" + e.text() +
-                            "): it was disconnected or rebooted; reopen it");
-  }
   const auto deadline = std::chrono::steady_clock::now() + timeout;
+  if (m_impl->software_trigger) {
+    // Aravis retries a command to a dead scanner for seconds and cannot be interrupted: trigger
+    // on a helper thread so a vanished scanner is reported within `timeout`.
+    auto trigger = std::async(std::launch::async, [camera = m_impl->camera.get()] {
+      ErrorSlot te;
+      arv_camera_execute_command(camera, "TriggerSoftware", te.out());
+      return te.text();
+    });
+    const bool done = trigger.wait_for(timeout) == std::future_status::ready;
+    const std::string error = done ? trigger.get() : "no answer";
+    if (!done)
+      m_impl->pending = std::move(trigger); // close() waits for it before releasing the camera
+    if (!error.empty()) {
+      m_impl->lost = true;
+      throw DeviceError(DeviceErrorKind::StreamEnded,
+                        "the scanner '" + m_impl->name + "' did not accept the trigger (" + error +
+                            "): it was disconnected or rebooted; check its power and network "
+                            "cable, then reopen it");
+    }
+  }
   for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - std::chrono::steady_clock::now());
+    const auto left = std::chrono::duration_cast<std::chrono::microseconds>(
+        deadline - std::chrono::steady_clock::now());
     ArvBuffer* buffer = left.count() > 0
-                            ? arv_stream_timeout_pop_buffer(m_impl->stream.get(), static_cast<guint64>(left.count()))
+                            ? arv_stream_timeout_pop_buffer(m_impl->stream.get(),
+                                                            static_cast<guint64>(left.count()))
                             : nullptr;
     if (!buffer) {
       if (!m_impl->answers()) {
         m_impl->lost = true;
         throw DeviceError(DeviceErrorKind::StreamEnded,
-                          "the scanner '" + m_impl->name + "' stopped answering: check its power and network "
-                                                           "cable, then reopen it");
+                          "the scanner '" + m_impl->name +
+                              "' stopped answering: check its power and network "
+                              "cable, then reopen it");
       }
-      throw DeviceError(DeviceErrorKind::Timeout,
-                        "no frame from '" + m_impl->name + "' within " + std::to_string(timeout.count()) +
-                            " ms: raise --timeout-ms (large scans take seconds) or check that UDP is not "
-                            "blocked by a firewall");
+      throw DeviceError(
+          DeviceErrorKind::Timeout,
+          "no frame from '" + m_impl->name + "' within " + std::to_string(timeout.count()) +
+              " ms: raise --timeout-ms (large scans take seconds) or check that UDP is not "
+              "blocked by a firewall");
     }
     // Hand the buffer back to the stream whatever happens below.
     struct Requeue {
@@ -267,11 +318,14 @@ Frame PhoXiGigECamera::grabFrame(std::chrono::milliseconds timeout) {
     frame.metadata.serial = m_impl->serial;
     if (m_impl->projected)
       frame.metadata.intrinsics =
-          Intrinsics{static_cast<int>(frame.cloud.width), static_cast<int>(frame.cloud.height),
+          Intrinsics{static_cast<int>(frame.cloud.width),
+                     static_cast<int>(frame.cloud.height),
                      m_impl->projected->focal_length_px,
                      m_impl->projected->focal_length_px * m_impl->projected->aspect_ratio,
-                     m_impl->projected->principal_u_px, m_impl->projected->principal_v_px};
-    frame.metadata.timestamp_us = static_cast<std::int64_t>(arv_buffer_get_timestamp(buffer) / 1000);
+                     m_impl->projected->principal_u_px,
+                     m_impl->projected->principal_v_px};
+    frame.metadata.timestamp_us =
+        static_cast<std::int64_t>(arv_buffer_get_timestamp(buffer) / 1000);
     frame.metadata.host_time_us = hostTimeMicros();
     frame.metadata.frame_index = m_impl->frame_index++;
     return frame;

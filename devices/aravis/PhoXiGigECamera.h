@@ -1,6 +1,7 @@
 #pragma once
 /// @file PhoXiGigECamera.h
-/// Photoneo PhoXi scanners (firmware >= 1.13) over GigE Vision with Aravis (id "phoxi:<serial|ip>").
+/// Photoneo PhoXi scanners (firmware >= 1.13) over GigE Vision with Aravis (id
+/// "phoxi:<serial|ip>").
 
 #include "devices/Camera.h"
 

@@ -10,7 +10,8 @@ namespace {
 
 bool isCloudFile(const std::filesystem::path& p) {
   std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext == ".pcd" || ext == ".ply";
 }
 
@@ -26,9 +27,10 @@ FileCamera::FileCamera(const std::filesystem::path& path, bool loop,
         m_files.push_back(entry.path());
     std::sort(m_files.begin(), m_files.end());
     if (m_files.empty())
-      throw DeviceError(DeviceErrorKind::NotFound,
-                        "folder '" + path.string() +
-                            "' holds no .pcd or .ply file: point file: at a cloud file or a folder of them");
+      throw DeviceError(
+          DeviceErrorKind::NotFound,
+          "folder '" + path.string() +
+              "' holds no .pcd or .ply file: point file: at a cloud file or a folder of them");
   } else if (std::filesystem::is_regular_file(path, ec)) {
     if (!isCloudFile(path))
       throw DeviceError(DeviceErrorKind::Unsupported,
@@ -50,7 +52,9 @@ DeviceInfo FileCamera::info() const {
           "", ""};
 }
 
-void FileCamera::close() { m_closed = true; }
+void FileCamera::close() {
+  m_closed = true;
+}
 
 Frame FileCamera::grabFrame(std::chrono::milliseconds /*timeout*/) {
   if (m_closed)
@@ -58,27 +62,30 @@ Frame FileCamera::grabFrame(std::chrono::milliseconds /*timeout*/) {
   if (m_next >= m_files.size()) {
     if (!m_loop)
       throw DeviceError(DeviceErrorKind::StreamEnded,
-                        "all " + std::to_string(m_files.size()) + " file(s) of '" + m_path.string() +
-                            "' were replayed: open the camera again to restart");
+                        "all " + std::to_string(m_files.size()) + " file(s) of '" +
+                            m_path.string() + "' were replayed: open the camera again to restart");
     m_next = 0;
   }
   const std::filesystem::path file = m_files[m_next++];
   std::error_code ec;
   if (!std::filesystem::exists(file, ec))
     throw DeviceError(DeviceErrorKind::StreamEnded,
-                      "file '" + file.string() + "' vanished during replay: restore it or reopen the folder");
+                      "file '" + file.string() +
+                          "' vanished during replay: restore it or reopen the folder");
   Frame frame;
   try {
     // Read as millimetres first, then decide the unit from the extent unless forced.
     core::LoadedCloud loaded = core::loadCloud(file, core::LengthUnit::Millimetres);
     const core::LengthUnit unit =
-        m_units ? *m_units : core::guessLengthUnit(loaded.cloud).value_or(core::LengthUnit::Millimetres);
+        m_units ? *m_units
+                : core::guessLengthUnit(loaded.cloud).value_or(core::LengthUnit::Millimetres);
     if (unit == core::LengthUnit::Metres)
       for (auto& p : loaded.cloud.points_mm)
         p *= 1000.0f;
     frame.cloud = std::move(loaded.cloud);
   } catch (const core::Error& e) {
-    throw DeviceError(DeviceErrorKind::Protocol, std::string("cannot replay '") + file.string() + "': " + e.what());
+    throw DeviceError(DeviceErrorKind::Protocol,
+                      std::string("cannot replay '") + file.string() + "': " + e.what());
   }
   frame.metadata.device_id = "file:" + m_path.string();
   frame.metadata.sensor = "file";

@@ -2,8 +2,8 @@
 /// @file FileCamera.h
 /// A PCD/PLY file, or a folder of them, replayed as a camera (id "file:<path>").
 
-#include "devices/Camera.h"
 #include "core/cloud/Units.h"
+#include "devices/Camera.h"
 
 #include <filesystem>
 #include <optional>

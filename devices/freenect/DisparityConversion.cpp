@@ -42,7 +42,8 @@ core::PointCloud disparityToCloud(std::span<const std::uint16_t> raw, const Intr
   if (raw.size() != expected || expected == 0)
     throw DeviceError(DeviceErrorKind::Protocol,
                       "depth image has " + std::to_string(raw.size()) + " pixels, expected " +
-                          std::to_string(expected) + ": the Kinect must run in 640x480 11-bit mode");
+                          std::to_string(expected) +
+                          ": the Kinect must run in 640x480 11-bit mode");
   core::PointCloud cloud;
   cloud.width = static_cast<std::uint32_t>(k.width);
   cloud.height = static_cast<std::uint32_t>(k.height);

@@ -3,10 +3,9 @@
 #include "devices/freenect/DisparityConversion.h"
 #include "devices/usb/UsbMonitor.h"
 
-#include <libfreenect.h>
-
 #include <algorithm>
 #include <cstring>
+#include <libfreenect.h>
 #include <sys/time.h>
 
 namespace scanpick::devices {
@@ -28,23 +27,29 @@ DeviceError openFailure(int index) {
   if (index < static_cast<int>(cameras.size())) {
     switch (probeAccess(cameras[static_cast<std::size_t>(index)])) {
     case UsbAccess::Permission:
-      return DeviceError(DeviceErrorKind::Permission,
-                         which + ": permission denied on USB " + cameras[static_cast<std::size_t>(index)].port_path +
-                             ": install resources/udev/51-kinect.rules into /etc/udev/rules.d, run "
-                             "'sudo udevadm control --reload && sudo udevadm trigger', re-plug the Kinect "
-                             "and make sure your user is in the 'plugdev' group");
+      return DeviceError(
+          DeviceErrorKind::Permission,
+          which + ": permission denied on USB " +
+              cameras[static_cast<std::size_t>(index)].port_path +
+              ": install resources/udev/51-kinect.rules into /etc/udev/rules.d, run "
+              "'sudo udevadm control --reload && sudo udevadm trigger', re-plug the Kinect "
+              "and make sure your user is in the 'plugdev' group");
     case UsbAccess::Busy:
-      return DeviceError(DeviceErrorKind::Busy,
-                         which + " is in use by another program or by the gspca_kinect kernel driver: close "
-                                 "the other program, or run 'sudo modprobe -r gspca_kinect'");
+      return DeviceError(
+          DeviceErrorKind::Busy,
+          which + " is in use by another program or by the gspca_kinect kernel driver: close "
+                  "the other program, or run 'sudo modprobe -r gspca_kinect'");
     case UsbAccess::Gone:
-      return DeviceError(DeviceErrorKind::NotFound, which + " was unplugged while opening: plug it in again");
-    default: break;
+      return DeviceError(DeviceErrorKind::NotFound,
+                         which + " was unplugged while opening: plug it in again");
+    default:
+      break;
     }
   }
-  return DeviceError(DeviceErrorKind::Protocol,
-                     which + " could not be opened by libfreenect: re-plug it (the Kinect needs its own "
-                             "power adapter) and try again");
+  return DeviceError(
+      DeviceErrorKind::Protocol,
+      which + " could not be opened by libfreenect: re-plug it (the Kinect needs its own "
+              "power adapter) and try again");
 }
 
 } // namespace
@@ -67,15 +72,17 @@ KinectCamera::KinectCamera(int index, bool with_rgb) : m_index(index), m_with_rg
                       "libfreenect could not start libusb: check that /dev/bus/usb is accessible");
   freenect_set_log_level(m_ctx, FREENECT_LOG_ERROR);
   // Camera for depth/RGB, motor for tilt and LED; audio needs firmware upload and is not used.
-  freenect_select_subdevices(m_ctx, static_cast<freenect_device_flags>(FREENECT_DEVICE_CAMERA | FREENECT_DEVICE_MOTOR));
+  freenect_select_subdevices(
+      m_ctx, static_cast<freenect_device_flags>(FREENECT_DEVICE_CAMERA | FREENECT_DEVICE_MOTOR));
   const int n = freenect_num_devices(m_ctx);
   if (index >= n) {
     freenect_shutdown(m_ctx);
     m_ctx = nullptr;
-    throw DeviceError(DeviceErrorKind::NotFound,
-                      "no Kinect v1 at index " + std::to_string(index) + " (" + std::to_string(std::max(0, n)) +
-                          " found): plug it in (USB and its power adapter) and check that 'lsusb' lists "
-                          "045e:02ae; 'scanpick-cli devices' lists what is attached");
+    throw DeviceError(
+        DeviceErrorKind::NotFound,
+        "no Kinect v1 at index " + std::to_string(index) + " (" + std::to_string(std::max(0, n)) +
+            " found): plug it in (USB and its power adapter) and check that 'lsusb' lists "
+            "045e:02ae; 'scanpick-cli devices' lists what is attached");
   }
   if (freenect_open_device(m_ctx, &m_dev, index) < 0 || !m_dev) {
     freenect_shutdown(m_ctx);
@@ -85,15 +92,18 @@ KinectCamera::KinectCamera(int index, bool with_rgb) : m_index(index), m_with_rg
   }
   freenect_set_user(m_dev, this);
   freenect_set_depth_callback(m_dev, &KinectCamera::onDepth);
-  if (freenect_set_depth_mode(m_dev, freenect_find_depth_mode(FREENECT_RESOLUTION_MEDIUM, FREENECT_DEPTH_11BIT)) < 0 ||
+  if (freenect_set_depth_mode(
+          m_dev, freenect_find_depth_mode(FREENECT_RESOLUTION_MEDIUM, FREENECT_DEPTH_11BIT)) < 0 ||
       freenect_start_depth(m_dev) < 0) {
     close();
-    throw DeviceError(DeviceErrorKind::Protocol, "Kinect " + std::to_string(index) +
-                                                     " refused 640x480 11-bit depth: re-plug it and try again");
+    throw DeviceError(DeviceErrorKind::Protocol,
+                      "Kinect " + std::to_string(index) +
+                          " refused 640x480 11-bit depth: re-plug it and try again");
   }
   if (m_with_rgb) {
     freenect_set_video_callback(m_dev, &KinectCamera::onVideo);
-    if (freenect_set_video_mode(m_dev, freenect_find_video_mode(FREENECT_RESOLUTION_MEDIUM, FREENECT_VIDEO_RGB)) < 0 ||
+    if (freenect_set_video_mode(
+            m_dev, freenect_find_video_mode(FREENECT_RESOLUTION_MEDIUM, FREENECT_VIDEO_RGB)) < 0 ||
         freenect_start_video(m_dev) < 0)
       m_with_rgb = false; // depth still works; colour is optional
   }
@@ -158,13 +168,15 @@ Frame KinectCamera::grabFrame(std::chrono::milliseconds timeout) {
   };
   while (!m_depth_ready) {
     if (Clock::now() >= deadline)
-      throw DeviceError(DeviceErrorKind::Timeout,
-                        "no depth frame from Kinect " + std::to_string(m_index) + " within " +
-                            std::to_string(timeout.count()) + " ms: check the cable and the power adapter");
+      throw DeviceError(DeviceErrorKind::Timeout, "no depth frame from Kinect " +
+                                                      std::to_string(m_index) + " within " +
+                                                      std::to_string(timeout.count()) +
+                                                      " ms: check the cable and the power adapter");
     if (pump(deadline) < 0)
-      throw DeviceError(DeviceErrorKind::StreamEnded,
-                        "the Kinect " + std::to_string(m_index) +
-                            " stream ended (device unplugged or recording exhausted): reopen it to continue");
+      throw DeviceError(
+          DeviceErrorKind::StreamEnded,
+          "the Kinect " + std::to_string(m_index) +
+              " stream ended (device unplugged or recording exhausted): reopen it to continue");
   }
   // The RGB image of the same moment follows within a few milliseconds.
   const auto rgb_deadline = std::min(deadline, Clock::now() + std::chrono::milliseconds(100));

@@ -14,7 +14,14 @@ struct _freenect_device;
 namespace scanpick::devices {
 
 /// Kinect v1 LED states (values of libfreenect's freenect_led_options).
-enum class KinectLed { Off = 0, Green = 1, Red = 2, Yellow = 3, BlinkGreen = 4, BlinkRedYellow = 6 };
+enum class KinectLed {
+  Off = 0,
+  Green = 1,
+  Red = 2,
+  Yellow = 3,
+  BlinkGreen = 4,
+  BlinkRedYellow = 6
+};
 
 /// A Kinect v1 opened through libfreenect.
 ///
@@ -35,7 +42,8 @@ public:
   /// Number of Kinect v1 cameras libfreenect sees (0 when none or when libusb cannot start).
   static int count();
 
-  /// Moves the tilt motor to `degrees` (clamped to the motor's ±27°). Throws DeviceError on failure.
+  /// Moves the tilt motor to `degrees` (clamped to the motor's ±27°). Throws DeviceError on
+  /// failure.
   void setTiltDegrees(double degrees);
   /// Current tilt angle read from the motor's accelerometer, degrees.
   double tiltDegrees();

@@ -1,7 +1,6 @@
 #include "devices/openni2/OniCamera.h"
 
 #include <OpenNI.h>
-
 #include <cmath>
 #include <filesystem>
 #include <mutex>
@@ -21,10 +20,13 @@ void ensureInitialized() {
   });
   if (status != openni::STATUS_OK)
     throw DeviceError(DeviceErrorKind::Unsupported,
-                      "OpenNI2 could not start (" + message + "): reinstall libopenni2-0 and its drivers");
+                      "OpenNI2 could not start (" + message +
+                          "): reinstall libopenni2-0 and its drivers");
 }
 
-std::string lastError() { return openni::OpenNI::getExtendedError(); }
+std::string lastError() {
+  return openni::OpenNI::getExtendedError();
+}
 
 } // namespace
 
@@ -33,7 +35,7 @@ struct OniCamera::Impl {
   openni::Device device;
   openni::VideoStream depth;
   bool is_file = false;
-  int frames_in_file = -1;  // -1 = unknown / live device
+  int frames_in_file = -1; // -1 = unknown / live device
   int frames_read = 0;
   Intrinsics intrinsics;
   std::string serial;
@@ -45,14 +47,17 @@ OniCamera::OniCamera(const std::string& uri) : m_impl(std::make_unique<Impl>()) 
   m_impl->uri = uri;
   const bool looks_like_file = uri.size() > 4 && uri.substr(uri.size() - 4) == ".oni";
   if (looks_like_file && !std::filesystem::exists(uri))
-    throw DeviceError(DeviceErrorKind::NotFound, "no recording '" + uri + "': check the path after oni:");
+    throw DeviceError(DeviceErrorKind::NotFound,
+                      "no recording '" + uri + "': check the path after oni:");
   if (m_impl->device.open(uri.c_str()) != openni::STATUS_OK) {
     const std::string why = lastError();
     if (looks_like_file)
-      throw DeviceError(DeviceErrorKind::Protocol,
-                        "OpenNI2 cannot play '" + uri + "'" + (why.empty() ? "" : " (" + why + ")") +
-                            ": the recording is truncated or damaged, or already open in this program");
-    const bool busy = why.find("busy") != std::string::npos || why.find("claim") != std::string::npos;
+      throw DeviceError(
+          DeviceErrorKind::Protocol,
+          "OpenNI2 cannot play '" + uri + "'" + (why.empty() ? "" : " (" + why + ")") +
+              ": the recording is truncated or damaged, or already open in this program");
+    const bool busy =
+        why.find("busy") != std::string::npos || why.find("claim") != std::string::npos;
     throw DeviceError(busy ? DeviceErrorKind::Busy : DeviceErrorKind::NotFound,
                       "OpenNI2 cannot open '" + uri + "' (" + why + "): " +
                           (busy ? "close the other program using it"
@@ -63,13 +68,15 @@ OniCamera::OniCamera(const std::string& uri) : m_impl(std::make_unique<Impl>()) 
       m_impl->depth.create(m_impl->device, openni::SENSOR_DEPTH) != openni::STATUS_OK) {
     const std::string why = lastError();
     m_impl->device.close();
-    throw DeviceError(DeviceErrorKind::Unsupported, "'" + uri + "' has no depth stream (" + why + ")");
+    throw DeviceError(DeviceErrorKind::Unsupported,
+                      "'" + uri + "' has no depth stream (" + why + ")");
   }
   if (m_impl->depth.start() != openni::STATUS_OK) {
     const std::string why = lastError();
     m_impl->depth.destroy();
     m_impl->device.close();
-    throw DeviceError(DeviceErrorKind::Busy, "cannot start the depth stream of '" + uri + "' (" + why +
+    throw DeviceError(DeviceErrorKind::Busy, "cannot start the depth stream of '" + uri + "' (" +
+                                                 why +
                                                  "): another program may be using the device");
   }
   if (m_impl->is_file) {
@@ -89,7 +96,8 @@ OniCamera::OniCamera(const std::string& uri) : m_impl(std::make_unique<Impl>()) 
   k.cy = (k.height - 1) / 2.0;
   char serial[64] = {};
   int size = sizeof serial;
-  if (!m_impl->is_file && m_impl->device.getProperty(ONI_DEVICE_PROPERTY_SERIAL_NUMBER, serial, &size) == openni::STATUS_OK)
+  if (!m_impl->is_file && m_impl->device.getProperty(ONI_DEVICE_PROPERTY_SERIAL_NUMBER, serial,
+                                                     &size) == openni::STATUS_OK)
     m_impl->serial = serial;
 }
 
@@ -108,7 +116,8 @@ void OniCamera::close() {
 }
 
 DeviceInfo OniCamera::info() const {
-  return {"oni:" + m_impl->uri, "openni2", m_impl->is_file ? "OpenNI recording" : "OpenNI2 device", m_impl->serial, ""};
+  return {"oni:" + m_impl->uri, "openni2", m_impl->is_file ? "OpenNI recording" : "OpenNI2 device",
+          m_impl->serial, ""};
 }
 
 Frame OniCamera::grabFrame(std::chrono::milliseconds timeout) {
@@ -122,28 +131,34 @@ Frame OniCamera::grabFrame(std::chrono::milliseconds timeout) {
   openni::VideoStream* streams[] = {&d.depth};
   int ready = -1;
   // Without this wait, readFrame on a manual-speed recording blocks forever at the end.
-  if (openni::OpenNI::waitForAnyStream(streams, 1, &ready, static_cast<int>(timeout.count())) != openni::STATUS_OK) {
+  if (openni::OpenNI::waitForAnyStream(streams, 1, &ready, static_cast<int>(timeout.count())) !=
+      openni::STATUS_OK) {
     if (d.is_file)
-      throw DeviceError(DeviceErrorKind::StreamEnded,
-                        "the recording '" + d.uri + "' stopped after " + std::to_string(d.frames_read) + " of " +
-                            std::to_string(d.frames_in_file) + " frame(s): the file is truncated or damaged");
-    throw DeviceError(DeviceErrorKind::Timeout, "no depth frame from '" + d.uri + "' within " +
-                                                    std::to_string(timeout.count()) +
-                                                    " ms: check the USB cable, or reopen the device");
+      throw DeviceError(
+          DeviceErrorKind::StreamEnded,
+          "the recording '" + d.uri + "' stopped after " + std::to_string(d.frames_read) + " of " +
+              std::to_string(d.frames_in_file) + " frame(s): the file is truncated or damaged");
+    throw DeviceError(DeviceErrorKind::Timeout,
+                      "no depth frame from '" + d.uri + "' within " +
+                          std::to_string(timeout.count()) +
+                          " ms: check the USB cable, or reopen the device");
   }
   openni::VideoFrameRef ref;
   if (d.depth.readFrame(&ref) != openni::STATUS_OK || !ref.isValid())
-    throw DeviceError(DeviceErrorKind::StreamEnded, "reading a depth frame of '" + d.uri + "' failed (" +
-                                                        lastError() + "): reopen it");
+    throw DeviceError(DeviceErrorKind::StreamEnded, "reading a depth frame of '" + d.uri +
+                                                        "' failed (" + lastError() +
+                                                        "): reopen it");
   ++d.frames_read;
   const openni::PixelFormat format = ref.getVideoMode().getPixelFormat();
   const float scale_mm = format == openni::PIXEL_FORMAT_DEPTH_100_UM ? 0.1f : 1.0f;
   if (format != openni::PIXEL_FORMAT_DEPTH_1_MM && format != openni::PIXEL_FORMAT_DEPTH_100_UM)
-    throw DeviceError(DeviceErrorKind::Unsupported, "'" + d.uri + "' streams depth in an unsupported pixel format (" +
-                                                        std::to_string(static_cast<int>(format)) + ")");
+    throw DeviceError(DeviceErrorKind::Unsupported,
+                      "'" + d.uri + "' streams depth in an unsupported pixel format (" +
+                          std::to_string(static_cast<int>(format)) + ")");
   const int w = ref.getWidth(), h = ref.getHeight();
   if (w != d.intrinsics.width || h != d.intrinsics.height)
-    throw DeviceError(DeviceErrorKind::Protocol, "'" + d.uri + "' changed its depth resolution during streaming");
+    throw DeviceError(DeviceErrorKind::Protocol,
+                      "'" + d.uri + "' changed its depth resolution during streaming");
   const auto* base = static_cast<const std::uint8_t*>(ref.getData());
   Frame frame;
   core::PointCloud& cloud = frame.cloud;
@@ -152,12 +167,14 @@ Frame OniCamera::grabFrame(std::chrono::milliseconds timeout) {
   cloud.points_mm.resize(static_cast<std::size_t>(w) * h);
   const Intrinsics& k = d.intrinsics;
   for (int v = 0; v < h; ++v) {
-    const auto* row = reinterpret_cast<const std::uint16_t*>(base + static_cast<std::size_t>(v) * ref.getStrideInBytes());
+    const auto* row = reinterpret_cast<const std::uint16_t*>(base + static_cast<std::size_t>(v) *
+                                                                        ref.getStrideInBytes());
     for (int u = 0; u < w; ++u) {
       const float z = row[u] * scale_mm;
       cloud.points_mm[static_cast<std::size_t>(v) * w + u] =
           row[u] == 0 ? core::invalidPoint()
-                      : Eigen::Vector3f(static_cast<float>((u - k.cx) * z / k.fx), static_cast<float>((v - k.cy) * z / k.fy), z);
+                      : Eigen::Vector3f(static_cast<float>((u - k.cx) * z / k.fx),
+                                        static_cast<float>((v - k.cy) * z / k.fy), z);
     }
   }
   frame.metadata.device_id = "oni:" + d.uri;

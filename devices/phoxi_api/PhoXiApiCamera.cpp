@@ -3,7 +3,6 @@
 #include "devices/phoxi_api/PhoXiApiCamera.h"
 
 #include <PhoXi.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -19,14 +18,16 @@ struct PhoXiApiCamera::Impl {
 PhoXiApiCamera::PhoXiApiCamera(const std::string& serial) : m_impl(std::make_unique<Impl>()) {
   m_impl->serial = serial;
   if (!m_impl->factory.isPhoXiControlRunning())
-    throw DeviceError(DeviceErrorKind::NotFound,
-                      "PhoXi Control is not running: start it (it ships with the PhoXi API), or use the open "
-                      "GigE Vision path with --device phoxi:" + serial);
+    throw DeviceError(
+        DeviceErrorKind::NotFound,
+        "PhoXi Control is not running: start it (it ships with the PhoXi API), or use the open "
+        "GigE Vision path with --device phoxi:" +
+            serial);
   m_impl->device = m_impl->factory.CreateAndConnect(serial);
   if (!m_impl->device || !m_impl->device->isConnected())
-    throw DeviceError(DeviceErrorKind::Busy,
-                      "cannot connect to PhoXi '" + serial + "': check that PhoXi Control lists it and that no "
-                      "other application is connected to it");
+    throw DeviceError(DeviceErrorKind::Busy, "cannot connect to PhoXi '" + serial +
+                                                 "': check that PhoXi Control lists it and that no "
+                                                 "other application is connected to it");
   m_impl->device->TriggerMode = pho::api::PhoXiTriggerMode::Software;
   m_impl->device->StartAcquisition();
 }
@@ -50,16 +51,20 @@ DeviceInfo PhoXiApiCamera::info() const {
 
 Frame PhoXiApiCamera::grabFrame(std::chrono::milliseconds timeout) {
   if (!m_impl->device || !m_impl->device->isConnected())
-    throw DeviceError(DeviceErrorKind::StreamEnded, "the PhoXi '" + m_impl->serial +
-                                                        "' is not connected: check PhoXi Control and reopen it");
+    throw DeviceError(DeviceErrorKind::StreamEnded,
+                      "the PhoXi '" + m_impl->serial +
+                          "' is not connected: check PhoXi Control and reopen it");
   const int id = m_impl->device->TriggerFrame();
   if (id < 0)
-    throw DeviceError(DeviceErrorKind::StreamEnded,
-                      "the PhoXi '" + m_impl->serial + "' refused the trigger (" + std::to_string(id) + "): reopen it");
-  pho::api::PFrame pho_frame = m_impl->device->GetSpecificFrame(id, static_cast<int>(timeout.count()));
+    throw DeviceError(DeviceErrorKind::StreamEnded, "the PhoXi '" + m_impl->serial +
+                                                        "' refused the trigger (" +
+                                                        std::to_string(id) + "): reopen it");
+  pho::api::PFrame pho_frame =
+      m_impl->device->GetSpecificFrame(id, static_cast<int>(timeout.count()));
   if (!pho_frame || pho_frame->PointCloud.Empty())
-    throw DeviceError(DeviceErrorKind::Timeout, "no frame from PhoXi '" + m_impl->serial + "' within " +
-                                                    std::to_string(timeout.count()) + " ms: raise --timeout-ms");
+    throw DeviceError(DeviceErrorKind::Timeout, "no frame from PhoXi '" + m_impl->serial +
+                                                    "' within " + std::to_string(timeout.count()) +
+                                                    " ms: raise --timeout-ms");
   const auto& pc = pho_frame->PointCloud;
   Frame frame;
   core::PointCloud& cloud = frame.cloud;
@@ -67,8 +72,8 @@ Frame PhoXiApiCamera::grabFrame(std::chrono::milliseconds timeout) {
   cloud.height = static_cast<std::uint32_t>(pc.Size.Height);
   const std::size_t n = static_cast<std::size_t>(cloud.width) * cloud.height;
   cloud.points_mm.resize(n);
-  const bool normals = !pho_frame->NormalMap.Empty(), confidence = !pho_frame->ConfidenceMap.Empty(),
-             texture = !pho_frame->Texture.Empty();
+  const bool normals = !pho_frame->NormalMap.Empty(),
+             confidence = !pho_frame->ConfidenceMap.Empty(), texture = !pho_frame->Texture.Empty();
   if (normals)
     cloud.normals.resize(n);
   if (confidence)
@@ -79,13 +84,15 @@ Frame PhoXiApiCamera::grabFrame(std::chrono::milliseconds timeout) {
     for (int c = 0; c < pc.Size.Width; ++c) {
       const std::size_t i = static_cast<std::size_t>(r) * cloud.width + static_cast<std::size_t>(c);
       const auto& p = pc.At(r, c);
-      cloud.points_mm[i] = (p.x == 0 && p.y == 0 && p.z == 0) ? core::invalidPoint() : Eigen::Vector3f(p.x, p.y, p.z);
+      cloud.points_mm[i] = (p.x == 0 && p.y == 0 && p.z == 0) ? core::invalidPoint()
+                                                              : Eigen::Vector3f(p.x, p.y, p.z);
       if (normals) {
         const auto& nrm = pho_frame->NormalMap.At(r, c);
         cloud.normals[i] = {nrm.x, nrm.y, nrm.z};
       }
       if (confidence)
-        cloud.confidence[i] = static_cast<std::uint8_t>(std::clamp(pho_frame->ConfidenceMap.At(r, c), 0.0f, 255.0f));
+        cloud.confidence[i] =
+            static_cast<std::uint8_t>(std::clamp(pho_frame->ConfidenceMap.At(r, c), 0.0f, 255.0f));
       if (texture)
         cloud.intensity[i] = pho_frame->Texture.At(r, c);
     }
@@ -104,8 +111,8 @@ std::vector<DeviceInfo> PhoXiApiCamera::enumerate() {
   if (!factory.isPhoXiControlRunning())
     return out;
   for (const auto& d : factory.GetDeviceList())
-    out.push_back({"phoxi-api:" + std::string(d.HWIdentification), "phoxi-api", "Photoneo " + std::string(d.Type),
-                   std::string(d.HWIdentification), ""});
+    out.push_back({"phoxi-api:" + std::string(d.HWIdentification), "phoxi-api",
+                   "Photoneo " + std::string(d.Type), std::string(d.HWIdentification), ""});
   return out;
 }
 

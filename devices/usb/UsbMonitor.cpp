@@ -2,12 +2,11 @@
 
 #include "core/common/Error.h"
 
-#include <libusb.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <libusb.h>
 #include <mutex>
 #include <thread>
 
@@ -32,10 +31,17 @@ bool kinectRole(const libusb_device_descriptor& d, KinectUsbRole& role) {
   if (d.idVendor != kMicrosoftVendorId)
     return false;
   switch (d.idProduct) {
-  case kKinectCameraProductId: role = KinectUsbRole::Camera; return true;
-  case kKinectMotorProductId: role = KinectUsbRole::Motor; return true;
-  case kKinectAudioProductId: role = KinectUsbRole::Audio; return true;
-  default: return false;
+  case kKinectCameraProductId:
+    role = KinectUsbRole::Camera;
+    return true;
+  case kKinectMotorProductId:
+    role = KinectUsbRole::Motor;
+    return true;
+  case kKinectAudioProductId:
+    role = KinectUsbRole::Audio;
+    return true;
+  default:
+    return false;
   }
 }
 
@@ -76,9 +82,12 @@ std::vector<KinectUsbDevice> list(libusb_context* ctx) {
 
 const char* toString(KinectUsbRole role) {
   switch (role) {
-  case KinectUsbRole::Camera: return "camera";
-  case KinectUsbRole::Motor: return "motor";
-  case KinectUsbRole::Audio: return "audio";
+  case KinectUsbRole::Camera:
+    return "camera";
+  case KinectUsbRole::Motor:
+    return "motor";
+  case KinectUsbRole::Audio:
+    return "audio";
   }
   return "unknown";
 }
@@ -94,7 +103,8 @@ UsbAccess probeAccess(const KinectUsbDevice& wanted) {
   const ssize_t n = libusb_get_device_list(usb.ctx, &devs);
   UsbAccess result = UsbAccess::Gone;
   for (ssize_t i = 0; i < n; ++i) {
-    if (libusb_get_bus_number(devs[i]) != wanted.bus || libusb_get_device_address(devs[i]) != wanted.address)
+    if (libusb_get_bus_number(devs[i]) != wanted.bus ||
+        libusb_get_device_address(devs[i]) != wanted.address)
       continue;
     libusb_device_handle* handle = nullptr;
     const int r = libusb_open(devs[i], &handle);
@@ -163,7 +173,8 @@ struct UsbMonitor::Impl {
   void runPolling() {
     std::vector<KinectUsbDevice> before = list(usb.ctx);
     std::unique_lock lock(mutex);
-    while (!wake.wait_for(lock, std::chrono::milliseconds(poll_interval_ms), [this] { return stop.load(); })) {
+    while (!wake.wait_for(lock, std::chrono::milliseconds(poll_interval_ms),
+                          [this] { return stop.load(); })) {
       std::vector<KinectUsbDevice> after = list(usb.ctx);
       for (const auto& e : diffUsbDevices(before, after))
         if (callback)
@@ -173,15 +184,17 @@ struct UsbMonitor::Impl {
   }
 };
 
-UsbMonitor::UsbMonitor(UsbEventCallback callback, int poll_interval_ms) : m_impl(std::make_unique<Impl>()) {
+UsbMonitor::UsbMonitor(UsbEventCallback callback, int poll_interval_ms)
+    : m_impl(std::make_unique<Impl>()) {
   m_impl->callback = std::move(callback);
   m_impl->poll_interval_ms = std::max(10, poll_interval_ms);
   if (libusb_has_capability(LIBUSB_CAP_HAS_HOTPLUG)) {
     const int r = libusb_hotplug_register_callback(
         m_impl->usb.ctx,
-        static_cast<libusb_hotplug_event>(LIBUSB_HOTPLUG_EVENT_DEVICE_ARRIVED | LIBUSB_HOTPLUG_EVENT_DEVICE_LEFT),
-        LIBUSB_HOTPLUG_NO_FLAGS, kMicrosoftVendorId, LIBUSB_HOTPLUG_MATCH_ANY, LIBUSB_HOTPLUG_MATCH_ANY,
-        &Impl::onHotplug, m_impl.get(), &m_impl->handle);
+        static_cast<libusb_hotplug_event>(LIBUSB_HOTPLUG_EVENT_DEVICE_ARRIVED |
+                                          LIBUSB_HOTPLUG_EVENT_DEVICE_LEFT),
+        LIBUSB_HOTPLUG_NO_FLAGS, kMicrosoftVendorId, LIBUSB_HOTPLUG_MATCH_ANY,
+        LIBUSB_HOTPLUG_MATCH_ANY, &Impl::onHotplug, m_impl.get(), &m_impl->handle);
     m_impl->hotplug = r == LIBUSB_SUCCESS;
   }
   if (m_impl->hotplug)
@@ -190,9 +203,13 @@ UsbMonitor::UsbMonitor(UsbEventCallback callback, int poll_interval_ms) : m_impl
     m_impl->thread = std::thread([impl = m_impl.get()] { impl->runPolling(); });
 }
 
-UsbMonitor::~UsbMonitor() { stop(); }
+UsbMonitor::~UsbMonitor() {
+  stop();
+}
 
-bool UsbMonitor::usesHotplug() const { return m_impl->hotplug; }
+bool UsbMonitor::usesHotplug() const {
+  return m_impl->hotplug;
+}
 
 void UsbMonitor::stop() {
   if (!m_impl || !m_impl->thread.joinable())
@@ -203,7 +220,8 @@ void UsbMonitor::stop() {
   }
   m_impl->wake.notify_all();
   if (m_impl->hotplug)
-    libusb_hotplug_deregister_callback(m_impl->usb.ctx, m_impl->handle); // also wakes the event loop
+    libusb_hotplug_deregister_callback(m_impl->usb.ctx,
+                                       m_impl->handle); // also wakes the event loop
   m_impl->thread.join();
 }
 

@@ -23,9 +23,9 @@ inline constexpr std::uint16_t kKinectAudioProductId = 0x02ad;
 /// One Kinect v1 USB device.
 struct KinectUsbDevice {
   KinectUsbRole role = KinectUsbRole::Camera;
-  int bus = 0;             ///< USB bus number
-  int address = 0;         ///< device address on the bus (changes on re-plug)
-  std::string port_path;   ///< e.g. "1-2.3", stable while the cable stays in the same port
+  int bus = 0;           ///< USB bus number
+  int address = 0;       ///< device address on the bus (changes on re-plug)
+  std::string port_path; ///< e.g. "1-2.3", stable while the cable stays in the same port
   bool operator==(const KinectUsbDevice&) const = default;
 };
 
@@ -34,7 +34,7 @@ enum class UsbAccess { Ok, Permission, Busy, Gone, Other };
 
 /// A plug or unplug event.
 struct UsbEvent {
-  bool arrived = true;  ///< true = plugged in, false = unplugged
+  bool arrived = true; ///< true = plugged in, false = unplugged
   KinectUsbDevice device;
 };
 using UsbEventCallback = std::function<void(const UsbEvent&)>;

@@ -15,8 +15,9 @@ int main(int argc, char** argv) {
   }
   try {
     auto camera = scanpick::devices::openCamera(argv[1]);
-    const auto files = scanpick::devices::captureToFiles(*camera, argv[2], std::strtoul(argv[3], nullptr, 10),
-                                                         std::chrono::milliseconds(std::atoi(argv[4])));
+    const auto files =
+        scanpick::devices::captureToFiles(*camera, argv[2], std::strtoul(argv[3], nullptr, 10),
+                                          std::chrono::milliseconds(std::atoi(argv[4])));
     for (const auto& f : files)
       std::cout << f.string() << "\n";
     return 0;

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-
 #include <sys/wait.h>
 
 using namespace scanpick;
@@ -16,7 +15,8 @@ namespace {
 /// Runs scanpick-cli with `args`; returns the exit code, stdout+stderr in `output`.
 int runCli(const std::string& args, const std::filesystem::path& dir, std::string& output) {
   const auto out_file = dir / "cli-output.txt";
-  const std::string cmd = std::string("'") + SCANPICK_CLI + "' " + args + " > '" + out_file.string() + "' 2>&1";
+  const std::string cmd =
+      std::string("'") + SCANPICK_CLI + "' " + args + " > '" + out_file.string() + "' 2>&1";
   const int status = std::system(cmd.c_str());
   output = core::readFile(out_file);
   std::filesystem::remove(out_file);
@@ -30,17 +30,19 @@ TEST(CliDevices, ListingWithNothingAttachedSucceeds) {
   std::string out;
   EXPECT_EQ(runCli("devices", dir.path(), out), 0) << out;
   // Test machines have no camera: the listing says so (a machine with one lists its id).
-  EXPECT_TRUE(out.find("no cameras found") != std::string::npos || out.find(':') != std::string::npos) << out;
+  EXPECT_TRUE(out.find("no cameras found") != std::string::npos ||
+              out.find(':') != std::string::npos)
+      << out;
 }
 
 TEST(CliDevices, CaptureFromFilesWritesNumberedCloudsAndSidecars) {
   test::TempDir dir;
   std::filesystem::create_directories(dir / "in");
-  for (int i = 0; i < 2; ++i)
-    core::saveCloudPcd(dir / "in" / ("f" + std::to_string(i) + ".pcd"), test::syntheticBinScene(32, 24, 32.0, 5.0f * i));
+  core::saveCloudPcd(dir / "in" / "f0.pcd", test::syntheticBinScene(32, 24, 32.0));
+  core::saveCloudPcd(dir / "in" / "f1.pcd", test::syntheticBinScene(32, 24, 32.0, 5.0f));
   std::string out;
-  ASSERT_EQ(runCli("capture --device file:" + (dir / "in").string() + " --out " + (dir / "scan.pcd").string() +
-                       " --frames 2 --timeout-ms 2000",
+  ASSERT_EQ(runCli("capture --device file:" + (dir / "in").string() + " --out " +
+                       (dir / "scan.pcd").string() + " --frames 2 --timeout-ms 2000",
                    dir.path(), out),
             0)
       << out;
@@ -55,7 +57,9 @@ TEST(CliDevices, CaptureFromFilesWritesNumberedCloudsAndSidecars) {
 TEST(CliDevices, UnknownDeviceFailsWithAnActionableMessage) {
   test::TempDir dir;
   std::string out;
-  EXPECT_EQ(runCli("capture --device webcam:0 --out " + (dir / "x.pcd").string(), dir.path(), out), 1) << out;
+  EXPECT_EQ(runCli("capture --device webcam:0 --out " + (dir / "x.pcd").string(), dir.path(), out),
+            1)
+      << out;
   EXPECT_NE(out.find("scanpick-cli devices"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.pcd"));
 }

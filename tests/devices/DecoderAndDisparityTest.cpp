@@ -4,10 +4,9 @@
 #include "devices/freenect/DisparityConversion.h"
 #include "tests/devices/SyntheticScene.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
 #include <cstring>
+#include <gtest/gtest.h>
 
 using namespace scanpick;
 using namespace scanpick::devices;
@@ -42,13 +41,14 @@ TEST(MultipartDecoder, DecodesRangeNormalConfidenceAndIntensity) {
     confidence[i] = static_cast<std::uint8_t>(i % 256);
     intensity[i] = static_cast<std::uint16_t>(i * 13 % 4096);
   }
-  const auto range_bytes = bytesOf(abc(scene)), normal_bytes = bytesOf(normals), conf_bytes = bytesOf(confidence),
-             int_bytes = bytesOf(intensity);
+  const auto range_bytes = bytesOf(abc(scene)), normal_bytes = bytesOf(normals),
+             conf_bytes = bytesOf(confidence), int_bytes = bytesOf(intensity);
   // Order differs from the component order on purpose: kinds, not positions, decide.
-  const std::vector<BufferPart> parts = {{PartKind::Intensity, pfnc::kMono12, 64, 48, int_bytes},
-                                         {PartKind::Normal, pfnc::kCoord3dAbc32f, 64, 48, normal_bytes},
-                                         {PartKind::Range, pfnc::kCoord3dAbc32f, 64, 48, range_bytes},
-                                         {PartKind::Confidence, pfnc::kConfidence8, 64, 48, conf_bytes}};
+  const std::vector<BufferPart> parts = {
+      {PartKind::Intensity, pfnc::kMono12, 64, 48, int_bytes},
+      {PartKind::Normal, pfnc::kCoord3dAbc32f, 64, 48, normal_bytes},
+      {PartKind::Range, pfnc::kCoord3dAbc32f, 64, 48, range_bytes},
+      {PartKind::Confidence, pfnc::kConfidence8, 64, 48, conf_bytes}};
   const core::PointCloud got = decodeParts(parts);
   ASSERT_EQ(got.width, 64u);
   ASSERT_EQ(got.height, 48u);
@@ -60,7 +60,8 @@ TEST(MultipartDecoder, DecodesRangeNormalConfidenceAndIntensity) {
       EXPECT_EQ(got.points_mm[i], scene.points_mm[i]);
     else
       EXPECT_FALSE(core::isValid(got.points_mm[i])); // (0,0,0) became NaN
-    EXPECT_EQ(got.normals[i], Eigen::Vector3f(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]));
+    EXPECT_EQ(got.normals[i],
+              Eigen::Vector3f(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]));
     EXPECT_EQ(got.confidence[i], confidence[i]);
     EXPECT_EQ(got.intensity[i], static_cast<float>(intensity[i]));
   }
@@ -76,13 +77,15 @@ TEST(MultipartDecoder, ProjectedC32fUsesScan3dParametersAndCoordinateMaps) {
   }
   const ProjectedCParams p{1000.0, 1.1, 3.5, 2.5};
   const auto zb = bytesOf(z), ab = bytesOf(a), bb = bytesOf(b);
-  const std::vector<BufferPart> with_maps = {{PartKind::Range, pfnc::kCoord3dC32f, w, h, zb},
-                                             {PartKind::CoordinateMapA, pfnc::kCoord3dA32f, w, h, ab},
-                                             {PartKind::CoordinateMapB, pfnc::kCoord3dB32f, w, h, bb}};
+  const std::vector<BufferPart> with_maps = {
+      {PartKind::Range, pfnc::kCoord3dC32f, w, h, zb},
+      {PartKind::CoordinateMapA, pfnc::kCoord3dA32f, w, h, ab},
+      {PartKind::CoordinateMapB, pfnc::kCoord3dB32f, w, h, bb}};
   const core::PointCloud c = decodeParts(with_maps, p);
   EXPECT_FALSE(core::isValid(c.points_mm[5]));
   const std::size_t i = 2 * w + 6;
-  // x = z (A - ppu) / f = 700 (6.25 - 3.5) / 1000; y = z (B - ppv) / (f aspect) = 700 (1.5 - 2.5) / 1100
+  // x = z (A - ppu) / f = 700 (6.25 - 3.5) / 1000; y = z (B - ppv) / (f aspect) = 700 (1.5 - 2.5) /
+  // 1100
   EXPECT_NEAR(c.points_mm[i].x(), 700.0 * 2.75 / 1000.0, 1e-4);
   EXPECT_NEAR(c.points_mm[i].y(), -700.0 / 1100.0, 1e-4);
   EXPECT_EQ(c.points_mm[i].z(), 700.0f);
@@ -104,12 +107,15 @@ TEST(MultipartDecoder, RejectsMalformedBuffersWithProtocolErrors) {
     }
     return DeviceErrorKind::Unsupported; // "no error" marker, never expected below
   };
-  EXPECT_EQ(kindOf({{PartKind::Intensity, pfnc::kMono8, 4, 4, bytes}}), DeviceErrorKind::Protocol); // no Range
-  EXPECT_EQ(kindOf({{PartKind::Range, pfnc::kCoord3dAbc32f, 4, 4, half}}), DeviceErrorKind::Protocol);  // truncated
+  EXPECT_EQ(kindOf({{PartKind::Intensity, pfnc::kMono8, 4, 4, bytes}}),
+            DeviceErrorKind::Protocol); // no Range
+  EXPECT_EQ(kindOf({{PartKind::Range, pfnc::kCoord3dAbc32f, 4, 4, half}}),
+            DeviceErrorKind::Protocol); // truncated
   EXPECT_EQ(kindOf({{PartKind::Range, pfnc::kCoord3dAbc32f, 4, 4, bytes},
                     {PartKind::Confidence, pfnc::kConfidence8, 2, 2, bytes}}),
             DeviceErrorKind::Protocol); // grids disagree
-  EXPECT_EQ(kindOf({{PartKind::Range, 0x01080099u, 4, 4, bytes}}), DeviceErrorKind::Protocol); // unknown format
+  EXPECT_EQ(kindOf({{PartKind::Range, 0x01080099u, 4, 4, bytes}}),
+            DeviceErrorKind::Protocol); // unknown format
 }
 
 TEST(MultipartDecoder, GuessesComponentsFromPixelFormats) {

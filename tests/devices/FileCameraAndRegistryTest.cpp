@@ -9,11 +9,10 @@
 #include "tests/devices/SyntheticScene.h"
 #include "tests/support/TempDir.h"
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include <condition_variable>
+#include <gtest/gtest.h>
 #include <mutex>
+#include <nlohmann/json.hpp>
 
 using namespace scanpick;
 using namespace std::chrono_literals;
@@ -23,7 +22,8 @@ namespace {
 /// Three clouds told apart by a z offset of 0, 10, 20 mm, saved in mm.
 void writeSequence(const std::filesystem::path& dir) {
   for (int i = 0; i < 3; ++i)
-    core::saveCloudPcd(dir / ("frame-" + std::to_string(i) + ".pcd"), test::syntheticBinScene(40, 30, 40.0, 10.0f * i));
+    core::saveCloudPcd(dir / ("frame-" + std::to_string(i) + ".pcd"),
+                       test::syntheticBinScene(40, 30, 40.0, 10.0f * i));
 }
 
 devices::DeviceErrorKind kindOf(const std::function<void()>& f) {
@@ -61,7 +61,8 @@ TEST(FileCamera, MetresAreDetectedAndConverted) {
     p /= 1000.0f; // the file holds metres (an 800 mm plane at 0.8)
   core::saveCloudPcd(dir / "m.pcd", metres);
   devices::FileCamera camera(dir / "m.pcd");
-  EXPECT_NEAR(camera.capture(1000ms).cloud.points_mm[15 * 40 + 20].z(), mm.points_mm[15 * 40 + 20].z(), 1e-3);
+  EXPECT_NEAR(camera.capture(1000ms).cloud.points_mm[15 * 40 + 20].z(),
+              mm.points_mm[15 * 40 + 20].z(), 1e-3);
 }
 
 TEST(FileCamera, VanishedFileEndsWithAClearErrorAndReopenContinues) {
@@ -101,7 +102,6 @@ TEST(FileCamera, StreamCallsBackOnTheDeviceThreadAndReportsTheEnd) {
         cv.notify_all();
       },
       1000ms);
-  EXPECT_EQ(kindOf([&] { camera.startStream({}, {}, 1000ms); }), devices::DeviceErrorKind::Busy);
   {
     std::unique_lock lock(m);
     ASSERT_TRUE(cv.wait_for(lock, 10s, [&] { return end.has_value(); }));
@@ -109,6 +109,19 @@ TEST(FileCamera, StreamCallsBackOnTheDeviceThreadAndReportsTheEnd) {
   camera.stopStream();
   EXPECT_EQ(indices, (std::vector<std::uint64_t>{0, 1, 2}));
   EXPECT_EQ(*end, devices::DeviceErrorKind::StreamEnded);
+}
+
+TEST(FileCamera, SecondStreamOrCaptureWhileStreamingIsBusy) {
+  test::TempDir dir;
+  writeSequence(dir.path());
+  devices::FileCamera camera(dir.path(), /*loop=*/true); // never ends by itself
+  std::atomic<int> frames{0};
+  camera.startStream([&](const devices::Frame&) { ++frames; }, {}, 1000ms);
+  EXPECT_EQ(kindOf([&] { camera.startStream({}, {}, 1000ms); }), devices::DeviceErrorKind::Busy);
+  EXPECT_EQ(kindOf([&] { camera.capture(1000ms); }), devices::DeviceErrorKind::Busy);
+  camera.stopStream();
+  EXPECT_FALSE(camera.isStreaming());
+  EXPECT_NO_THROW(camera.capture(1000ms)); // usable again after the stream
 }
 
 TEST(CameraRegistry, BadIdsSayWhatToDo) {
@@ -119,7 +132,9 @@ TEST(CameraRegistry, BadIdsSayWhatToDo) {
     } catch (const devices::DeviceError& e) {
       EXPECT_EQ(e.kind(), devices::DeviceErrorKind::NotFound) << id;
       const std::string what = e.what();
-      EXPECT_TRUE(what.find("kinect:") != std::string::npos || what.find("check the path") != std::string::npos) << what;
+      EXPECT_TRUE(what.find("kinect:") != std::string::npos ||
+                  what.find("check the path") != std::string::npos)
+          << what;
     }
   }
 }
@@ -167,7 +182,8 @@ TEST(CaptureWriter, FramesAndSidecarsAreWrittenAtomicallyWithNumberedNames) {
     FAIL();
   } catch (const devices::DeviceError& e) {
     EXPECT_EQ(e.kind(), devices::DeviceErrorKind::StreamEnded);
-    EXPECT_NE(std::string(e.what()).find("3 of 5 frame(s) were saved"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("3 of 5 frame(s) were saved"), std::string::npos)
+        << e.what();
   }
   EXPECT_EQ(test::fileCount(dir.path() / "out"), 4u + 6u);
   EXPECT_EQ(devices::framePath("a/b.pcd", 0, 1), std::filesystem::path("a/b.pcd"));
@@ -177,13 +193,13 @@ TEST(UsbMonitor, NothingPluggedInIsAnEmptyListNotAnError) {
   std::vector<devices::KinectUsbDevice> list;
   ASSERT_NO_THROW(list = devices::listKinectUsbDevices());
   for (const auto& d : list) // on a machine with a Kinect, only Kinect functions are listed
-    EXPECT_TRUE(d.role == devices::KinectUsbRole::Camera || d.role == devices::KinectUsbRole::Motor ||
-                d.role == devices::KinectUsbRole::Audio);
+    EXPECT_TRUE(d.role == devices::KinectUsbRole::Camera ||
+                d.role == devices::KinectUsbRole::Motor || d.role == devices::KinectUsbRole::Audio);
   std::atomic<int> events{0};
   {
     devices::UsbMonitor monitor([&](const devices::UsbEvent&) { ++events; }, 50);
     std::this_thread::sleep_for(200ms);
-  } // stops and joins
+  }                            // stops and joins
   EXPECT_EQ(events.load(), 0); // nothing was plugged in meanwhile
 }
 

@@ -9,11 +9,10 @@
 #include "tests/devices/SyntheticScene.h"
 #include "tests/support/TempDir.h"
 
-#include <gtest/gtest.h>
-
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <gtest/gtest.h>
 
 using namespace scanpick;
 using namespace std::chrono_literals;
@@ -34,12 +33,14 @@ core::PointCloud scene() {
 
 /// Records `frames` frames of `cloud_mm` with the recorder tool (a child process, see
 /// OniRecorderTool.cpp); returns its stderr, empty on success.
-std::string recordOni(const std::filesystem::path& oni, const core::PointCloud& cloud_mm, int frames) {
+std::string recordOni(const std::filesystem::path& oni, const core::PointCloud& cloud_mm,
+                      int frames) {
   const auto src = oni.parent_path() / "source.pcd";
   core::saveCloudPcd(src, cloud_mm);
   const auto err_file = oni.parent_path() / "recorder.txt";
-  const std::string cmd = std::string("'") + SCANPICK_ONI_RECORDER + "' '" + src.string() + "' mm '" + oni.string() +
-                          "' " + std::to_string(frames) + " 58 45 2> '" + err_file.string() + "'";
+  const std::string cmd = std::string("'") + SCANPICK_ONI_RECORDER + "' '" + src.string() +
+                          "' mm '" + oni.string() + "' " + std::to_string(frames) + " 58 45 2> '" +
+                          err_file.string() + "'";
   const int status = std::system(cmd.c_str());
   std::string err = core::readFile(err_file);
   if (status != 0 && err.empty())
@@ -77,8 +78,10 @@ TEST(OniPlayback, RecordedDepthPlaysBackExactly) {
       if (!valid)
         continue;
       max_dz = std::max(max_dz, std::abs(static_cast<double>(g.z()) - std::round(z)));
-      const double u = static_cast<double>(i % source.width), v = static_cast<double>(i / source.width);
-      max_dxy = std::max({max_dxy, std::abs(g.x() - (u - k.cx) * g.z() / k.fx), std::abs(g.y() - (v - k.cy) * g.z() / k.fy)});
+      const double u = static_cast<double>(i % source.width),
+                   v = static_cast<double>(i / source.width);
+      max_dxy = std::max({max_dxy, std::abs(g.x() - (u - k.cx) * g.z() / k.fx),
+                          std::abs(g.y() - (v - k.cy) * g.z() / k.fy)});
     }
     EXPECT_EQ(validity_mismatch, 0u);
     EXPECT_EQ(max_dz, 0.0);
@@ -108,7 +111,8 @@ TEST(OniPlayback, TruncatedRecordingEndsWithAClearError) {
   // Cut early (the header survives, frame data does not) and late (some frames survive).
   for (const double keep : {0.3, 0.6, 0.9}) {
     const auto cut = dir / ("cut-" + std::to_string(static_cast<int>(keep * 100)) + ".oni");
-    std::ofstream(cut, std::ios::binary) << bytes.substr(0, static_cast<std::size_t>(bytes.size() * keep));
+    std::ofstream(cut, std::ios::binary)
+        << bytes.substr(0, static_cast<std::size_t>(bytes.size() * keep));
     std::size_t frames = 0;
     try {
       auto camera = devices::openCamera("oni:" + cut.string());
@@ -116,10 +120,12 @@ TEST(OniPlayback, TruncatedRecordingEndsWithAClearError) {
         camera->capture(1000ms);
       ADD_FAILURE() << "a truncated recording played 10 frames";
     } catch (const devices::DeviceError& e) {
-      EXPECT_TRUE(e.kind() == devices::DeviceErrorKind::StreamEnded || e.kind() == devices::DeviceErrorKind::Protocol)
+      EXPECT_TRUE(e.kind() == devices::DeviceErrorKind::StreamEnded ||
+                  e.kind() == devices::DeviceErrorKind::Protocol)
           << devices::toString(e.kind()) << ": " << e.what();
       EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
-      std::printf("cut at %.0f%%: %zu frame(s), then %s: %s\n", keep * 100, frames, devices::toString(e.kind()), e.what());
+      std::printf("cut at %.0f%%: %zu frame(s), then %s: %s\n", keep * 100, frames,
+                  devices::toString(e.kind()), e.what());
     }
     EXPECT_LT(frames, 4u);
   }

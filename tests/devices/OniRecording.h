@@ -4,26 +4,26 @@
 // The result is played back through OpenNI2 by the code under test.
 #include "core/cloud/PointCloud.h"
 
+#include <XnCppWrapper.h>
+#include <XnPropNames.h>
 #include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <XnCppWrapper.h>
-#include <XnPropNames.h>
 
 namespace scanpick::test {
 
 /// Records `frames` copies of the depth of `scene_mm` (organized; z rounded to whole mm, 0 where
 /// invalid) with the given fields of view (radians). Returns an empty string on success, else
 /// the OpenNI error.
-inline std::string recordOni(const std::filesystem::path& path, const core::PointCloud& scene_mm, int frames,
-                             double hfov_rad, double vfov_rad) {
+inline std::string recordOni(const std::filesystem::path& path, const core::PointCloud& scene_mm,
+                             int frames, double hfov_rad, double vfov_rad) {
   const XnUInt32 w = scene_mm.width, h = scene_mm.height;
   std::vector<XnDepthPixel> depth(static_cast<std::size_t>(w) * h, 0);
   for (std::size_t i = 0; i < depth.size(); ++i) {
     const float z = scene_mm.points_mm[i].z();
-    depth[i] = std::isfinite(z) && z > 0 && z < 65535 ? static_cast<XnDepthPixel>(std::lround(z)) : 0;
+    depth[i] =
+        std::isfinite(z) && z > 0 && z < 65535 ? static_cast<XnDepthPixel>(std::lround(z)) : 0;
   }
   xn::Context context;
   XnStatus s = context.Init();
@@ -58,7 +58,8 @@ inline std::string recordOni(const std::filesystem::path& path, const core::Poin
     return fail("Recorder::AddNodeToRecording");
   for (int f = 0; f < frames; ++f) {
     if ((s = mock.SetData(static_cast<XnUInt32>(f + 1), static_cast<XnUInt64>(f) * 33333,
-                          static_cast<XnUInt32>(depth.size() * sizeof(XnDepthPixel)), depth.data())) != XN_STATUS_OK)
+                          static_cast<XnUInt32>(depth.size() * sizeof(XnDepthPixel)),
+                          depth.data())) != XN_STATUS_OK)
       return fail("MockDepthGenerator::SetData");
     if ((s = recorder.Record()) != XN_STATUS_OK)
       return fail("Recorder::Record");

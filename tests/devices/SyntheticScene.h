@@ -11,8 +11,8 @@ namespace scanpick::test {
 /// width x height grid, focal length `f_px`; the plane is 800 mm away, tilted 10° about x; the
 /// box (120 x 80 mm footprint, 60 mm tall) sits in the middle. `z_offset_mm` shifts everything
 /// (lets a test tell frames apart).
-inline core::PointCloud syntheticBinScene(std::uint32_t width, std::uint32_t height, double f_px = 400.0,
-                                          float z_offset_mm = 0.0f) {
+inline core::PointCloud syntheticBinScene(std::uint32_t width, std::uint32_t height,
+                                          double f_px = 400.0, float z_offset_mm = 0.0f) {
   core::PointCloud cloud;
   cloud.width = width;
   cloud.height = height;
@@ -32,7 +32,8 @@ inline core::PointCloud syntheticBinScene(std::uint32_t width, std::uint32_t hei
       const double x = rx * z, y = ry * z;
       if (std::abs(x) < 60.0 && std::abs(y) < 40.0)
         z -= 60.0; // box top
-      cloud.points_mm[i] = {static_cast<float>(rx * z), static_cast<float>(ry * z), static_cast<float>(z) + z_offset_mm};
+      cloud.points_mm[i] = {static_cast<float>(rx * z), static_cast<float>(ry * z),
+                            static_cast<float>(z) + z_offset_mm};
     }
   return cloud;
 }

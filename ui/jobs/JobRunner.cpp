@@ -12,6 +12,8 @@ void JobRunner::cancel() {
   if (m_current) {
     m_current->cancel();
     m_current = nullptr;
+    // A result computed before the cancel but not yet delivered is stale too.
+    ++m_generation;
   }
 }
 

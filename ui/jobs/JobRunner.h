@@ -42,9 +42,10 @@ public:
               std::function<void(std::shared_ptr<const R>)> on_done,
               std::function<void(const QString&)> on_error = {});
 
-  /// Cancels the running job; its result, if any arrives, is dropped.
+  /// Cancels the running job; its result is dropped even if it was already computed.
   void cancel();
   [[nodiscard]] bool busy() const { return m_running > 0; }
+  /// Generation of the newest job (cancel() advances it, so numbers may skip).
   [[nodiscard]] quint64 generation() const { return m_generation; }
   /// Results that arrived after a newer job had started and were discarded.
   [[nodiscard]] int droppedCount() const { return m_dropped; }

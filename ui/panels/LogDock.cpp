@@ -72,7 +72,10 @@ void LogDock::appendLine(int level, const QString& text) {
   m_view->verticalScrollBar()->setValue(m_view->verticalScrollBar()->maximum());
 }
 
-int LogDock::lineCount() const { return m_view->document()->blockCount(); }
+int LogDock::lineCount() const {
+  // An empty document still has one (empty) block.
+  return m_view->document()->isEmpty() ? 0 : m_view->document()->blockCount();
+}
 
 QString LogDock::text() const { return m_view->toPlainText(); }
 

@@ -28,7 +28,8 @@ core::eval::PartInfo partInfoOf(const core::Part& part) {
 }
 
 /// Outcome of one detection at `T_est` against one instance at `T_true`.
-core::eval::DetectionOutcome judge(const core::eval::PartInfo& part, const Eigen::Isometry3d& T_true,
+core::eval::DetectionOutcome judge(const core::eval::PartInfo& part,
+                                   const Eigen::Isometry3d& T_true,
                                    const Eigen::Isometry3d& T_est) {
   const auto teach = test::makeTeachTruth(part);
   core::eval::GroundTruth truth;
@@ -85,12 +86,14 @@ TEST(EvalBuiltInParts, ScannerGroundTruthScoresPerfectDetectionsPerfectly) {
   scene_request.layout = core::LayoutKind::Scatter;
   scene_request.count = 3;
   scene_request.seed = 4;
-  const auto teach = core::eval::parseGroundTruth(
-      nlohmann::json::parse(core::groundTruthJson(core::synthesize(teach_request), "t.pcd", "t.png")),
-      "teach");
-  const auto truth = core::eval::parseGroundTruth(
-      nlohmann::json::parse(core::groundTruthJson(core::synthesize(scene_request), "s.pcd", "s.png")),
-      "scene");
+  const auto teach =
+      core::eval::parseGroundTruth(nlohmann::json::parse(core::groundTruthJson(
+                                       core::synthesize(teach_request), "t.pcd", "t.png")),
+                                   "teach");
+  const auto truth =
+      core::eval::parseGroundTruth(nlohmann::json::parse(core::groundTruthJson(
+                                       core::synthesize(scene_request), "s.pcd", "s.png")),
+                                   "scene");
   ASSERT_EQ(teach.instances.size(), 1u);
   ASSERT_EQ(truth.instances.size(), 3u);
   EXPECT_EQ(truth.parts.at("pump-connector").symmetry.discrete.size(), 7u);

@@ -22,9 +22,14 @@ json truthJson(const std::string& kind, const std::vector<Eigen::Isometry3d>& po
                const std::string& part = "widget") {
   json instances = json::array();
   for (std::size_t i = 0; i < poses.size(); ++i)
-    instances.push_back({{"id", i}, {"part", part}, {"T_scene_part", transformToJson(poses[i])},
-                         {"visible_fraction", 0.8}, {"visible_points", 800}});
-  return {{"format", "scanpick-ground-truth"}, {"version", 1}, {"units", "mm"},
+    instances.push_back({{"id", i},
+                         {"part", part},
+                         {"T_scene_part", transformToJson(poses[i])},
+                         {"visible_fraction", 0.8},
+                         {"visible_points", 800}});
+  return {{"format", "scanpick-ground-truth"},
+          {"version", 1},
+          {"units", "mm"},
           {"scene", {{"kind", kind}, {"seed", 7}, {"cloud", "scene.pcd"}}},
           {"sensor", {{"preset", "phoxi-m-1032"}}},
           {"parts",
@@ -46,13 +51,18 @@ json resultsJson(const std::vector<Eigen::Isometry3d>& part_poses, const json& t
   for (std::size_t i = 0; i < part_poses.size(); ++i) {
     const Eigen::Isometry3d T_scene_model =
         part_poses[i] * T_teach_part.inverse() * test::testTeachModel();
-    detections.push_back({{"id", i}, {"score", 0.9 - 0.1 * static_cast<double>(i)},
+    detections.push_back({{"id", i},
+                          {"score", 0.9 - 0.1 * static_cast<double>(i)},
                           {"T_scene_model", transformToJson(T_scene_model)}});
   }
-  return {{"format", "scanpick-results"}, {"version", 1}, {"units", "mm"}, {"scene", "scene.pcd"},
-          {"model", {{"name", model_name}, {"T_teach_model", transformToJson(test::testTeachModel())}}},
-          {"detections", detections},
-          {"timings_ms", {{"total", 120.0}}}};
+  return {
+      {"format", "scanpick-results"},
+      {"version", 1},
+      {"units", "mm"},
+      {"scene", "scene.pcd"},
+      {"model", {{"name", model_name}, {"T_teach_model", transformToJson(test::testTeachModel())}}},
+      {"detections", detections},
+      {"timings_ms", {{"total", 120.0}}}};
 }
 
 void write(const std::filesystem::path& path, const json& doc) {
@@ -60,8 +70,7 @@ void write(const std::filesystem::path& path, const json& doc) {
 }
 
 /// Runs `f`, expects core::Error whose message contains `fragment`.
-template <typename F>
-void expectError(F&& f, const std::string& fragment) {
+template <typename F> void expectError(F&& f, const std::string& fragment) {
   try {
     f();
     ADD_FAILURE() << "no error; expected one mentioning '" << fragment << "'";
@@ -119,7 +128,8 @@ TEST(EvalFiles, BadInputThrowsClearErrors) {
   expectError([&] { core::eval::loadResults(f.dir / "absent.json"); }, "does not exist");
   core::writeFileAtomic(f.dir / "broken.json", "{\"format\": \"scanpick-results\", ");
   expectError([&] { core::eval::loadResults(f.dir / "broken.json"); }, "not valid JSON");
-  expectError([&] { core::eval::loadResults(f.dir / "scene.gt.json"); }, "expected \"scanpick-results\"");
+  expectError([&] { core::eval::loadResults(f.dir / "scene.gt.json"); },
+              "expected \"scanpick-results\"");
 
   json future = good;
   future["version"] = 2;
@@ -130,7 +140,7 @@ TEST(EvalFiles, BadInputThrowsClearErrors) {
   json no_teach_model = good;
   no_teach_model["model"].erase("T_teach_model");
   expectError([&] { f.evalResults(no_teach_model); }, "T_teach_model");
-  json nan = good;  // JSON writers turn NaN into null
+  json nan = good; // JSON writers turn NaN into null
   nan["detections"][0]["T_scene_model"][1][2] = nullptr;
   expectError([&] { f.evalResults(nan); }, "NaN");
   json scaled = good;
@@ -168,8 +178,7 @@ TEST(EvalFiles, SuiteModeAggregatesScenes) {
 
   const auto teach_truths = core::eval::findTeachTruths(suite.path());
   ASSERT_EQ(teach_truths.size(), 1u);
-  const auto report =
-      core::eval::evaluateSuite(suite.path(), results.path(), teach_truths, {});
+  const auto report = core::eval::evaluateSuite(suite.path(), results.path(), teach_truths, {});
   ASSERT_EQ(report.scenes.size(), 2u);
   EXPECT_EQ(report.overall.detections, 3);
   EXPECT_EQ(report.overall.true_positives, 2);
@@ -182,7 +191,8 @@ TEST(EvalFiles, SuiteModeAggregatesScenes) {
 }
 
 TEST(EvalFiles, TeachTruthsAreFoundAndChosenPerResults) {
-  // synth-suite's layout: out/phoxi-bin/scene-XXX.gt.json and out/teach/phoxi-m-1032/<part>.gt.json.
+  // synth-suite's layout: out/phoxi-bin/scene-XXX.gt.json and
+  // out/teach/phoxi-m-1032/<part>.gt.json.
   test::TempDir out;
   std::filesystem::create_directories(out / "phoxi-bin");
   std::filesystem::create_directories(out.path() / "teach" / "phoxi-m-1032");
@@ -210,7 +220,7 @@ TEST(EvalFiles, TeachTruthsAreFoundAndChosenPerResults) {
                                  core::eval::selectTeachTruth(teach, widget_results, truth), {},
                                  "scene-000")},
       {});
-  EXPECT_EQ(report.overall.instances, 0);  // no widget in a bin of gears
+  EXPECT_EQ(report.overall.instances, 0); // no widget in a bin of gears
   EXPECT_EQ(report.overall.true_positives, 0);
 
   expectError([&] { core::eval::loadTeachTruths({}, out / "phoxi-bin" / "nowhere"); },

@@ -9,7 +9,9 @@
 
 namespace scanpick::test {
 
-inline double degToRad(double deg) { return deg * std::numbers::pi / 180.0; }
+inline double degToRad(double deg) {
+  return deg * std::numbers::pi / 180.0;
+}
 
 /// Pose from a translation (mm) and a rotation of `angle_deg` about `axis`.
 inline Eigen::Isometry3d pose(const Eigen::Vector3d& t_mm, double angle_deg = 0.0,
@@ -41,7 +43,9 @@ inline core::eval::GroundTruth makeTeachTruth(const core::eval::PartInfo& part) 
 }
 
 /// The model frame the "recognizer" chose inside the teach scan (arbitrary, like a centroid).
-inline Eigen::Isometry3d testTeachModel() { return pose({2, 4, 690}, -15, Eigen::Vector3d(0, 1, 1)); }
+inline Eigen::Isometry3d testTeachModel() {
+  return pose({2, 4, 690}, -15, Eigen::Vector3d(0, 1, 1));
+}
 
 /// The T_scene_model a perfect recognizer reports for a part at `T_scene_part`: the inverse of
 /// T_scene_part = T_scene_model · T_teach_model⁻¹ · T_teach_part.

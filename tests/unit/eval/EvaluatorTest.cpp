@@ -1,6 +1,7 @@
 // Matching, symmetry-aware errors and metrics of the evaluator, on ground truth built in code.
-#include "core/common/Error.h"
 #include "core/eval/Evaluator.h"
+
+#include "core/common/Error.h"
 #include "tests/unit/eval/EvalTestSupport.h"
 
 #include <gtest/gtest.h>
@@ -17,9 +18,11 @@ GroundTruth binOf(const core::eval::PartInfo& part) {
   truth.source = "bin (test)";
   truth.kind = "bin";
   truth.parts[part.name] = part;
-  truth.instances.push_back({10, part.name, pose({0, 0, 800}, 40, Eigen::Vector3d(1, 0, 1)), 0.9, 900});
+  truth.instances.push_back(
+      {10, part.name, pose({0, 0, 800}, 40, Eigen::Vector3d(1, 0, 1)), 0.9, 900});
   truth.instances.push_back({11, part.name, pose({100, 20, 810}, 170), 0.7, 700});
-  truth.instances.push_back({12, part.name, pose({-90, 40, 790}, -60, Eigen::Vector3d::UnitY()), 0.3, 300});
+  truth.instances.push_back(
+      {12, part.name, pose({-90, 40, 790}, -60, Eigen::Vector3d::UnitY()), 0.3, 300});
   return truth;
 }
 
@@ -52,7 +55,7 @@ TEST(Evaluator, PerfectDetectionsScoreOneAndZeroError) {
   EXPECT_NEAR(s.average_precision, 1.0, 1e-12);
   EXPECT_NEAR(s.translation_mm.max, 0.0, 1e-9);
   EXPECT_NEAR(s.rotation_deg.max, 0.0, 1e-6);
-  EXPECT_EQ(s.grip_mm.count, 3u);  // one grip point per true positive
+  EXPECT_EQ(s.grip_mm.count, 3u); // one grip point per true positive
   EXPECT_NEAR(s.grip_mm.max, 0.0, 1e-9);
   EXPECT_DOUBLE_EQ(s.time_ms.median, 250.0);
 }
@@ -66,9 +69,9 @@ TEST(Evaluator, MovedOrTurnedDetectionIsFalsePositive) {
   const Eigen::Isometry3d T_true = pose({10, 20, 800}, 25, Eigen::Vector3d(0, 1, 0));
   truth.instances.push_back({0, part.name, T_true, 1.0, 1000});
 
-  const Eigen::Isometry3d moved = pose({8, 0, 0}) * T_true;                  // 8 mm off
-  const Eigen::Isometry3d turned = T_true * pose({0, 0, 0}, 20, Eigen::Vector3d::UnitX());  // 20°
-  const Eigen::Isometry3d close = pose({0, 3, 0}) * T_true * pose({0, 0, 0}, 5);  // 3 mm, 5°
+  const Eigen::Isometry3d moved = pose({8, 0, 0}) * T_true; // 8 mm off
+  const Eigen::Isometry3d turned = T_true * pose({0, 0, 0}, 20, Eigen::Vector3d::UnitX()); // 20°
+  const Eigen::Isometry3d close = pose({0, 3, 0}) * T_true * pose({0, 0, 0}, 5); // 3 mm, 5°
   for (const auto& [T_est, tp, t_mm, r_deg] :
        {std::tuple{moved, false, 8.0, 0.0}, std::tuple{turned, false, 0.0, 20.0},
         std::tuple{close, true, 3.0, 5.0}}) {
@@ -142,7 +145,7 @@ TEST(Evaluator, ContinuousAxisIgnoresRotationAboutIt) {
 TEST(Evaluator, GreedyOneToOneMatchingAndThresholdSweep) {
   const auto part = test::makePart("widget", 60.0);
   const auto teach = test::makeTeachTruth(part);
-  const auto truth = binOf(part);  // instances 10, 11 count for recall, 12 does not
+  const auto truth = binOf(part); // instances 10, 11 count for recall, 12 does not
   auto results = test::makeResults();
   // Scores 0.9 (on 10), 0.8 (duplicate of 10, 1 mm off), 0.7 (on 11), 0.6 (nowhere).
   test::addDetection(results, 0.9, truth.instances[0].T_scene_part, teach);
@@ -158,8 +161,8 @@ TEST(Evaluator, GreedyOneToOneMatchingAndThresholdSweep) {
   EXPECT_FALSE(scene.outcomes[3].true_positive);
 
   const auto s = core::eval::summarize({scene}, "all");
-  EXPECT_DOUBLE_EQ(*s.precision, 0.5);  // 2 of 4
-  EXPECT_DOUBLE_EQ(*s.recall, 1.0);     // both visible instances
+  EXPECT_DOUBLE_EQ(*s.precision, 0.5); // 2 of 4
+  EXPECT_DOUBLE_EQ(*s.recall, 1.0);    // both visible instances
   // Thresholds: >=0.9 -> P 1, R 0.5; >=0.8 -> P 0.5; >=0.7 -> P 2/3, R 1; >=0.6 -> P 0.5.
   // Only the first keeps 99 % precision.
   EXPECT_DOUBLE_EQ(s.recall_at_99_precision, 0.5);
@@ -181,8 +184,8 @@ TEST(Evaluator, DetectionOfAnotherPartIsFalsePositive) {
   const auto scene = evaluate(truth, results, teach);
   EXPECT_EQ(scene.instances, 0);
   EXPECT_FALSE(scene.outcomes.front().true_positive);
-  EXPECT_FALSE(scene.outcomes.front().error);  // no widget to compare with
-  EXPECT_FALSE(core::eval::summarize({scene}, "all").recall);  // undefined without instances
+  EXPECT_FALSE(scene.outcomes.front().error);                 // no widget to compare with
+  EXPECT_FALSE(core::eval::summarize({scene}, "all").recall); // undefined without instances
 }
 
 TEST(Evaluator, StatsUseLinearInterpolation) {
@@ -201,7 +204,7 @@ TEST(Evaluator, SymmetryGroupIsClosedAndBounded) {
   symmetry.discrete.push_back(pose({0, 0, 0}, 180, Eigen::Vector3d::UnitX()));
   // 4-fold about z plus a flip: the dihedral group D4 with 8 elements.
   EXPECT_EQ(core::eval::symmetryGroup(symmetry, 50.0).size(), 8u);
-  symmetry.discrete = {pose({0, 0, 0}, 1.0 / std::numbers::pi)};  // never closes
+  symmetry.discrete = {pose({0, 0, 0}, 1.0 / std::numbers::pi)}; // never closes
   EXPECT_THROW(core::eval::symmetryGroup(symmetry, 50.0), core::Error);
 }
 

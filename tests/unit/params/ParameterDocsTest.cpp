@@ -1,6 +1,7 @@
 // docs/parameters.md is the output of `scanpick-cli params --markdown`: it must match the table.
-#include "core/common/AtomicFile.h"
 #include "core/params/ParameterDocs.h"
+
+#include "core/common/AtomicFile.h"
 
 #include <filesystem>
 #include <gtest/gtest.h>
@@ -37,6 +38,6 @@ TEST(ParameterDocs, PresetValuesAppearInTheirOwnColumn) {
   core::RecognitionParams preset;
   preset.matching.position_tolerance_mm = 7.25;
   const std::string markdown = core::parametersMarkdown(preset, "test");
-  EXPECT_NE(markdown.find("| 20 | 7.25 |"), std::string::npos);  // default 20, preset 7.25
+  EXPECT_NE(markdown.find("| 20 | 7.25 |"), std::string::npos); // default 20, preset 7.25
   EXPECT_NE(markdown.find("preset **test**"), std::string::npos);
 }

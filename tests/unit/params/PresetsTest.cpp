@@ -11,7 +11,8 @@ using namespace scanpick;
 
 namespace {
 
-const std::filesystem::path kPresetDir = std::filesystem::path(SCANPICK_SOURCE_DIR) / "resources" / "presets";
+const std::filesystem::path kPresetDir =
+    std::filesystem::path(SCANPICK_SOURCE_DIR) / "resources" / "presets";
 
 /// One row set of a thesis table: Ransac size, Ransac threshold circles / lines (mm), Neig.
 /// position range (mm), Score ("-" = 0), Matching length, radius size, position (mm),
@@ -32,8 +33,8 @@ const std::map<std::string, ThesisTable>& thesisTables() {
       {"pump-component", {50, 5, 5, 0.6, 0.1, 60, 60, 20, 0.25}}, // table 5.5
       // Table 5.6 says Ransac size 0; the parameter's minimum is 2 (see the preset).
       {"kinect", {2, 5, 5, 3, 0.1, 60, 60, 10, 0.25}},
-      {"coat-rack-0", {10, 2, 2, 0.5, 0.1, 10, 10, 5, 0.25}},     // table 5.7
-      {"coat-rack-1", {10, 2, 2, 0.5, 0.1, 10, 10, 2, 0.25}},     // table 5.8
+      {"coat-rack-0", {10, 2, 2, 0.5, 0.1, 10, 10, 5, 0.25}}, // table 5.7
+      {"coat-rack-1", {10, 2, 2, 0.5, 0.1, 10, 10, 2, 0.25}}, // table 5.8
   };
   return tables;
 }

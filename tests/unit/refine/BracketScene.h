@@ -24,19 +24,25 @@ struct DrilledBox {
   Eigen::Vector3d hole_centre = Eigen::Vector3d::Zero();
 
   /// First entry of the ray o + t d (t > eps) into the solid, part frame.
-  [[nodiscard]] std::optional<double> hit(const Eigen::Vector3d& o, const Eigen::Vector3d& d) const {
-    double t0 = -std::numeric_limits<double>::infinity(), t1 = std::numeric_limits<double>::infinity();
+  [[nodiscard]] std::optional<double> hit(const Eigen::Vector3d& o,
+                                          const Eigen::Vector3d& d) const {
+    double t0 = -std::numeric_limits<double>::infinity(),
+           t1 = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
       if (std::abs(d[a]) < 1e-12) {
-        if (o[a] < min[a] || o[a] > max[a]) return std::nullopt;
+        if (o[a] < min[a] || o[a] > max[a])
+          return std::nullopt;
         continue;
       }
       double ta = (min[a] - o[a]) / d[a], tb = (max[a] - o[a]) / d[a];
-      if (ta > tb) std::swap(ta, tb);
+      if (ta > tb)
+        std::swap(ta, tb);
       t0 = std::max(t0, ta), t1 = std::min(t1, tb);
     }
-    if (t0 > t1 || t0 <= 1e-6) return std::nullopt;
-    if (hole_radius <= 0) return t0;
+    if (t0 > t1 || t0 <= 1e-6)
+      return std::nullopt;
+    if (hole_radius <= 0)
+      return t0;
     // The ray's interval inside the infinite hole cylinder.
     const int u = (hole_axis + 1) % 3, v = (hole_axis + 2) % 3;
     const double ou = o[u] - hole_centre[u], ov = o[v] - hole_centre[v];
@@ -44,16 +50,20 @@ struct DrilledBox {
     const double C = ou * ou + ov * ov - hole_radius * hole_radius;
     double c0, c1;
     if (A < 1e-12) {
-      if (C >= 0) return t0;
+      if (C >= 0)
+        return t0;
       c0 = -std::numeric_limits<double>::infinity(), c1 = std::numeric_limits<double>::infinity();
     } else {
       const double disc = B * B - 4 * A * C;
-      if (disc <= 0) return t0;
+      if (disc <= 0)
+        return t0;
       c0 = (-B - std::sqrt(disc)) / (2 * A), c1 = (-B + std::sqrt(disc)) / (2 * A);
     }
-    if (t0 < c0 || t0 > c1) return t0;  // enters the box outside the hole
-    if (c1 < t1) return c1;             // enters through the hole's wall
-    return std::nullopt;                // passes through the hole
+    if (t0 < c0 || t0 > c1)
+      return t0; // enters the box outside the hole
+    if (c1 < t1)
+      return c1;         // enters through the hole's wall
+    return std::nullopt; // passes through the hole
   }
 };
 
@@ -84,9 +94,11 @@ inline core::PointCloud renderSolids(const std::vector<PlacedSolid>& solids,
   cloud.width = static_cast<std::uint32_t>(width);
   cloud.height = static_cast<std::uint32_t>(height);
   cloud.points_mm.assign(static_cast<std::size_t>(width) * height, core::invalidPoint());
-  if (labels) labels->assign(cloud.points_mm.size(), -2);
+  if (labels)
+    labels->assign(cloud.points_mm.size(), -2);
   std::vector<Eigen::Isometry3d> T_part_camera;
-  for (const auto& s : solids) T_part_camera.push_back(s.T_camera_part.inverse());
+  for (const auto& s : solids)
+    T_part_camera.push_back(s.T_camera_part.inverse());
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -95,19 +107,23 @@ inline core::PointCloud renderSolids(const std::vector<PlacedSolid>& solids,
       const Eigen::Vector3d d((c - (width - 1) / 2.0) / f_px, (r - (height - 1) / 2.0) / f_px, 1.0);
       double best = std::numeric_limits<double>::infinity();
       int id = -2;
-      if (floor_z_mm) best = *floor_z_mm, id = -1;
+      if (floor_z_mm)
+        best = *floor_z_mm, id = -1;
       for (std::size_t s = 0; s < solids.size(); ++s) {
         const Eigen::Vector3d o = T_part_camera[s].translation();
         const Eigen::Vector3d dp = T_part_camera[s].linear() * d;
         for (const auto& piece : solids[s].pieces)
-          if (const auto t = piece.hit(o, dp); t && *t < best) best = *t, id = static_cast<int>(s);
+          if (const auto t = piece.hit(o, dp); t && *t < best)
+            best = *t, id = static_cast<int>(s);
       }
       // Draw both numbers for every pixel so the noise of one pixel never depends on another's.
       const double n = noise(rng), drop = uniform(rng);
-      if (id == -2 || drop < dropout) continue;
+      if (id == -2 || drop < dropout)
+        continue;
       const std::size_t i = static_cast<std::size_t>(r) * width + c;
       cloud.points_mm[i] = (best * d * (1.0 + sigma_mm * n / best)).cast<float>();
-      if (labels) (*labels)[i] = id;
+      if (labels)
+        (*labels)[i] = id;
     }
   return cloud;
 }
@@ -140,9 +156,9 @@ inline std::pair<double, double> poseError(const Eigen::Isometry3d& a, const Eig
 /// The model as teach() would store it: one view of the L-bracket, model frame = teach camera
 /// axes with the origin at the points' centroid.
 struct TaughtView {
-  core::PointCloud model;                                    ///< model frame, unorganized
-  Eigen::Isometry3d T_camera_part = Eigen::Isometry3d::Identity();  ///< bracket in the teach view
-  Eigen::Isometry3d T_teach_model = Eigen::Isometry3d::Identity();  ///< model frame in the view
+  core::PointCloud model;                                          ///< model frame, unorganized
+  Eigen::Isometry3d T_camera_part = Eigen::Isometry3d::Identity(); ///< bracket in the teach view
+  Eigen::Isometry3d T_teach_model = Eigen::Isometry3d::Identity(); ///< model frame in the view
   /// Where the model sits in a scene that shows the bracket at T_scene_part.
   [[nodiscard]] Eigen::Isometry3d modelPose(const Eigen::Isometry3d& T_scene_part) const {
     return T_scene_part * T_camera_part.inverse() * T_teach_model;
@@ -162,9 +178,11 @@ inline TaughtView teachBracketView() {
   core::PointCloud valid =
       core::dropInvalid(renderSolids({teach}, std::nullopt, 400, 300, 1000, 0.1, 0, 11));
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const auto& p : valid.points_mm) centroid += p.cast<double>();
+  for (const auto& p : valid.points_mm)
+    centroid += p.cast<double>();
   centroid /= static_cast<double>(valid.size());
-  for (auto& p : valid.points_mm) p -= centroid.cast<float>();
+  for (auto& p : valid.points_mm)
+    p -= centroid.cast<float>();
   out.model = std::move(valid);
   out.T_camera_part = teach.T_camera_part;
   out.T_teach_model.translation() = centroid;

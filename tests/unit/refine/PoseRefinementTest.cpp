@@ -1,8 +1,9 @@
 // Pose refinement on a synthetic L-bracket: the model is one noisy view of it (0.5 mm pixel
 // pitch), the scene another view of it with a different sampling, 0.1 mm noise (PhoXi class),
 // 2 % dropouts, a floor under it and a box beside it. The true model pose is known exactly.
-#include "core/common/Error.h"
 #include "core/refine/PoseRefinement.h"
+
+#include "core/common/Error.h"
 #include "tests/unit/refine/BracketScene.h"
 
 #include <cstring>
@@ -16,8 +17,8 @@ using test::rotationDeg;
 namespace {
 
 struct BracketData {
-  core::PointCloud model;          ///< model frame: teach camera axes, origin at the centroid
-  core::PointCloud scene;          ///< organized, camera frame, NaN dropouts
+  core::PointCloud model; ///< model frame: teach camera axes, origin at the centroid
+  core::PointCloud scene; ///< organized, camera frame, NaN dropouts
   Eigen::Isometry3d T_scene_model_true = Eigen::Isometry3d::Identity();
   test::PlacedSolid bracket_in_scene;
 };
@@ -31,14 +32,14 @@ const BracketData& data() {
     // Scene view: another orientation and place, seen from 560 mm with f = 900 px (0.62 mm
     // between samples, so no scene point coincides with a model point).
     test::PlacedSolid part{test::lBracket(), Eigen::Isometry3d::Identity()};
-    part.T_camera_part.linear() = rotationDeg(40, Eigen::Vector3d::UnitZ()) *
-                                  rotationDeg(10, Eigen::Vector3d::UnitX()) *
-                                  rotationDeg(20, Eigen::Vector3d::UnitY()) *
-                                  rotationDeg(180, Eigen::Vector3d::UnitX());
+    part.T_camera_part.linear() =
+        rotationDeg(40, Eigen::Vector3d::UnitZ()) * rotationDeg(10, Eigen::Vector3d::UnitX()) *
+        rotationDeg(20, Eigen::Vector3d::UnitY()) * rotationDeg(180, Eigen::Vector3d::UnitX());
     part.T_camera_part.translation() =
         Eigen::Vector3d(20, -10, 560) - part.T_camera_part.linear() * Eigen::Vector3d(30, 20, 20);
     // Clutter: a 50 x 40 x 30 block beside the bracket, and the floor under both.
-    test::PlacedSolid block{{test::DrilledBox{{0, 0, 0}, {50, 40, 30}}}, Eigen::Isometry3d::Identity()};
+    test::PlacedSolid block{{test::DrilledBox{{0, 0, 0}, {50, 40, 30}}},
+                            Eigen::Isometry3d::Identity()};
     block.T_camera_part.linear() = rotationDeg(15, Eigen::Vector3d::UnitZ());
     block.T_camera_part.translation() = Eigen::Vector3d(55, -5, 550);
     const double floor_z = std::max(test::deepestZ(part), test::deepestZ(block)) + 0.5;
@@ -66,14 +67,16 @@ const core::SceneIndex& sceneIndex() {
   return index;
 }
 
-core::RefineParams defaultParams() { return core::RefineParams{}; }
+core::RefineParams defaultParams() {
+  return core::RefineParams{};
+}
 
 } // namespace
 
 TEST(PoseRefinement, FromThreeMillimetresAndFiveDegreesReachesATenthOfAMillimetre) {
   const core::RefineModel model(data().model, defaultParams().model_points);
   ASSERT_LE(model.size(), 2000u);
-  ASSERT_GE(model.size(), 1500u);  // the view holds far more points; the subsample is near 2000
+  ASSERT_GE(model.size(), 1500u); // the view holds far more points; the subsample is near 2000
   const Eigen::Vector3d directions[] = {{1, 0, 0}, {-1, 2, 0.5}, {0.3, -0.4, -1}};
   const Eigen::Vector3d axes[] = {{0, 0, 1}, {1, 1, 0}, {-0.5, 1, 2}};
   for (int k = 0; k < 3; ++k) {
@@ -86,8 +89,9 @@ TEST(PoseRefinement, FromThreeMillimetresAndFiveDegreesReachesATenthOfAMillimetr
     std::cout << "case " << k << ": error " << t << " mm, " << r << " deg, rmse " << result.rmse_mm
               << " mm, inliers " << result.inlier_fraction << ", iterations " << result.iterations
               << "\n";
-    // Noise 0.1 mm averaged over ~1000 visible points leaves a few micrometres; the bound is the
-    // project's target (sub-0.1 mm), far below the thesis's ~2 mm / 3.5°.
+    // Noise 0.1 mm averaged over ~2000 points leaves a few micrometres (measured: 0.005 mm,
+    // 0.013°); the bound is the project's target (sub-0.1 mm), far below the thesis's ~2 mm /
+    // 3.5°.
     EXPECT_LT(t, 0.1) << "case " << k;
     EXPECT_LT(r, 0.1) << "case " << k;
     EXPECT_TRUE(result.converged) << "case " << k;
@@ -115,8 +119,8 @@ TEST(PoseRefinement, FromThirtyDegreesNeverClaimsAWrongPose) {
   const Eigen::Vector3d axes[] = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {1, -1, 1}, {-2, 1, 0.5}};
   int converged = 0;
   for (const auto& axis : axes) {
-    const auto result =
-        core::refinePose(model, sceneIndex(), perturbed(3.0, {1, 1, 0}, 30.0, axis), defaultParams());
+    const auto result = core::refinePose(model, sceneIndex(), perturbed(3.0, {1, 1, 0}, 30.0, axis),
+                                         defaultParams());
     const auto [t, r] = poseError(result.T_scene_model, data().T_scene_model_true);
     std::cout << "30 deg about (" << axis.transpose() << "): converged " << result.converged
               << ", error " << t << " mm, " << r << " deg, inliers " << result.inlier_fraction
@@ -134,17 +138,50 @@ TEST(PoseRefinement, FromThirtyDegreesNeverClaimsAWrongPose) {
   std::cout << converged << " of 5 converged from 30 degrees\n";
 }
 
+TEST(PoseRefinement, BasinOfConvergenceCoversTheFeatureMatchingError) {
+  // The feature matching leaves ~2 mm / 3.5° (thesis §5). Starts that far off, then 5 mm with
+  // 10° and 15°, about five axes. Each either converges to the true pose or says it did not
+  // (min inliers 0.9).
+  const core::RefineModel model(data().model, defaultParams().model_points);
+  const Eigen::Vector3d axes[] = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {1, -1, 1}, {-2, 1, 0.5}};
+  for (const auto& [offset, angle] : {std::pair{2.0, 3.5}, {5.0, 10.0}, {5.0, 15.0}}) {
+    int converged = 0;
+    for (const auto& axis : axes) {
+      const auto result = core::refinePose(
+          model, sceneIndex(), perturbed(offset, {1, -1, 1}, angle, axis), defaultParams());
+      const auto [t, r] = poseError(result.T_scene_model, data().T_scene_model_true);
+      std::cout << offset << " mm, " << angle << " deg about (" << axis.transpose()
+                << "): converged " << result.converged << ", error " << t << " mm, " << r
+                << " deg, inliers " << result.inlier_fraction << "\n";
+      if (result.converged) {
+        ++converged;
+        EXPECT_LT(t, 0.1) << angle << " deg about " << axis.transpose();
+        EXPECT_LT(r, 0.1) << angle << " deg about " << axis.transpose();
+      }
+    }
+    // Measured: 5 of 5 from 2 mm / 3.5°, 3 of 5 from 5 mm / 10°, 1 of 5 from 5 mm / 15°. The
+    // others either drift off (inliers < 0.25) or settle with the right rotation but slid 4-6 mm
+    // along the bracket's extrusion axis, which this view sees edge-on so that only the holes
+    // hold it (inliers 0.82-0.87); none claims convergence.
+    if (angle == 3.5) {
+      EXPECT_EQ(converged, 5);
+    } else if (angle == 10.0) {
+      EXPECT_GE(converged, 3);
+    }
+  }
+}
+
 TEST(PoseRefinement, CoverageScoreSeparatesTrueAndFalsePoses) {
   const core::RefineModel model(data().model, 2000);
   const double at_truth = core::coverageScore(model, sceneIndex(), data().T_scene_model_true, 1.0);
-  const double shifted = core::coverageScore(model, sceneIndex(),
-                                             perturbed(15.0, {1, 0, 0}, 0.0, {0, 0, 1}), 1.0);
-  const double turned = core::coverageScore(model, sceneIndex(),
-                                            perturbed(0.0, {1, 0, 0}, 90.0, {0, 0, 1}), 1.0);
+  const double shifted =
+      core::coverageScore(model, sceneIndex(), perturbed(15.0, {1, 0, 0}, 0.0, {0, 0, 1}), 1.0);
+  const double turned =
+      core::coverageScore(model, sceneIndex(), perturbed(0.0, {1, 0, 0}, 90.0, {0, 0, 1}), 1.0);
   std::cout << "coverage: truth " << at_truth << ", shifted 15 mm " << shifted << ", turned 90 deg "
             << turned << "\n";
   EXPECT_GT(at_truth, 0.85);
-  EXPECT_LT(shifted, 0.5);  // faces parallel to the shift still touch scene surfaces
+  EXPECT_LT(shifted, 0.5); // faces parallel to the shift still touch scene surfaces
   EXPECT_LT(turned, 0.5);
   EXPECT_THROW((void)core::coverageScore(model, sceneIndex(), data().T_scene_model_true, 0.0),
                core::Error);
@@ -153,7 +190,8 @@ TEST(PoseRefinement, CoverageScoreSeparatesTrueAndFalsePoses) {
 TEST(PoseRefinement, EmptyAndNaNOnlyInputsThrow) {
   const core::PointCloud empty;
   core::PointCloud nan_only = data().scene;
-  for (auto& p : nan_only.points_mm) p = core::invalidPoint();
+  for (auto& p : nan_only.points_mm)
+    p = core::invalidPoint();
   const auto start = data().T_scene_model_true;
   EXPECT_THROW((void)core::refinePose(empty, data().scene, start, defaultParams()), core::Error);
   EXPECT_THROW((void)core::refinePose(data().model, empty, start, defaultParams()), core::Error);
@@ -173,7 +211,8 @@ TEST(PoseRefinement, TwoRunsAreBitwiseIdentical) {
   const auto a = core::refinePose(data().model, data().scene, start, defaultParams());
   const auto b = core::refinePose(data().model, data().scene, start, defaultParams());
   EXPECT_EQ(std::memcmp(a.T_scene_model.matrix().data(), b.T_scene_model.matrix().data(),
-                        sizeof(double) * 16), 0);
+                        sizeof(double) * 16),
+            0);
   EXPECT_EQ(a.rmse_mm, b.rmse_mm);
   EXPECT_EQ(a.inlier_fraction, b.inlier_fraction);
   EXPECT_EQ(a.iterations, b.iterations);

@@ -1,7 +1,8 @@
 // SceneIndex and RefineModel on exact geometry: planes whose normals are known.
+#include "core/refine/SceneIndex.h"
+
 #include "core/common/Error.h"
 #include "core/refine/RefineModel.h"
-#include "core/refine/SceneIndex.h"
 #include "tests/unit/refine/BracketScene.h"
 
 #include <gtest/gtest.h>
@@ -44,16 +45,17 @@ TEST(SceneIndex, NearestRespectsTheDistanceBoundAndSurvivesAMove) {
   float d2 = -1;
   EXPECT_EQ(moved.nearest(above, 1.0f, &d2), static_cast<std::int64_t>(k));
   EXPECT_NEAR(d2, 0.16f, 1e-4f);
-  EXPECT_LT(moved.nearest(above, 0.1f), 0);  // bound 0.32 mm: nothing that close
-  EXPECT_LT(moved.nearest(Eigen::Vector3f(0, 0, 605), 4.0f), 0);  // 5 mm away, bound 2 mm
+  EXPECT_LT(moved.nearest(above, 0.1f), 0); // bound 0.32 mm: nothing that close
+  EXPECT_LT(moved.nearest(Eigen::Vector3f(0, 0, 605), 4.0f), 0); // 5 mm away, bound 2 mm
   EXPECT_LT(moved.nearest(core::invalidPoint(), 1e9f), 0);
 }
 
 TEST(SceneIndex, OwnNormalsAreUsedAndTurnedTowardsTheViewpoint) {
   auto cloud = core::dropInvalid(floorScan(0.0));
-  cloud.normals.assign(cloud.size(), Eigen::Vector3f(0, 0, 1));  // pointing away from the camera
+  cloud.normals.assign(cloud.size(), Eigen::Vector3f(0, 0, 1)); // pointing away from the camera
   const core::SceneIndex index(cloud);
-  for (const auto& n : index.normals()) ASSERT_EQ(n, Eigen::Vector3f(0, 0, -1));
+  for (const auto& n : index.normals())
+    ASSERT_EQ(n, Eigen::Vector3f(0, 0, -1));
 }
 
 TEST(SceneIndex, BadOptionsThrow) {
@@ -66,10 +68,13 @@ TEST(RefineModel, SubsampleIsEvenDeterministicAndBounded) {
   const auto scan = floorScan(0.1);
   const core::RefineModel a(scan, 500), b(scan, 500);
   EXPECT_LE(a.size(), 500u);
-  EXPECT_GT(a.size(), 350u);  // the finest grid under the bound fills it well
+  EXPECT_GT(a.size(), 350u); // the finest grid under the bound fills it well
   EXPECT_GT(a.voxel_mm(), 0.0);
   EXPECT_EQ(a.points(), b.points());
-  for (const auto& n : a.normals()) EXPECT_LT(n.z(), -0.99f);  // towards the teach camera
+  // Towards the teach camera; 0.1 mm noise over 1.2 mm pixels tilts 3 x 3-window normals a few
+  // degrees, so allow 18°.
+  for (const auto& n : a.normals())
+    EXPECT_LT(n.z(), -0.95f);
   const core::RefineModel all(scan, 1000000);
   EXPECT_EQ(all.voxel_mm(), 0.0);
   EXPECT_THROW(core::RefineModel(core::PointCloud{}, 500), core::Error);

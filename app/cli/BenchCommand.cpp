@@ -1,0 +1,121 @@
+// scanpick-cli bench: time recognition of one scene (per stage, several cold runs) and, optionally,
+// teaching. Wall and process CPU time are both reported, since the machine may be shared.
+#include "app/cli/CliCommon.h"
+#include "app/cli/Commands.h"
+#include "app/cli/RecipeOptions.h"
+
+#include "core/model/ModelFile.h"
+#include "core/pipeline/Recognizer.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+namespace scanpick::cli {
+namespace {
+
+/// User + system CPU time of the whole process (all threads), milliseconds.
+double processCpuMs() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const auto ms = [](const timeval& t) { return double(t.tv_sec) * 1e3 + double(t.tv_usec) / 1e3; };
+  return ms(usage.ru_utime) + ms(usage.ru_stime);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty())
+    return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Options {
+  RecipeOptions recipe;
+  std::string model, scene;
+  int runs = 5;
+};
+
+int run(const Options& o) {
+  if (o.runs < 1)
+    throw core::Error("--runs must be at least 1");
+  auto model = std::make_shared<core::TaughtModel>(core::loadModel(o.model));
+  const core::RecognitionParams params = resolveParams(o.recipe, model->params);
+  const std::string sensor_name =
+      !o.recipe.sensor.empty() ? o.recipe.sensor
+      : (model->sensor.preset.empty() || model->sensor.preset == "custom" ? "phoxi-m-1032"
+                                                                          : model->sensor.preset);
+  const core::SensorModel sensor = core::sensorPreset(sensor_name);
+  const core::PointCloud scene = loadWithUnitsCheck(o.scene, o.recipe.units);
+  std::printf("bench: %s (%u x %u, %zu valid points), model '%s' (%zu features), %d cold runs, "
+              "%u hardware threads\n",
+              o.scene.c_str(), scene.width, scene.height, scene.validCount(), model->name.c_str(),
+              model->features.size(), o.runs, std::thread::hardware_concurrency());
+  std::vector<double> pre, clu, key, fea, mat, ref, total, cpu, wall;
+  std::size_t detections = 0;
+  for (int r = 0; r < o.runs; ++r) {
+    core::Recognizer recognizer(model);  // a fresh recognizer: nothing served from the cache
+    const double cpu0 = processCpuMs();
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto result = recognizer.recognize(scene, sensor, params);
+    wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                       .count());
+    cpu.push_back(processCpuMs() - cpu0);
+    const auto& t = result.timings;
+    pre.push_back(t.preprocess_ms);
+    clu.push_back(t.clustering_ms);
+    key.push_back(t.keypoints_ms);
+    fea.push_back(t.features_ms);
+    mat.push_back(t.matching_ms);
+    ref.push_back(t.refine_ms);
+    total.push_back(t.total_ms);
+    detections = result.detections.size();
+    if (r == 0 && result.objects) {
+      std::size_t keypoints = 0, features = 0;
+      for (const auto& k : *result.object_keypoints)
+        keypoints += k.points_mm.size();
+      for (const auto& f : *result.object_features)
+        features += f.size();
+      std::printf("%zu object(s) after the split, %zu keypoints, %zu features; largest object %zu "
+                  "keypoints\n",
+                  result.objects->size(), keypoints, features,
+                  result.object_keypoints->empty() ? std::size_t{0}
+                                                    : std::max_element(result.object_keypoints->begin(),
+                                                                       result.object_keypoints->end(),
+                                                                       [](const auto& a, const auto& b) {
+                                                                         return a.points_mm.size() <
+                                                                                b.points_mm.size();
+                                                                       })->points_mm.size());
+    }
+  }
+  std::printf("| stage | median wall (ms) |\n|---|---|\n");
+  std::printf("| preprocess (floor, downsample) | %.1f |\n", median(pre));
+  std::printf("| clustering (object count + split) | %.1f |\n", median(clu));
+  std::printf("| keypoints | %.1f |\n", median(key));
+  std::printf("| features | %.1f |\n", median(fea));
+  std::printf("| matching (+ verification) | %.1f |\n", median(mat));
+  std::printf("| refinement (ICP) | %.1f |\n", median(ref));
+  std::printf("| total | %.1f |\n", median(total));
+  std::printf("process CPU time per run (user + system, all threads): median %.1f ms; wall %.1f ms; "
+              "%zu detection(s)\n",
+              median(cpu), median(wall), detections);
+  return kOk;
+}
+
+} // namespace
+
+void registerBenchCommand(CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  CLI::App* sub = addCommand(app, "bench",
+                             "Time recognition of one scene per stage (median of cold runs)",
+                             [o] { return run(*o); });
+  sub->add_option("--model", o->model, "Taught model (.spmodel)")->required();
+  sub->add_option("--scene", o->scene, "Scene scan (.pcd or .ply)")->required();
+  sub->add_option("--runs", o->runs, "Cold runs (a fresh recognizer each)")->capture_default_str();
+  o->recipe.add(sub);
+}
+
+} // namespace scanpick::cli
