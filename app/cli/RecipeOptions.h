@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <unistd.h>
 
@@ -20,6 +21,7 @@ struct RecipeOptions {
   std::string params;  ///< preset file with parameters
   std::string units = "mm";
   std::string sensor;  ///< sensor preset name; empty = default
+  std::vector<std::string> overrides;  ///< KEY=VALUE, applied after the preset or file
 
   void add(CLI::App* sub) {
     sub->add_option("--preset", preset, "Parameter preset: a name in resources/presets or a file");
@@ -27,6 +29,9 @@ struct RecipeOptions {
     sub->add_option("--units", units, "Units of the input clouds: mm or m")->capture_default_str();
     sub->add_option("--sensor", sensor,
                     "Sensor preset (phoxi-m-1032, phoxi-m-2064, kinect-v1); default phoxi-m-1032");
+    sub->add_option("--set", overrides,
+                    "Override one parameter, KEY=VALUE (e.g. matching.min_coverage=0.6; keys: "
+                    "scanpick-cli params); repeatable, applied after --preset/--params");
   }
 };
 
@@ -56,11 +61,23 @@ inline core::RecognitionParams resolveParams(const RecipeOptions& o,
                                              const core::RecognitionParams& fallback = {}) {
   if (!o.preset.empty() && !o.params.empty())
     throw core::Error("give either --preset or --params, not both");
+  core::RecognitionParams params = fallback;
   if (!o.params.empty())
-    return core::loadPreset(o.params).params;
-  if (!o.preset.empty())
-    return core::loadPreset(findPreset(o.preset)).params;
-  return fallback;
+    params = core::loadPreset(o.params).params;
+  else if (!o.preset.empty())
+    params = core::loadPreset(findPreset(o.preset)).params;
+  for (const auto& kv : o.overrides) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
+      throw core::Error("--set '" + kv + "': expected KEY=VALUE, e.g. matching.min_coverage=0.6");
+    const std::string value = kv.substr(eq + 1);
+    // Numbers and booleans as JSON; anything else (an enum name) as a string.
+    nlohmann::json parsed = nlohmann::json::parse(value, nullptr, false);
+    if (parsed.is_discarded() || parsed.is_object() || parsed.is_array())
+      parsed = value;
+    params = core::paramsFromJson({{kv.substr(0, eq), parsed}}, params);
+  }
+  return params;
 }
 
 /// Loads a cloud in the given units, warning on stderr when its extent suggests other units.

@@ -19,7 +19,8 @@ namespace fs = std::filesystem;
 
 struct Options {
   RecipeOptions recipe;
-  std::string model, scene, out, picture, suite;
+  std::vector<std::string> models;
+  std::string scene, out, picture, suite;
 };
 
 /// The suite scene's sensor preset and kind from its ground truth, when there is one.
@@ -47,31 +48,57 @@ void printSummary(const std::string& scene, const core::RecognitionResult& r) {
   for (std::size_t i = 0; i < r.detections.size(); ++i) {
     const auto& d = r.detections[i];
     const Eigen::Vector3d t = d.T_scene_model.translation();
-    std::printf("  #%zu score %.3f at (%.1f, %.1f, %.1f) mm, cluster %d\n", i, d.score, t.x(), t.y(),
-                t.z(), d.cluster);
+    std::printf("  #%zu score %.3f at (%.1f, %.1f, %.1f) mm, cluster %d, model %d\n", i, d.score,
+                t.x(), t.y(), t.z(), d.cluster, d.model_index);
   }
 }
 
+/// Every model given (views of one part), with what the results and pictures need of them.
+struct LoadedModels {
+  std::vector<std::shared_ptr<const core::TaughtModel>> models;
+  std::vector<core::ModelSource> sources;
+  std::vector<const core::PointCloud*> clouds;
+};
+
+LoadedModels loadModels(const std::vector<std::string>& paths) {
+  LoadedModels out;
+  for (const auto& path : paths) {
+    auto model = std::make_shared<const core::TaughtModel>(core::loadModel(path));
+    if (!out.models.empty() && model->name != out.models.front()->name)
+      throw core::Error("models '" + out.models.front()->name + "' and '" + model->name +
+                        "' are different parts: several --model must be views of one part "
+                        "(recognize each part in its own run)");
+    out.models.push_back(model);
+    out.sources.push_back({model.get(), path});
+    out.clouds.push_back(&model->cloud_mm);
+  }
+  return out;
+}
+
 int run(const Options& o) {
-  if (o.model.empty())
+  if (o.models.empty())
     throw core::Error("--model is required");
-  auto model = std::make_shared<core::TaughtModel>(core::loadModel(o.model));
-  // Without --preset/--params the model's own parameters are used.
-  const core::RecognitionParams params = resolveParams(o.recipe, model->params);
-  core::Recognizer recognizer(model);
-  const std::string default_sensor = model->sensor.preset.empty() || model->sensor.preset == "custom"
+  const LoadedModels loaded = loadModels(o.models);
+  const core::TaughtModel& first = *loaded.models.front();
+  // Without --preset/--params the (first) model's own parameters are used.
+  const core::RecognitionParams params = resolveParams(o.recipe, first.params);
+  core::Recognizer recognizer;
+  const auto recognize = [&](const core::PointCloud& scene, const core::SensorModel& sensor) {
+    return core::recognizeViews(recognizer, loaded.models, scene, sensor, params);
+  };
+  const std::string default_sensor = first.sensor.preset.empty() || first.sensor.preset == "custom"
                                          ? "phoxi-m-1032"
-                                         : model->sensor.preset;
+                                         : first.sensor.preset;
   if (o.suite.empty()) {
     if (o.scene.empty() || o.out.empty())
       throw core::Error("give --scene and --out (or --suite DIR --out RESULTS_DIR)");
     const core::SensorModel sensor =
         core::sensorPreset(o.recipe.sensor.empty() ? default_sensor : o.recipe.sensor);
     const core::PointCloud scene = loadWithUnitsCheck(o.scene, o.recipe.units);
-    const auto result = recognizer.recognize(scene, sensor, params);
-    core::saveResults(o.out, result, *model, o.scene, o.model);
+    const auto result = recognize(scene, sensor);
+    core::saveResults(o.out, result, loaded.sources, o.scene);
     if (!o.picture.empty())
-      core::writeOverlayPng(o.picture, scene, model->cloud_mm, result.detections, sensor);
+      core::writeOverlayPng(o.picture, scene, loaded.clouds, result.detections, sensor);
     printSummary(o.scene, result);
     return kOk;
   }
@@ -97,12 +124,12 @@ int run(const Options& o) {
         !o.recipe.sensor.empty() ? o.recipe.sensor : (!preset.empty() ? preset : default_sensor);
     const core::SensorModel sensor = core::sensorPreset(sensor_name);
     const core::PointCloud scene = loadWithUnitsCheck(path.string(), o.recipe.units);
-    const auto result = recognizer.recognize(scene, sensor, params);
+    const auto result = recognize(scene, sensor);
     const fs::path out = fs::path(o.out) / (path.stem().string() + ".json");
-    core::saveResults(out, result, *model, path.string(), o.model);
+    core::saveResults(out, result, loaded.sources, path.string());
     if (!o.picture.empty())
-      core::writeOverlayPng(fs::path(o.out) / (path.stem().string() + ".png"), scene,
-                            model->cloud_mm, result.detections, sensor);
+      core::writeOverlayPng(fs::path(o.out) / (path.stem().string() + ".png"), scene, loaded.clouds,
+                            result.detections, sensor);
     printSummary(path.filename().string(), result);
   }
   return kOk;
@@ -115,7 +142,10 @@ void registerRecognizeCommand(CLI::App& app) {
   CLI::App* sub = addCommand(app, "recognize",
                              "Find a taught part in a scene (or in every scene-*.pcd of a suite)",
                              [o] { return run(*o); });
-  sub->add_option("--model", o->model, "Taught model (.spmodel)")->required();
+  sub->add_option("--model", o->models,
+                  "Taught model (.spmodel); repeat it for views of one part taught from scans of "
+                  "its different sides (each detection names the view that found it)")
+      ->required();
   sub->add_option("--scene", o->scene, "Scene scan (.pcd or .ply)");
   sub->add_option("--suite", o->suite, "Folder of scene-XXX.pcd (+ .gt.json) to recognize in turn");
   sub->add_option("--out", o->out, "Results file (or folder with --suite)")->required();

@@ -21,6 +21,7 @@ struct SynthOptions {
   std::vector<std::string> parts;
   std::string mesh, layout = "bin", sensor = "phoxi-m-1032", out;
   int count = 8;
+  int teach_side = 0;
   std::uint64_t seed = 0;
   double noise_sigma_mm = -1;
   double camera_height_mm = 0;
@@ -72,6 +73,7 @@ int runSynth(const SynthOptions& o) {
     r.mesh_path = o.mesh;
   }
   r.layout = core::layoutFromName(o.layout);
+  r.teach_side = o.teach_side;
   r.count = o.count;
   r.sensor = o.sensor;
   r.seed = o.seed;
@@ -108,6 +110,10 @@ void registerSynthCommands(CLI::App& app) {
                                         "(several, comma-separated, make a mixed scene)");
   synth->add_option("--mesh", o->mesh, "closed triangle mesh in mm (.ply, .stl, .obj, .vtk) instead of --part");
   synth->add_option("--layout", o->layout, "bin, scatter or teach")->capture_default_str();
+  synth->add_option("--teach-side", o->teach_side,
+                    "teach layout: side the part rests on, 0 = usual, 1 = turned over, 2 = on its side, "
+                    "3 = on its end (one taught view per side)")
+      ->capture_default_str();
   synth->add_option("--count", o->count, "number of instances (teach: 1)")->capture_default_str();
   synth->add_option("--sensor", o->sensor, "phoxi-m-1032, phoxi-m-2064 or kinect-v1")->capture_default_str();
   synth->add_option("--seed", o->seed, "random seed: same seed, same files")->capture_default_str();

@@ -102,7 +102,8 @@ void registerTeachCommand(CLI::App& app) {
       cropFromTruth(o->crop_truth, options);
     }
     const core::PointCloud scan = loadWithUnitsCheck(o->scan, o->recipe.units);
-    const core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));
+    core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));
+    model.teach_scan = std::filesystem::path(o->scan).filename().string();
     core::saveModel(o->out, model);
     std::cout << "taught '" << model.name << "': " << model.cloud_mm.size() << " points, "
               << model.keypoints_mm.size() << " keypoints, " << model.features.size()

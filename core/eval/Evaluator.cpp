@@ -50,17 +50,32 @@ Stats computeStats(std::vector<double> values) {
 
 SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& results,
                               const GroundTruth& teach, const Tolerances& tolerances,
-                              const std::string& name) {
-  if (teach.instances.size() != 1)
-    throw Error(
-        "teach ground truth " + teach.source + " holds " + std::to_string(teach.instances.size()) +
-        " instances; a teach scene must hold exactly one (pass the teach scene's .gt.json)");
-  const TruthInstance& taught = teach.instances.front();
+                              const std::string& name,
+                              const std::vector<const GroundTruth*>& view_teach) {
+  const auto taughtOf = [](const GroundTruth& t) -> const TruthInstance& {
+    if (t.instances.size() != 1)
+      throw Error(
+          "teach ground truth " + t.source + " holds " + std::to_string(t.instances.size()) +
+          " instances; a teach scene must hold exactly one (pass the teach scene's .gt.json)");
+    return t.instances.front();
+  };
+  const TruthInstance& taught = taughtOf(view_teach.empty() ? teach : *view_teach.front());
   const auto part_it = truth.parts.contains(taught.part) ? truth.parts.find(taught.part)
                                                          : teach.parts.find(taught.part);
   const PartInfo& part = part_it->second;
   const auto group = symmetryGroup(part.symmetry, part.diameter_mm);
-  const Eigen::Isometry3d T_model_part = results.T_teach_model.inverse() * taught.T_scene_part;
+  // Each model's frame relative to the part, from the scan that model was taught from.
+  std::vector<Eigen::Isometry3d> T_model_part;
+  for (std::size_t m = 0; m < std::max<std::size_t>(1, results.models.size()); ++m) {
+    const bool own = m < view_teach.size();
+    const TruthInstance& view = own ? taughtOf(*view_teach[m]) : taught;
+    if (view.part != taught.part)
+      throw Error(results.source + ": its models are views of different parts (" + taught.part +
+                  ", " + view.part + "): evaluate one part at a time");
+    const Eigen::Isometry3d T_teach_model =
+        m < results.models.size() ? results.models[m].T_teach_model : results.T_teach_model;
+    T_model_part.push_back(T_teach_model.inverse() * view.T_scene_part);
+  }
 
   SceneEvaluation scene;
   scene.name = name;
@@ -86,7 +101,10 @@ SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& resul
   std::vector<bool> matched(truth.instances.size(), false);
   for (const std::size_t d : order) {
     const ResultDetection& detection = results.detections[d];
-    const Eigen::Isometry3d T_scene_part_est = detection.T_scene_model * T_model_part;
+    if (detection.model >= T_model_part.size())
+      throw Error(results.source + ": detection " + std::to_string(detection.id) +
+                  " names a model the file does not list");
+    const Eigen::Isometry3d T_scene_part_est = detection.T_scene_model * T_model_part[detection.model];
     DetectionOutcome outcome;
     outcome.detection_id = detection.id;
     outcome.score = detection.score;
@@ -197,11 +215,25 @@ const GroundTruth& selectTeachTruth(const std::vector<GroundTruth>& teach_truths
     throw Error("no teach ground truth: pass --teach-truth with the teach scene's .gt.json");
   if (teach_truths.size() == 1)
     return teach_truths.front();
-  const auto teachOf = [&](const std::string& part) -> const GroundTruth* {
+  const auto cloudName = [](const std::string& path) {
+    return std::filesystem::path(path).filename().string();
+  };
+  // The model's own teach scan first, when the results name it.
+  if (!results.models.empty() && !results.models.front().teach_scan.empty())
     for (const auto& teach : teach_truths)
-      if (teach.instances.size() == 1 && teach.instances.front().part == part)
-        return &teach;
-    return nullptr;
+      if (cloudName(teach.cloud) == cloudName(results.models.front().teach_scan))
+        return teach;
+  // A part's usual teach scene (<part>.pcd) before its other sides (<part>-side1.pcd, ...).
+  const auto teachOf = [&](const std::string& part) -> const GroundTruth* {
+    const GroundTruth* any = nullptr;
+    for (const auto& teach : teach_truths)
+      if (teach.instances.size() == 1 && teach.instances.front().part == part) {
+        if (cloudName(teach.cloud) == part + ".pcd")
+          return &teach;
+        if (!any)
+          any = &teach;
+      }
+    return any;
   };
   if (const GroundTruth* teach = teachOf(results.model_name))
     return *teach;
@@ -212,6 +244,26 @@ const GroundTruth& selectTeachTruth(const std::vector<GroundTruth>& teach_truths
   throw Error(results.source + ": its model '" + results.model_name +
               "' matches none of the teach ground truths' parts: pass only the teach scene of "
               "the part this model was taught from");
+}
+
+std::vector<const GroundTruth*> selectViewTeachTruths(const std::vector<GroundTruth>& teach_truths,
+                                                      const ResultsFile& results) {
+  std::vector<const GroundTruth*> views;
+  if (results.models.size() < 2)
+    return views;
+  for (const auto& model : results.models) {
+    if (model.teach_scan.empty())
+      return {};
+    const std::string scan = std::filesystem::path(model.teach_scan).filename().string();
+    const auto it = std::find_if(teach_truths.begin(), teach_truths.end(), [&](const GroundTruth& t) {
+      return std::filesystem::path(t.cloud).filename().string() == scan;
+    });
+    if (it == teach_truths.end())
+      throw Error(results.source + ": no teach ground truth for model '" + model.name +
+                  "' taught from " + scan + ": pass its .gt.json with --teach-truth (or a folder)");
+    views.push_back(&*it);
+  }
+  return views;
 }
 
 EvalReport makeReport(std::vector<SceneEvaluation> scenes, const Tolerances& tolerances) {
@@ -235,7 +287,8 @@ EvalReport evaluateFiles(const std::filesystem::path& truth_path,
   const ResultsFile results = loadResults(results_path);
   std::vector<SceneEvaluation> scenes;
   scenes.push_back(evaluateScene(truth, results, selectTeachTruth(teach_truths, results, truth),
-                                 tolerances, sceneNameOf(truth_path)));
+                                 tolerances, sceneNameOf(truth_path),
+                                 selectViewTeachTruths(teach_truths, results)));
   return makeReport(std::move(scenes), tolerances);
 }
 
@@ -336,7 +389,7 @@ EvalReport evaluateSuite(const std::filesystem::path& suite_dir,
                   "' (run scanpick-cli recognize on every scene of the suite)");
     const ResultsFile results = loadResults(results_path);
     scenes.push_back(evaluateScene(truth, results, selectTeachTruth(teach_truths, results, truth),
-                                   tolerances, name));
+                                   tolerances, name, selectViewTeachTruths(teach_truths, results)));
   }
   reportProgress(progress, 1.0);
   return makeReport(std::move(scenes), tolerances);

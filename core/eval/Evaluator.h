@@ -80,9 +80,19 @@ struct EvalReport {
 /// T_scene_part = T_scene_model · T_teach_model⁻¹ · T_teach_part, then are matched greedily by
 /// descending score, each to the nearest unmatched instance within tolerance.
 /// Throws Error when `teach` does not hold exactly one instance.
+/// With several models (views of one part taught from different scans), `view_teach[m]` is
+/// the teach ground truth of results.models[m] (see selectViewTeachTruths); empty = `teach` for
+/// every model. Throws Error when the views are of different parts.
 SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& results,
                               const GroundTruth& teach, const Tolerances& tolerances,
-                              const std::string& name);
+                              const std::string& name,
+                              const std::vector<const GroundTruth*>& view_teach = {});
+
+/// The teach ground truth of each of the results' models, found by the model's teach scan file
+/// name; empty when the results hold one model or a model names no teach scan. Throws Error
+/// when a model's teach scan has no ground truth among `teach_truths`.
+std::vector<const GroundTruth*> selectViewTeachTruths(const std::vector<GroundTruth>& teach_truths,
+                                                      const ResultsFile& results);
 
 /// Picks the teach ground truth for `results` on scene `truth`: the only one given; else the one
 /// whose part is named like the results' model; else, when the scene holds one part type, that

@@ -3,6 +3,8 @@
 #include "core/common/Error.h"
 #include "core/eval/JsonFields.h"
 
+#include <cmath>
+
 namespace scanpick::core::eval {
 
 ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
@@ -14,11 +16,27 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
   if (doc.contains("scene") && doc["scene"].is_string())
     results.scene = doc["scene"].get<std::string>();
 
-  const auto& model = requireField(doc, "model", source);
-  if (model.contains("name") && model["name"].is_string())
-    results.model_name = model["name"].get<std::string>();
-  results.T_teach_model = readRigidTransform(
-      requireField(model, "T_teach_model", source + ": model"), source + ": model.T_teach_model");
+  const auto readModel = [&](const nlohmann::json& model, const std::string& at) {
+    ResultModel m;
+    if (model.contains("name") && model["name"].is_string())
+      m.name = model["name"].get<std::string>();
+    if (model.contains("teach_scan") && model["teach_scan"].is_string())
+      m.teach_scan = model["teach_scan"].get<std::string>();
+    m.T_teach_model = readRigidTransform(requireField(model, "T_teach_model", at),
+                                         at + ".T_teach_model");
+    return m;
+  };
+  if (doc.contains("models")) {
+    if (!doc["models"].is_array() || doc["models"].empty())
+      throw Error(source + ": 'models' must be a non-empty array");
+    for (std::size_t m = 0; m < doc["models"].size(); ++m)
+      results.models.push_back(
+          readModel(doc["models"][m], source + ": models[" + std::to_string(m) + "]"));
+  } else {
+    results.models.push_back(readModel(requireField(doc, "model", source), source + ": model"));
+  }
+  results.model_name = results.models.front().name;
+  results.T_teach_model = results.models.front().T_teach_model;
 
   const auto& detections = requireField(doc, "detections", source);
   if (!detections.is_array())
@@ -34,6 +52,12 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
       throw Error(at + ".score = " + std::to_string(d.score) + " is outside [0, 1]");
     d.T_scene_model =
         readRigidTransform(requireField(value, "T_scene_model", at), at + ".T_scene_model");
+    if (value.contains("model")) {
+      const double m = readNumber(value["model"], at + ".model");
+      if (m < 0 || m >= double(results.models.size()) || m != std::floor(m))
+        throw Error(at + ".model = " + value["model"].dump() + " names no entry of 'models'");
+      d.model = static_cast<std::size_t>(m);
+    }
     if (value.contains("grip_points") && value["grip_points"].is_array()) {
       const auto& grips = value["grip_points"];
       for (std::size_t g = 0; g < grips.size(); ++g) {

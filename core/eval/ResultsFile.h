@@ -23,6 +23,15 @@ struct ResultDetection {
   double score = 0.0;
   Eigen::Isometry3d T_scene_model = Eigen::Isometry3d::Identity();
   std::vector<NamedPoint> grip_points_scene; ///< as reported (informative only)
+  std::size_t model = 0;                     ///< index into ResultsFile::models
+};
+
+/// One taught model (view) the results were produced with.
+struct ResultModel {
+  std::string name;       ///< taught model's name ("" when absent)
+  std::string teach_scan; ///< file name of the scan it was taught from ("" when unknown)
+  /// The model frame in the frame of the scan the model was taught from.
+  Eigen::Isometry3d T_teach_model = Eigen::Isometry3d::Identity();
 };
 
 /// A results file's content.
@@ -32,6 +41,9 @@ struct ResultsFile {
   std::string model_name; ///< taught model's name ("" when absent)
   /// The model frame in the frame of the scan the model was taught from.
   Eigen::Isometry3d T_teach_model = Eigen::Isometry3d::Identity();
+  /// Every model searched (several views of one part); `models[0]` is `model_name` and
+  /// `T_teach_model` above. A file without "models" gives one entry from "model".
+  std::vector<ResultModel> models;
   std::vector<ResultDetection> detections;
   std::optional<double> total_ms; ///< timings_ms.total, when present
 };

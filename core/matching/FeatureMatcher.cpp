@@ -42,10 +42,13 @@ struct Prepared {
   /// For each scene feature j: all scene features sorted by distance from j (distance, index).
   /// A toroid around T1 lies in the shell | |T2 − T1| − |M2 − M1| | ≤ Δp, found by binary search.
   std::vector<std::vector<std::pair<double, int>>> shells;
+  /// Pooled search: features a pose must confirm to be kept (the score threshold, at least 2).
+  int min_pool_count = 2;
 
   Prepared(const FeatureList& m, const FeatureList& s, const MatchingParams& p,
            const std::vector<char>& avail, bool with_shells)
-      : model(m), scene(s), params(p), available(avail), index(s) {
+      : model(m), scene(s), params(p), available(avail), index(s),
+        min_pool_count(std::max(2, static_cast<int>(std::ceil(p.score_threshold * double(m.size()) - 1e-9)))) {
     for (const auto& f : m) {
       mc.push_back(f.centre_mm.cast<double>());
       md.push_back(f.direction.cast<double>().normalized());
@@ -156,6 +159,28 @@ void keepAlternative(std::vector<std::pair<int, MatchCandidate>>& list, int coun
     list.resize(k);
 }
 
+/// Refinement on all confirmed pairs: the two seed pairs fix the pose, the others average out
+/// the errors of individual features. Kept only while it does not lose confirmations.
+MatchCandidate refineOnConfirmedPairs(const Prepared& prep, const FeatureList& model,
+                                      const FeatureList& scene, MatchCandidate best) {
+  for (int iteration = 0; iteration < 3 && best.matched_features.size() >= 2; ++iteration) {
+    const Eigen::Isometry3d T = refineOnFeatureGeometry(
+        model, scene, best.matched_features,
+        fitFeaturePairs(model, scene, best.matched_features, best.T_scene_model));
+    int count = 0;
+    MatchCandidate refined = scoreWithBound(prep, T, 0, &count);
+    if (refined.matched_features.size() < best.matched_features.size())
+      break;
+    refined.seed1 = best.seed1;
+    refined.seed2 = best.seed2;
+    const bool same_pairs = refined.matched_features == best.matched_features;
+    best = std::move(refined);
+    if (same_pairs)
+      break;
+  }
+  return best;
+}
+
 class Search {
 public:
   explicit Search(const Prepared& prep) : m_prep(prep) {}
@@ -166,7 +191,9 @@ public:
     const auto n_model = static_cast<int>(m_prep.model.size());
     const Feature& m1 = m_prep.model[static_cast<std::size_t>(i)];
     const double step_rad = std::max(p.roll_step_deg, 0.01) * M_PI / 180.0;
-    const auto k_alternatives = static_cast<std::size_t>(std::max(1, p.hypotheses));
+    const bool pooled = p.pool_size > 0;
+    const auto k_alternatives =
+        static_cast<std::size_t>(pooled ? p.pool_size : std::max(1, p.hypotheses));
     const bool several = k_alternatives > 1;
     TaskBest best;
     for (int j = 0; j < n_scene; ++j) {
@@ -201,7 +228,10 @@ public:
           // Later hypotheses of this task lose ties; other tasks' winners only prune strictly.
           // With several hypotheses, poses one feature short of the best stay in the running.
           const int global = m_global_best.load(std::memory_order_relaxed);
-          const int need = several ? std::max(2, global - 1) : std::max(best.count + 1, global);
+          // Pooled: every instance of a bin counts, so the best one found prunes nothing.
+          const int need = pooled    ? m_prep.min_pool_count
+                           : several ? std::max(2, global - 1)
+                                     : std::max(best.count + 1, global);
           int count = 0;
           MatchCandidate c = scoreWithBound(m_prep, T, need, &count);
           if (count < 0 || (!several && count <= best.count))
@@ -363,22 +393,7 @@ std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
   // Refinement on all confirmed pairs: the two seed pairs fix the pose, the others average out
   // the errors of individual features. Kept only while it does not lose confirmations.
   const auto refine = [&](MatchCandidate best) {
-    for (int iteration = 0; iteration < 3 && best.matched_features.size() >= 2; ++iteration) {
-      const Eigen::Isometry3d T = refineOnFeatureGeometry(
-          model, scene, best.matched_features,
-          fitFeaturePairs(model, scene, best.matched_features, best.T_scene_model));
-      int count = 0;
-      MatchCandidate refined = scoreWithBound(prep, T, 0, &count);
-      if (refined.matched_features.size() < best.matched_features.size())
-        break;
-      refined.seed1 = best.seed1;
-      refined.seed2 = best.seed2;
-      const bool same_pairs = refined.matched_features == best.matched_features;
-      best = std::move(refined);
-      if (same_pairs)
-        break;
-    }
-    return best;
+    return refineOnConfirmedPairs(prep, model, scene, std::move(best));
   };
   if (!verify)
     return refine(winner->candidate);
@@ -412,13 +427,60 @@ std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
   return verified[chosen];
 }
 
+namespace {
+
+/// Best first: by coverage when verified, else by feature score (stable).
+std::vector<MatchCandidate> sortedBest(std::vector<MatchCandidate> candidates, bool verified) {
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [&](const MatchCandidate& a, const MatchCandidate& b) {
+                     return verified ? a.coverage > b.coverage : a.score > b.score;
+                   });
+  return candidates;
+}
+
+/// Pooled multi-instance matching (params.pool_size > 0 with a verifier): one search over all
+/// seeds keeps up to pool_size distinct poses, each refined on its features and verified; every
+/// pose reaching min_coverage is returned (the caller removes duplicates of one instance).
+std::vector<MatchCandidate> matchPooled(const FeatureList& model, const FeatureList& scene,
+                                        const MatchingParams& params, const ProgressFn& progress,
+                                        const PoseVerifier& verify) {
+  std::vector<MatchCandidate> out;
+  if (model.size() < 2 || scene.size() < 2)
+    return out;
+  const std::vector<char> all_available;
+  const Prepared prep(model, scene, params, all_available, true);
+  Search search(prep);
+  const auto n_model = static_cast<int>(model.size());
+  std::vector<TaskBest> results(model.size());
+  tbb::parallel_for(0, n_model, [&](int i) { results[static_cast<std::size_t>(i)] = search.runM1(i); });
+  reportProgress(progress, 0.5);
+  std::vector<std::pair<int, MatchCandidate>> pool;
+  for (const auto& r : results)
+    for (const auto& [count, c] : r.alternatives)
+      keepAlternative(pool, count, c, static_cast<std::size_t>(params.pool_size), params);
+  std::vector<MatchCandidate> verified(pool.size());
+  tbb::parallel_for(std::size_t{0}, pool.size(), [&](std::size_t a) {
+    verified[a] = refineOnConfirmedPairs(prep, model, scene, pool[a].second);
+    verified[a].coverage = verify(verified[a].T_scene_model);
+  });
+  for (auto& c : verified)
+    if (c.score >= params.score_threshold && c.coverage >= params.min_coverage)
+      out.push_back(std::move(c));
+  reportProgress(progress, 1.0);
+  return out;
+}
+
+} // namespace
+
 std::vector<MatchCandidate> matchFeatures(const FeatureList& model, const FeatureList& scene,
                                           const MatchingParams& params,
                                           const ProgressFn& progress, const PoseVerifier& verify) {
+  if (verify && params.pool_size > 0)
+    return sortedBest(matchPooled(model, scene, params, progress, verify), true);
   std::vector<MatchCandidate> out;
   std::vector<char> available(scene.size(), 1);
-  const int rounds = std::max(1, params.max_instances_per_cluster);
-  for (int round = 0; round < rounds; ++round) {
+  for (int round = 0, rounds = std::max(1, params.max_instances_per_cluster); round < rounds;
+       ++round) {
     auto candidate = findBestTransformation(model, scene, params, available,
                                             subProgress(progress, double(round) / rounds,
                                                         double(round + 1) / rounds),
@@ -434,10 +496,7 @@ std::vector<MatchCandidate> matchFeatures(const FeatureList& model, const Featur
     out.push_back(std::move(*candidate));
   }
   reportProgress(progress, 1.0);
-  std::stable_sort(out.begin(), out.end(), [&](const MatchCandidate& a, const MatchCandidate& b) {
-    return verify ? a.coverage > b.coverage : a.score > b.score;
-  });
-  return out;
+  return sortedBest(std::move(out), static_cast<bool>(verify));
 }
 
 } // namespace scanpick::core

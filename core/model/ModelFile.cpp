@@ -145,6 +145,7 @@ std::string encodeModel(const TaughtModel& model) {
       {"version", kModelFormatVersion},
       {"units", "mm"},
       {"name", model.name},
+      {"teach_scan", model.teach_scan},
       {"source_units", toString(model.source_units)},
       {"diameter_mm", model.diameter_mm},
       {"T_teach_model", matrix(model.T_teach_model)},
@@ -206,6 +207,7 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
 
   TaughtModel model;
   model.name = header.value("name", std::string("part"));
+  model.teach_scan = header.value("teach_scan", std::string());
   model.source_units = parseLengthUnit(header.value("source_units", std::string("mm")));
   model.diameter_mm = header.value("diameter_mm", 0.0);
   model.T_teach_model = r.isometry(r.at(header, "T_teach_model"), "T_teach_model");

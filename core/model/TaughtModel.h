@@ -32,6 +32,9 @@ struct TaughtModel {
   /// The model frame in the teach scan's (camera) frame: a pure translation to the centroid.
   Eigen::Isometry3d T_teach_model = Eigen::Isometry3d::Identity();
   double diameter_mm = 0.0;  ///< diagonal of the cloud's bounding box, for duplicate suppression
+  /// File name of the scan it was taught from ("" when unknown): tells views of one part apart
+  /// and lets the evaluator find the teach scene's ground truth.
+  std::string teach_scan;
 };
 
 /// A box in the scan frame given by its pose and half extents (an operator's rotated crop box).

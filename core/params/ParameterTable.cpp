@@ -210,10 +210,20 @@ std::vector<ParamInfo> buildTable() {
       make("matching.min_coverage", "Min coverage", "", Stage::Matching, D, 0, 1, 0.01,
            "With verification on: detections confirming a smaller share of their visible model "
            "points are rejected.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::edge_tolerance_mm,
+      make("matching.edge_tolerance_mm", "Edge distance", "mm", Stage::Matching, D, 0, 50, 0.1,
+           "Beyond the thesis: with verification on, the coverage is also weighed by the share "
+           "of the model's keypoints (edges) lying on confirmed surface that have a scene keypoint "
+           "within this distance, so a plate turned on another plate scores low; 0 = off.")));
   t.push_back(entry(&RP::matching, &MatchingParams::hypotheses,
       make("matching.hypotheses", "Hypotheses", "", Stage::Matching, I, 1, 64, 1,
            "Distinct poses per search re-ranked by verification; 1 = the thesis (the best "
            "feature score alone decides).")));
+  t.push_back(entry(&RP::matching, &MatchingParams::pool_size,
+      make("matching.pool_size", "Pose pool", "", Stage::Matching, I, 0, 5000, 10,
+           "Beyond the thesis, for bins of touching parts: with verification on, one search keeps "
+           "up to this many distinct poses from all seed pairs, verifies each and reports every "
+           "one reaching the min coverage (instead of repeated best-first searches); 0 = off.")));
   // --- Refinement (beyond the thesis) ---
   t.push_back(entry(&RP::refine, &RefineParams::enabled,
       make("refine.enabled", "ICP refinement", "", Stage::Refine, B, 0, 1, 1,

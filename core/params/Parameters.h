@@ -88,9 +88,17 @@ struct MatchingParams {
   double verify_tolerance_mm = 0.0;
   /// With verification on, detections confirming a smaller share of visible points are dropped.
   double min_coverage = 0.0;
+  /// With verification on, coverage is weighed by the share of model keypoints (on confirmed
+  /// surface) with a scene keypoint within this distance (mm); 0 = off.
+  double edge_tolerance_mm = 0.0;
   /// Distinct pose hypotheses per search that verification re-ranks (1 = the thesis: the best
   /// feature score alone decides, so a 180° flip of two parallel circles can win).
   int hypotheses = 1;
+  /// Beyond the thesis, for bins of touching parts: with verification on and this > 0, one
+  /// search keeps up to this many distinct poses over all seed pairs (the best one prunes
+  /// nothing), verifies each, and reports all reaching min_coverage, instead of the repeated
+  /// best-first rounds of max_instances_per_cluster. 0 = the rounds.
+  int pool_size = 0;
   bool operator==(const MatchingParams&) const = default;
 };
 

@@ -27,6 +27,8 @@ struct Detection {
   std::vector<std::pair<int, int>> matched_features;
   std::vector<GripPoint> grip_points_scene;  ///< the model's grip points mapped into the scene
   int cluster = -1;                          ///< scene cluster it was found in (-1: whole scene)
+  /// Which model found it, when several views of a part are searched (recognizeViews); else 0.
+  int model_index = 0;
 };
 
 } // namespace scanpick::core

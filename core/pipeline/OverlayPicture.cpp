@@ -61,6 +61,21 @@ void writePng(const std::filesystem::path& path, const Canvas& canvas) {
 void writeOverlayPng(const std::filesystem::path& path, const PointCloud& scene_mm,
                      const PointCloud& model_cloud_mm, const std::vector<Detection>& detections,
                      const SensorModel& sensor, int fallback_width_px) {
+  std::vector<Detection> single = detections;
+  for (auto& d : single)
+    d.model_index = 0;
+  writeOverlayPng(path, scene_mm, {&model_cloud_mm}, single, sensor, fallback_width_px);
+}
+
+void writeOverlayPng(const std::filesystem::path& path, const PointCloud& scene_mm,
+                     const std::vector<const PointCloud*>& model_clouds_mm,
+                     const std::vector<Detection>& detections, const SensorModel& sensor,
+                     int fallback_width_px) {
+  for (const auto& d : detections)
+    if (d.model_index < 0 || static_cast<std::size_t>(d.model_index) >= model_clouds_mm.size() ||
+        !model_clouds_mm[static_cast<std::size_t>(d.model_index)])
+      throw Error("a detection names model " + std::to_string(d.model_index) +
+                  ", which was not given for the picture");
   const bool pinhole = sensor.fx > 0 && sensor.width > 0 && sensor.height > 0;
   Canvas canvas;
   Eigen::AlignedBox3f box = boundingBox(scene_mm);
@@ -93,7 +108,7 @@ void writeOverlayPng(const std::filesystem::path& path, const PointCloud& scene_
     if (isValid(p) && project(p.cast<double>(), px))
       canvas.plot(px, p.z(), {200, 200, 200});
   for (const auto& d : detections)
-    for (const auto& p : model_cloud_mm.points_mm) {
+    for (const auto& p : model_clouds_mm[static_cast<std::size_t>(d.model_index)]->points_mm) {
       if (!isValid(p))
         continue;
       const Eigen::Vector3d q = d.T_scene_model * p.cast<double>();

@@ -20,4 +20,11 @@ void writeOverlayPng(const std::filesystem::path& path, const PointCloud& scene_
                      const PointCloud& model_cloud_mm, const std::vector<Detection>& detections,
                      const SensorModel& sensor, int fallback_width_px = 1024);
 
+/// As above for detections of several models (views): detection d draws
+/// `model_clouds_mm[d.model_index]`. Throws Error when a detection names a missing model.
+void writeOverlayPng(const std::filesystem::path& path, const PointCloud& scene_mm,
+                     const std::vector<const PointCloud*>& model_clouds_mm,
+                     const std::vector<Detection>& detections, const SensorModel& sensor,
+                     int fallback_width_px = 1024);
+
 } // namespace scanpick::core

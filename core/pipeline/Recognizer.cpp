@@ -93,6 +93,22 @@ void forEachObject(std::size_t n, const ProgressFn& progress, double begin, doub
   });
 }
 
+/// The model's points for verification (model frame, mm) and their unit normals facing the teach
+/// camera (NaN where none could be estimated).
+struct VerifyModel {
+  std::vector<Eigen::Vector3f> points, normals;
+  std::vector<Eigen::Vector3f> keypoints;  ///< the model's keypoints (edges), strided
+};
+
+/// The scene's keypoints (of every object) indexed, for the edge check of verification.
+struct EdgeCheck {
+  const SceneIndex* scene_keypoints = nullptr;
+  double tolerance_mm = 0.0;
+};
+
+/// cos 60°: model and scene normals closer than this agree.
+constexpr float kMinNormalAgreement = 0.5f;
+
 } // namespace
 
 struct Recognizer::Cache {
@@ -113,7 +129,10 @@ struct Recognizer::Cache {
   int refine_model_points = 0;
   std::shared_ptr<const RefineModel> refine_model;
   /// Verification: the model's valid points, strided to at most refine.model_points.
-  std::shared_ptr<const std::vector<Eigen::Vector3f>> verify_points;
+  std::shared_ptr<const VerifyModel> verify_points;
+  /// Every object's keypoints in one index (key: keypoint_key), for the edge check.
+  std::optional<KeypointKey> edge_key;
+  std::shared_ptr<const SceneIndex> edge_index;
 };
 
 namespace {
@@ -123,7 +142,7 @@ void prepareVerificationImpl(std::optional<PreKey>& index_key,
                              std::shared_ptr<const SceneIndex>& scene_index,
                              std::shared_ptr<const TaughtModel>& refine_model_for, int& refine_model_points,
                              std::shared_ptr<const RefineModel>& refine_model,
-                             std::shared_ptr<const std::vector<Eigen::Vector3f>>& verify_points,
+                             std::shared_ptr<const VerifyModel>& verify_points,
                              const PointCloud& pre, const std::shared_ptr<const TaughtModel>& model,
                              const PreKey& pre_key,
                              const RecognitionParams& params) {
@@ -140,21 +159,48 @@ void prepareVerificationImpl(std::optional<PreKey>& index_key,
     if (params.refine.enabled)
       refine_model = std::make_shared<const RefineModel>(
           model->cloud_mm, points, Eigen::Vector3d(model->T_teach_model.inverse().translation()));
-    // Wire-like models (the thesis's ideal part) have no surface normals, so verification takes
-    // the points themselves, evenly strided.
-    std::vector<Eigen::Vector3f> valid;
-    for (const auto& p : model->cloud_mm.points_mm)
-      if (isValid(p))
-        valid.push_back(p);
+    // Every valid point, evenly strided, with its normal where one can be estimated: wire-like
+    // models (the thesis's ideal part) have none and are verified by position alone.
+    SceneIndexOptions model_options;
+    model_options.normal_radius_mm = params.keypoints.normal_radius_mm;
+    model_options.viewpoint_mm = model->T_teach_model.inverse().translation();
+    const SceneIndex model_index(model->cloud_mm, model_options);
+    const auto& valid = model_index.points();
     const std::size_t stride = std::max<std::size_t>(1, (valid.size() + points - 1) / points);
-    auto strided = std::make_shared<std::vector<Eigen::Vector3f>>();
-    for (std::size_t i = 0; i < valid.size(); i += stride)
-      strided->push_back(valid[i]);
+    auto strided = std::make_shared<VerifyModel>();
+    for (std::size_t i = 0; i < valid.size(); i += stride) {
+      strided->points.push_back(valid[i]);
+      strided->normals.push_back(model_index.normals()[i]);
+    }
+    const std::size_t key_stride =
+        std::max<std::size_t>(1, (model->keypoints_mm.size() + 399) / 400);
+    for (std::size_t i = 0; i < model->keypoints_mm.size(); i += key_stride)
+      strided->keypoints.push_back(model->keypoints_mm[i]);
     verify_points = std::move(strided);
     refine_model_for = model;
     refine_model_points = points;
   }
 }
+/// Share of the model's keypoints lying on confirmed scene surface that also have a scene keypoint
+/// within the edge tolerance (1 when off or when fewer than 10 lie on surface): a flat face
+/// matched onto another flat face at a wrong turn confirms its surface but not its outline.
+double edgeAgreement(const VerifyModel& model, const SceneIndex& index, const Eigen::Isometry3f& T,
+                     float surface_tol_sq, const EdgeCheck& edges) {
+  if (!edges.scene_keypoints || edges.tolerance_mm <= 0)
+    return 1.0;
+  const auto edge_tol_sq = static_cast<float>(edges.tolerance_mm * edges.tolerance_mm);
+  std::size_t on_surface = 0, on_edge = 0;
+  for (const auto& k : model.keypoints) {
+    const Eigen::Vector3f p = T * k;
+    if (index.nearest(p, 4.0f * surface_tol_sq) < 0)
+      continue;
+    ++on_surface;
+    if (edges.scene_keypoints->nearest(p, edge_tol_sq) >= 0)
+      ++on_edge;
+  }
+  return on_surface < 10 ? 1.0 : double(on_edge) / double(on_surface);
+}
+
 /// Point-level verification of a pose (beyond the thesis): a model point (of the subsample) is
 /// confirmed when a scene point lies within `tolerance_mm`; on an organized scene whose size is
 /// the sensor's, an unconfirmed point is a violation when the camera sees the
@@ -163,19 +209,28 @@ void prepareVerificationImpl(std::optional<PreKey>& index_key,
 /// violations) ÷ model points, clamped to [0, 1]. Dividing by all points (not only those facing
 /// the camera) keeps a pose that turns the taught side away, such as a flip, from scoring on the
 /// few points left facing.
-double verifyPose(const std::vector<Eigen::Vector3f>& model_points, const SceneIndex& index,
+double verifyPose(const VerifyModel& model, const SceneIndex& index,
                   const PointCloud& scene, const SensorModel& sensor,
-                  const Eigen::Isometry3d& T_scene_model, double tolerance_mm) {
+                  const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
+                  const EdgeCheck& edges) {
   const bool organized = scene.height > 1 && static_cast<int>(scene.width) == sensor.width &&
                          static_cast<int>(scene.height) == sensor.height && sensor.fx > 0;
   const Eigen::Isometry3f T = T_scene_model.cast<float>();
   const auto tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
   const auto margin = static_cast<float>(3.0 * tolerance_mm);
   std::size_t confirmed = 0, violations = 0;
-  for (const auto& x : model_points) {
-    const Eigen::Vector3f p = T * x;
-    if (index.nearest(p, tol_sq) >= 0) {
-      ++confirmed;
+  const auto& model_points = model.points;
+  for (std::size_t k = 0; k < model_points.size(); ++k) {
+    const Eigen::Vector3f p = T * model_points[k];
+    const std::int64_t near = index.nearest(p, tol_sq);
+    if (near >= 0) {
+      // A surface confirms a point only when it faces the same way: the far face of a thin plate
+      // lies within tolerance of the near one's points but turned away.
+      const Eigen::Vector3f& n_scene = index.normals()[static_cast<std::size_t>(near)];
+      const Eigen::Vector3f& n_model = model.normals[k];
+      if (!n_scene.allFinite() || !n_model.allFinite() ||
+          (T.linear() * n_model).dot(n_scene) > kMinNormalAgreement)
+        ++confirmed;
       continue;
     }
     // A point on the far side of the part needs no normal test: where the camera sees through
@@ -194,7 +249,7 @@ double verifyPose(const std::vector<Eigen::Vector3f>& model_points, const SceneI
   if (model_points.empty())
     return 0.0;
   const double q = (double(confirmed) - double(violations)) / double(model_points.size());
-  return std::clamp(q, 0.0, 1.0);
+  return std::clamp(q, 0.0, 1.0) * edgeAgreement(model, index, T, tol_sq, edges);
 }
 
 } // namespace
@@ -296,6 +351,18 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
                             pre_key, params);
     result.timings.matching_ms += msSince(t0);
   }
+  const bool edge_check = verifying && params.matching.edge_tolerance_mm > 0;
+  if (edge_check && (cache.edge_key != keypoint_key || !cache.edge_index)) {
+    PointCloud all;
+    for (const auto& k : *cache.keypoints)
+      all.points_mm.insert(all.points_mm.end(), k.points_mm.begin(), k.points_mm.end());
+    all.width = static_cast<std::uint32_t>(all.points_mm.size());
+    all.height = 1;
+    cache.edge_index = all.points_mm.empty() ? nullptr : std::make_shared<const SceneIndex>(all);
+    cache.edge_key = keypoint_key;
+  }
+  const EdgeCheck edges{edge_check ? cache.edge_index.get() : nullptr,
+                        params.matching.edge_tolerance_mm};
   {
     const std::lock_guard lock(m_mutex);
     m_cache = std::make_shared<Cache>(cache);
@@ -306,7 +373,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   if (verifying && cache.scene_index && cache.verify_points)
     verify = [&](const Eigen::Isometry3d& T) {
       return verifyPose(*cache.verify_points, *cache.scene_index, scene_mm, sensor, T,
-                        params.matching.verify_tolerance_mm);
+                        params.matching.verify_tolerance_mm, edges);
     };
   std::vector<std::vector<MatchCandidate>> candidates(objects.size());
   forEachObject(objects.size(), progress, 0.8, 0.95, [&](std::size_t i) {
@@ -336,12 +403,21 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       Detection& d = result.detections[k];
       const RefinementResult r =
           refinePose(*cache.refine_model, *cache.scene_index, d.T_scene_model, params.refine);
-      d.T_scene_model = r.T_scene_model;
-      d.refined = true;
-      if (verifying) {
-        d.coverage = verifyPose(*cache.verify_points, *cache.scene_index, scene_mm, sensor,
-                                d.T_scene_model, params.matching.verify_tolerance_mm);
-        d.score = d.coverage;
+      if (!verifying) {
+        d.T_scene_model = r.T_scene_model;
+        d.refined = true;
+        return;
+      }
+      // The refined pose is kept only when it verifies at least as well: ICP can slide a part
+      // seen edge-on along its extrusion.
+      const double coverage = verifyPose(*cache.verify_points, *cache.scene_index, scene_mm,
+                                         sensor, r.T_scene_model,
+                                         params.matching.verify_tolerance_mm, edges);
+      if (coverage >= d.coverage) {
+        d.T_scene_model = r.T_scene_model;
+        d.refined = true;
+        d.coverage = coverage;
+        d.score = coverage;
       }
     });
     std::stable_sort(result.detections.begin(), result.detections.end(),
@@ -361,6 +437,50 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   result.timings.total_ms = msSince(t_start);
   reportProgress(progress, 1.0);
   return result;
+}
+
+RecognitionResult recognizeViews(Recognizer& recognizer,
+                                 const std::vector<std::shared_ptr<const TaughtModel>>& models,
+                                 const PointCloud& scene_mm, const SensorModel& sensor,
+                                 const RecognitionParams& params, const ProgressFn& progress) {
+  if (models.empty())
+    throw Error("no model to recognize: give at least one .spmodel");
+  RecognitionResult merged;
+  double diameter_mm = 0.0;
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    recognizer.setModel(models[m]);
+    const double begin = double(m) / double(models.size());
+    RecognitionResult r = recognizer.recognize(
+        scene_mm, sensor, params, subProgress(progress, begin, begin + 1.0 / double(models.size())));
+    diameter_mm = std::max(diameter_mm, models[m]->diameter_mm);
+    for (auto& d : r.detections) {
+      d.model_index = static_cast<int>(m);
+      merged.detections.push_back(std::move(d));
+    }
+    const StageTimings& t = r.timings;
+    StageTimings& sum = merged.timings;
+    sum.preprocess_ms += t.preprocess_ms;
+    sum.clustering_ms += t.clustering_ms;
+    sum.keypoints_ms += t.keypoints_ms;
+    sum.features_ms += t.features_ms;
+    sum.matching_ms += t.matching_ms;
+    sum.refine_ms += t.refine_ms;
+    sum.total_ms += t.total_ms;
+    if (m == 0) {
+      merged.preprocessed = r.preprocessed;
+      merged.floor_points_removed = r.floor_points_removed;
+      merged.objects = r.objects;
+      merged.object_keypoints = r.object_keypoints;
+      merged.object_features = r.object_features;
+    }
+  }
+  std::stable_sort(merged.detections.begin(), merged.detections.end(),
+                   [](const Detection& a, const Detection& b) { return a.score > b.score; });
+  merged.detections = suppressDuplicates(std::move(merged.detections), 0.3 * diameter_mm);
+  if (params.matching.max_detections > 0 &&
+      merged.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
+    merged.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
+  return merged;
 }
 
 std::vector<Detection> suppressDuplicates(std::vector<Detection> detections,

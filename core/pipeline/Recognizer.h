@@ -67,6 +67,17 @@ private:
   std::shared_ptr<Cache> m_cache;
 };
 
+/// Finds any of several models in one scene: views of one part, each taught from a scan of
+/// another side it can rest on (one model sees one side only). The scene stages run once (the
+/// recognizer's cache), matching per model; detections are merged best first, and one whose
+/// position lies within 0.3 × the larger model diameter of a better one's is dropped (the same
+/// instance seen through another view). Detection::model_index names the model. Throws as
+/// Recognizer::recognize, and Error for an empty `models`.
+RecognitionResult recognizeViews(Recognizer& recognizer,
+                                 const std::vector<std::shared_ptr<const TaughtModel>>& models,
+                                 const PointCloud& scene_mm, const SensorModel& sensor,
+                                 const RecognitionParams& params, const ProgressFn& progress = {});
+
 /// Removes duplicates: detections (sorted best first) whose model origins are closer than
 /// `min_distance_mm` to a better one are dropped. Keeps the input order otherwise.
 std::vector<Detection> suppressDuplicates(std::vector<Detection> detections,

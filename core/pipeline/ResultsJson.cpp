@@ -1,6 +1,7 @@
 #include "core/pipeline/ResultsJson.h"
 
 #include "core/common/AtomicFile.h"
+#include "core/common/Error.h"
 
 namespace scanpick::core {
 namespace {
@@ -15,8 +16,15 @@ json matrix(const Eigen::Isometry3d& T) {
 json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 } // namespace
 
-json resultsToJson(const RecognitionResult& result, const TaughtModel& model,
-                   const std::string& scene_path, const std::string& model_path) {
+json resultsToJson(const RecognitionResult& result, const std::vector<ModelSource>& models,
+                   const std::string& scene_path) {
+  if (models.empty() || !models.front().model)
+    throw Error("results need at least one model");
+  json model_docs = json::array();
+  for (const auto& m : models)
+    model_docs.push_back({{"path", m.path}, {"name", m.model->name},
+                          {"teach_scan", m.model->teach_scan},
+                          {"T_teach_model", matrix(m.model->T_teach_model)}});
   json detections = json::array();
   for (std::size_t i = 0; i < result.detections.size(); ++i) {
     const Detection& d = result.detections[i];
@@ -33,6 +41,7 @@ json resultsToJson(const RecognitionResult& result, const TaughtModel& model,
                           {"coverage", d.coverage},
                           {"refined", d.refined},
                           {"cluster", d.cluster},
+                          {"model", d.model_index},
                           {"T_scene_model", matrix(d.T_scene_model)},
                           {"position_mm", vec(d.T_scene_model.translation())},
                           {"quaternion_wxyz", json::array({q.w(), q.x(), q.y(), q.z()})},
@@ -44,8 +53,8 @@ json resultsToJson(const RecognitionResult& result, const TaughtModel& model,
           {"version", kResultsFormatVersion},
           {"units", "mm"},
           {"scene", scene_path},
-          {"model", {{"path", model_path}, {"name", model.name},
-                     {"T_teach_model", matrix(model.T_teach_model)}}},
+          {"model", model_docs.front()},
+          {"models", model_docs},
           {"detections", detections},
           {"timings_ms", {{"preprocess", t.preprocess_ms}, {"clustering", t.clustering_ms},
                           {"keypoints", t.keypoints_ms}, {"features", t.features_ms},
@@ -53,10 +62,20 @@ json resultsToJson(const RecognitionResult& result, const TaughtModel& model,
                           {"total", t.total_ms}}}};
 }
 
+json resultsToJson(const RecognitionResult& result, const TaughtModel& model,
+                   const std::string& scene_path, const std::string& model_path) {
+  return resultsToJson(result, std::vector<ModelSource>{{&model, model_path}}, scene_path);
+}
+
+void saveResults(const std::filesystem::path& path, const RecognitionResult& result,
+                 const std::vector<ModelSource>& models, const std::string& scene_path) {
+  writeFileAtomic(path, resultsToJson(result, models, scene_path).dump(2) + "\n");
+}
+
 void saveResults(const std::filesystem::path& path, const RecognitionResult& result,
                  const TaughtModel& model, const std::string& scene_path,
                  const std::string& model_path) {
-  writeFileAtomic(path, resultsToJson(result, model, scene_path, model_path).dump(2) + "\n");
+  saveResults(path, result, {{&model, model_path}}, scene_path);
 }
 
 } // namespace scanpick::core

@@ -44,6 +44,10 @@ struct SceneSpec {
   /// Camera height above the floor, mm; 0 = the sensor's default for the layout (PhoXi: 850 bin,
   /// 700 scatter/teach; Kinect: 1100 bin, 1000 scatter/teach).
   double camera_height_mm = 0;
+  /// Teach scenes: which side the part rests on. 0 = its usual rest pose (Part::R_table_part);
+  /// 1-3 = turned over (180° about x), on its side (90° about x) or on its end (90° about y)
+  /// before it is dropped, so the camera sees other sides (one taught view each).
+  int teach_side = 0;
 };
 
 /// A scene at rest.
@@ -63,6 +67,12 @@ struct Scene {
     return T_camera_world * instance.T_world_part;
   }
 };
+
+/// Number of teach sides (SceneSpec::teach_side is 0 .. kTeachSides - 1).
+inline constexpr int kTeachSides = 4;
+
+/// The turn applied to a part's usual rest pose before a teach scene drops it on side `side`.
+Eigen::Matrix3d teachSideTurn(int side);
 
 /// Default camera height above the floor (mm) for a sensor and layout (see SceneSpec).
 double defaultCameraHeight_mm(const SensorModel& sensor, LayoutKind layout);

@@ -187,6 +187,16 @@ LayoutKind layoutFromName(const std::string& name) {
   throw Error("unknown layout '" + name + "': use bin, scatter or teach");
 }
 
+Eigen::Matrix3d teachSideTurn(int side) {
+  constexpr double kHalfPi = 1.57079632679489661923;
+  switch (side) {
+  case 1: return Eigen::AngleAxisd(2 * kHalfPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  case 2: return Eigen::AngleAxisd(kHalfPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  case 3: return Eigen::AngleAxisd(kHalfPi, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  default: return Eigen::Matrix3d::Identity();
+  }
+}
+
 double defaultCameraHeight_mm(const SensorModel& sensor, LayoutKind layout) {
   const bool kinect = sensor.nominal_distance_mm >= 1000;
   if (layout == LayoutKind::Bin)
@@ -199,6 +209,9 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
     throw Error("no part to place: give a built-in part name or a mesh file");
   if (spec.count < 1)
     throw Error("the scene needs at least one instance (count is " + std::to_string(spec.count) + ")");
+  if (spec.teach_side < 0 || spec.teach_side > kTeachSides - 1)
+    throw Error("teach side " + std::to_string(spec.teach_side) + " does not exist: use 0 to " +
+                std::to_string(kTeachSides - 1));
   if (spec.layout == LayoutKind::Teach && spec.count != 1)
     throw Error("a teach scene holds exactly one part (count is " + std::to_string(spec.count) + ")");
   if (spec.count > 200)
@@ -276,7 +289,8 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
   } else {
     const Part& part = scene.parts.front();
     const double yaw = unit(rng) * 2 * 3.14159265358979323846;
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() * part.R_table_part;
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                              teachSideTurn(spec.teach_side) * part.R_table_part;
     // Lowest point of the part in this orientation, relative to its centre.
     double low = 0;
     for (const auto& c : part.components)

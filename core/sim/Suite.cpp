@@ -58,6 +58,14 @@ std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed)
         s.request.count = 1;
         s.request.seed = hashMix(seed, k++, 3);
         out.push_back(s);
+        // The other sides, for models taught from several views (one scan per side).
+        for (int side = 1; side < kTeachSides; ++side) {
+          SuiteScene v = s;
+          v.relative_prefix += "-side" + std::to_string(side);
+          v.request.teach_side = side;
+          v.request.seed = hashMix(s.request.seed, static_cast<std::uint64_t>(side), 4);
+          out.push_back(v);
+        }
       }
     return out;
   }

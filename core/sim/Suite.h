@@ -20,7 +20,8 @@ struct SuiteScene {
 
 /// The suites: "phoxi-bin" (20 one-part bins, 5 per built-in part, 6-15 instances, plus 4 mixed
 /// bins), "kinect-bin" (12 one-part bins, 6-12 instances), "teach" (each part alone on a table,
-/// for each sensor preset: teach/<sensor>/<part>).
+/// for each sensor preset: teach/<sensor>/<part>, and the other sides it can rest on,
+/// teach/<sensor>/<part>-side1..3, for models taught from several views).
 std::vector<std::string> suiteNames();
 
 /// The scenes of suite `name` for `seed` (kDefaultSuiteSeed unless testing). Throws Error for an

@@ -42,6 +42,8 @@ void validateRequest(const SynthRequest& r) {
     throw Error("--count must be at least 1 (got " + std::to_string(r.count) + ")");
   if (r.layout == LayoutKind::Teach && r.count != 1)
     throw Error("a teach scene holds exactly one part: use --count 1");
+  if (r.teach_side < 0 || r.teach_side >= kTeachSides)
+    throw Error("--teach-side must be between 0 and " + std::to_string(kTeachSides - 1));
   if (r.noise_sigma_mm && !(*r.noise_sigma_mm >= 0 && *r.noise_sigma_mm <= 50))
     throw Error("--noise-sigma must be between 0 and 50 mm");
   for (const auto& name : r.parts)
@@ -63,6 +65,7 @@ SynthScene synthesize(const SynthRequest& request, const ProgressFn& progress) {
   spec.count = request.count;
   spec.seed = hashMix(request.seed, 0, 100);  // physics and rendering draw from separate streams
   spec.camera_height_mm = request.camera_height_mm;
+  spec.teach_side = request.teach_side;
   out.scene = buildScene(spec, out.sensor, subProgress(progress, 0.0, 0.4));
   out.render = renderScene(out.scene, out.sensor, out.noise, hashMix(request.seed, 0, 101),
                            subProgress(progress, 0.4, 1.0));

@@ -26,6 +26,7 @@ struct SynthRequest {
   std::optional<double> noise_sigma_mm; ///< overrides the sensor's depth noise (SensorNoise::withSigma)
   bool noiseless = false;               ///< exact geometry (SensorNoise::none), for checks
   double camera_height_mm = 0;          ///< 0 = default for the sensor and layout
+  int teach_side = 0;                   ///< teach layout: the side it rests on (SceneSpec)
 };
 
 /// A simulated scan and everything needed for its ground truth.

@@ -2,6 +2,7 @@
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 #include "core/sim/PartCatalog.h"
+#include "core/sim/Scene.h"
 #include "core/sim/Suite.h"
 #include "tests/support/TempDir.h"
 
@@ -40,7 +41,7 @@ TEST(SimSuite, KinectAndTeachSuites) {
   for (const auto& s : kinect)
     EXPECT_EQ(s.request.sensor, "kinect-v1");
   const auto teach = suiteScenes("teach", kDefaultSuiteSeed);
-  EXPECT_EQ(teach.size(), builtInPartNames().size() * sensorPresetNames().size());
+  EXPECT_EQ(teach.size(), builtInPartNames().size() * sensorPresetNames().size() * kTeachSides);
   EXPECT_EQ(teach.front().relative_prefix, std::filesystem::path("teach/phoxi-m-1032/support"));
   EXPECT_THROW(suiteScenes("lidar-bin", 1), Error);
 }
@@ -54,11 +55,11 @@ TEST(SimSuite, WrittenScenesFollowTheLayoutAndAreReproducible) {
   const auto files = writeSuite(dir.path(), some);
   EXPECT_EQ(files.size(), 9u);
   for (const char* f : {"phoxi-bin/scene-000.pcd", "phoxi-bin/scene-000.png", "phoxi-bin/scene-000.gt.json",
-                        "kinect-bin/scene-011.gt.json", "teach/kinect-v1/coat-rack.gt.json"})
+                        "kinect-bin/scene-011.gt.json", "teach/kinect-v1/coat-rack-side3.gt.json"})
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
   const auto gt = nlohmann::json::parse(readFile(dir / "phoxi-bin/scene-000.gt.json"));
   EXPECT_EQ(gt["instances"].size(), static_cast<std::size_t>(some[0].request.count));
-  EXPECT_TRUE(nlohmann::json::parse(readFile(dir / "teach/kinect-v1/coat-rack.gt.json")).contains("crop_box"));
+  EXPECT_TRUE(nlohmann::json::parse(readFile(dir / "teach/kinect-v1/coat-rack-side3.gt.json")).contains("crop_box"));
 
   TempDir again;
   writeSuite(again.path(), {some[0]});
@@ -74,4 +75,29 @@ TEST(SimSuite, DemoScenes) {
   EXPECT_EQ(bin["instances"].size(), 8u);
   EXPECT_EQ(bin["sensor"]["preset"], "phoxi-m-1032");
   EXPECT_EQ(nlohmann::json::parse(readFile(dir / "support-teach.gt.json"))["scene"]["kind"], "teach");
+}
+
+TEST(SimSuite, TeachSidesShowThePartFromOtherSides) {
+  // Where the camera looks from, in the part's frame, for the cup taught on each side.
+  const auto viewDirection = [](int side) {
+    SceneSpec spec;
+    spec.layout = LayoutKind::Teach;
+    spec.parts = {builtInPart("cup")};
+    spec.count = 1;
+    spec.seed = 11;
+    spec.teach_side = side;
+    const Scene scene = buildScene(spec, sensorPreset("phoxi-m-1032"));
+    return Eigen::Vector3d(scene.T_scene_part(scene.instances.front()).linear().transpose() *
+                           Eigen::Vector3d::UnitZ());
+  };
+  const Eigen::Vector3d upright = viewDirection(0), upside_down = viewDirection(1),
+                        lying = viewDirection(2);
+  EXPECT_LT(upright.dot(upside_down), -0.9);  // seen from the other end
+  EXPECT_LT(std::abs(upright.dot(lying)), 0.5);  // seen from the side
+  SceneSpec bad;
+  bad.layout = LayoutKind::Teach;
+  bad.parts = {builtInPart("cup")};
+  bad.count = 1;
+  bad.teach_side = kTeachSides;
+  EXPECT_THROW(buildScene(bad, sensorPreset("phoxi-m-1032")), Error);
 }

@@ -227,3 +227,47 @@ TEST(EvalFiles, TeachTruthsAreFoundAndChosenPerResults) {
               "no teach ground truth");
   expectError([&] { core::eval::loadTeachTruths({out / "phoxi-bin"}); }, "holds no teach");
 }
+
+TEST(EvalFiles, ViewsOfOnePartAreEvaluatedEachAgainstItsOwnTeachScan) {
+  Fixture f;
+  // A second view: the part taught lying on another side, from its own scan.
+  json side = truthJson("teach", {pose({10, 5, 690}, 100, Eigen::Vector3d(0, 1, 0))});
+  side["scene"]["cloud"] = "side.pcd";
+  f.teach["scene"]["cloud"] = "teach.pcd";
+  write(f.dir / "teach.gt.json", f.teach);
+  write(f.dir / "side.gt.json", side);
+  const std::vector<core::eval::GroundTruth> teach = {core::eval::loadGroundTruth(f.dir / "teach.gt.json"),
+                                                      core::eval::loadGroundTruth(f.dir / "side.gt.json")};
+  // Instance 0 found through view 0, instance 1 through view 1 (whose frame differs).
+  json results = resultsJson({f.poses[0]}, f.teach);
+  const json side_detection = resultsJson({f.poses[1]}, side)["detections"][0];
+  results["detections"].push_back(side_detection);
+  results["detections"][1]["id"] = 1;
+  results["detections"][1]["model"] = 1;
+  const json model = {{"name", "widget"}, {"T_teach_model", transformToJson(test::testTeachModel())}};
+  results["models"] = json::array({model, model});
+  results["models"][0]["teach_scan"] = "teach.pcd";
+  results["models"][1]["teach_scan"] = "side.pcd";
+  write(f.dir / "result.json", results);
+  const auto report = core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {});
+  EXPECT_DOUBLE_EQ(*report.overall.precision, 1.0);
+  EXPECT_DOUBLE_EQ(*report.overall.recall, 1.0);
+  EXPECT_NEAR(report.overall.translation_mm.max, 0.0, 1e-6);
+
+  // Evaluated against the wrong view's teach scan, detection 1 is off.
+  results["models"][1]["teach_scan"] = "teach.pcd";
+  write(f.dir / "result.json", results);
+  const auto wrong = core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {});
+  EXPECT_DOUBLE_EQ(*wrong.overall.recall, 0.5);
+
+  // A view whose teach scan has no ground truth, or a detection naming no model: clear errors.
+  results["models"][1]["teach_scan"] = "other.pcd";
+  write(f.dir / "result.json", results);
+  expectError([&] { core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {}); },
+              "other.pcd");
+  results["models"][1]["teach_scan"] = "side.pcd";
+  results["detections"][1]["model"] = 2;
+  write(f.dir / "result.json", results);
+  expectError([&] { core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {}); },
+              "names no entry");
+}

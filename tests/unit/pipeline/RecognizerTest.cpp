@@ -105,3 +105,49 @@ TEST(Recognizer, SuppressesDuplicatesCloserThanTheDistance) {
   ASSERT_EQ(kept.size(), 2u);
   EXPECT_EQ(kept[1].score, 0.7);
 }
+
+TEST(Recognizer, PooledSearchFindsEveryCopyInOneUnsplitScene) {
+  // No clustering: the three copies are one object, as touching parts in a bin are.
+  RecognitionParams params = test::idealParams(0.001);
+  params.clustering.enabled = false;
+  params.matching.verify_tolerance_mm = 1.0;
+  params.matching.min_coverage = 0.5;
+  params.matching.pool_size = 200;
+  const auto poses = test::idealCopyPoses();
+  const auto model = idealModel();
+  const auto r = Recognizer(model).recognize(threeCopies(0.0), sensorPreset("phoxi-m-1032"), params);
+  ASSERT_EQ(r.detections.size(), 3u);
+  // Each copy is found once, at its model origin (the teach scan had the part moved by 700 mm
+  // along z).
+  const Eigen::Vector3d origin_part = model->T_teach_model.translation() - Eigen::Vector3d(0, 0, 700);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const Eigen::Vector3d where = poses[i] * origin_part;
+    const auto hits = std::count_if(r.detections.begin(), r.detections.end(), [&](const Detection& d) {
+      return (d.T_scene_model.translation() - where).norm() < 0.5;
+    });
+    EXPECT_EQ(hits, 1) << "copy " << i;
+  }
+}
+
+TEST(Recognizer, ViewsAreMergedWithoutDuplicatesAndNamedInTheResults) {
+  const auto view0 = idealModel();
+  auto view1 = std::make_shared<TaughtModel>(*view0);
+  view1->teach_scan = "side.pcd";
+  const PointCloud scene = threeCopies(0.0);
+  const auto params = test::idealParams(0.001);
+  Recognizer recognizer;
+  const auto single = Recognizer(view0).recognize(scene, sensorPreset("phoxi-m-1032"), params);
+  const auto merged = recognizeViews(recognizer, {view0, view1}, scene, sensorPreset("phoxi-m-1032"), params);
+  // The same instances seen through both (identical) views are reported once.
+  ASSERT_EQ(merged.detections.size(), single.detections.size());
+  for (std::size_t i = 0; i < merged.detections.size(); ++i)
+    EXPECT_TRUE(merged.detections[i].T_scene_model.isApprox(single.detections[i].T_scene_model, 1e-9));
+  test::TempDir dir;
+  saveResults(dir / "result.json", merged, {{view0.get(), "a.spmodel"}, {view1.get(), "b.spmodel"}}, "scene.pcd");
+  const auto back = eval::loadResults(dir / "result.json");
+  ASSERT_EQ(back.models.size(), 2u);
+  EXPECT_EQ(back.models[1].teach_scan, "side.pcd");
+  for (std::size_t i = 0; i < back.detections.size(); ++i)
+    EXPECT_EQ(back.detections[i].model, static_cast<std::size_t>(merged.detections[i].model_index));
+  EXPECT_THROW(recognizeViews(recognizer, {}, scene, sensorPreset("phoxi-m-1032"), params), Error);
+}
