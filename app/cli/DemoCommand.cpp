@@ -1,28 +1,155 @@
-// scanpick-cli demo: writes the demo scenes (a PhoXi bin of supports and the support's teach scan).
+// scanpick-cli demo: the README's main job. Writes the demo scenes (a simulated PhoXi bin of
+// supports and the support's teach scan, with ground truth), teaches the support from its teach
+// scans on two sides (crop boxes from the ground truth, floor removed), recognizes it in the bin
+// with both views and writes the
+// results JSON and the overlay picture.
 #include "app/cli/CliCommon.h"
 #include "app/cli/Commands.h"
+#include "app/cli/RecipeOptions.h"
 
+#include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
+#include "core/model/ModelFile.h"
+#include "core/pipeline/OverlayPicture.h"
+#include "core/pipeline/Recognizer.h"
+#include "core/pipeline/ResultsJson.h"
 #include "core/sim/Suite.h"
 
+#include <cstdio>
 #include <iostream>
 #include <memory>
+#include <utility>
+#include <vector>
+#include <nlohmann/json.hpp>
 
 namespace scanpick::cli {
+namespace {
+namespace fs = std::filesystem;
+
+Eigen::Vector3d vector3(const nlohmann::json& v) {
+  return {v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>()};
+}
+
+/// The teach scene's crop box (oriented, centred on its own origin) and the part's grip points,
+/// both in the scan frame, from its ground truth.
+void teachOptionsFromTruth(const fs::path& gt_path, core::TeachOptions& options) {
+  const auto doc = nlohmann::json::parse(core::readFile(gt_path), nullptr, false);
+  if (doc.is_discarded() || !doc.contains("crop_box"))
+    throw core::Error(gt_path.string() + " has no crop_box: regenerate the demo with a clean --out folder");
+  try {
+    const auto& box = doc["crop_box"];
+    const Eigen::Vector3d lo = vector3(box.at("min_mm")), hi = vector3(box.at("max_mm"));
+    Eigen::Matrix4d m;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        m(r, c) = box.at("T_scene_box").at(r).at(c).get<double>();
+    Eigen::Isometry3d T_scene_box(m);
+    const Eigen::Isometry3d centred = T_scene_box * Eigen::Translation3d(0.5 * (lo + hi));
+    core::OrientedBox oriented;
+    oriented.T_scan_box = centred.cast<float>();
+    oriented.half_extents_mm = (0.5 * (hi - lo)).cast<float>();
+    options.crop_oriented = oriented;
+    if (doc.contains("instances") && !doc["instances"].empty())
+      for (const auto& g : doc["instances"][0].value("grip_points", nlohmann::json::array()))
+        options.grips_scan.push_back({g.at("name").get<std::string>(), vector3(g.at("position_mm"))});
+  } catch (const nlohmann::json::exception& e) {
+    throw core::Error(gt_path.string() + ": malformed crop_box (" + e.what() + ")");
+  }
+}
+
+struct DemoOptions {
+  std::string out;
+  std::string preset = "phoxi-bin";
+};
+
+int runDemo(const DemoOptions& o) {
+  if (o.out.empty())
+    throw core::Error("--out DIR is required");
+  const fs::path dir(o.out);
+  // The preset first, so a wrong name fails before any work is done.
+  const core::RecognitionParams params = core::loadPreset(findPreset(o.preset)).params;
+  std::cout << "1/3 simulating the demo scenes (PhoXi M, 8 supports in a bin; one support on a table, on two sides)\n";
+  for (const auto& f : core::writeDemoScenes(dir))
+    std::cout << "    wrote " << f.string() << "\n";
+
+  const core::SensorModel sensor = core::sensorPreset("phoxi-m-1032");
+  // Two views: the support as it rests in the bin (on both legs, the main model the desktop
+  // application opens) and as it lies on the table; one scan shows one side only.
+  std::cout << "2/3 teaching the support from support-teach-side1.pcd and support-teach.pcd (preset "
+            << o.preset << ")\n";
+  std::vector<std::shared_ptr<const core::TaughtModel>> models;
+  std::vector<core::ModelSource> sources;
+  std::vector<const core::PointCloud*> clouds;
+  const std::pair<const char*, const char*> views[] = {{"support-teach-side1", "support.spmodel"},
+                                                       {"support-teach", "support-table.spmodel"}};
+  std::vector<std::string> model_paths;
+  for (const auto& [scan_name, model_name] : views) {
+    core::TeachOptions teach;
+    teach.name = "support";
+    teach.remove_floor = true;
+    teach.sensor = sensor;
+    teachOptionsFromTruth(dir / (std::string(scan_name) + ".gt.json"), teach);
+    const fs::path scan_path = dir / (std::string(scan_name) + ".pcd");
+    const core::PointCloud teach_scan =
+        core::loadCloud(scan_path.string(), core::LengthUnit::Millimetres).cloud;
+    core::TaughtModel taught = core::teach(teach_scan, teach, params);
+    taught.teach_scan = scan_path.filename().string();
+    auto model = std::make_shared<const core::TaughtModel>(std::move(taught));
+    const fs::path model_path = dir / model_name;
+    core::saveModel(model_path, *model);
+    std::printf("    %zu points, %zu keypoints, %zu features, %zu grip points -> %s\n",
+                model->cloud_mm.size(), model->keypoints_mm.size(), model->features.size(),
+                model->grip_points.size(), model_path.string().c_str());
+    model_paths.push_back(model_path.string());
+    models.push_back(model);
+  }
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    sources.push_back({models[m].get(), model_paths[m]});
+    clouds.push_back(&models[m]->cloud_mm);
+  }
+  const std::string model_path = model_paths.front();
+
+  std::cout << "3/3 recognizing the support in demo-bin.pcd\n";
+  const fs::path scene_path = dir / "demo-bin.pcd";
+  const core::PointCloud scene =
+      core::loadCloud(scene_path.string(), core::LengthUnit::Millimetres).cloud;
+  core::Recognizer recognizer;
+  const core::RecognitionResult result =
+      core::recognizeViews(recognizer, models, scene, sensor, params);
+  const fs::path results_path = dir / "demo-results.json";
+  const fs::path picture_path = dir / "demo-overlay.png";
+  core::saveResults(results_path, result, sources, scene_path.string());
+  core::writeOverlayPng(picture_path, scene, clouds, result.detections, sensor);
+  std::printf("    %zu detection(s) in %.0f ms\n", result.detections.size(), result.timings.total_ms);
+  for (std::size_t i = 0; i < result.detections.size(); ++i) {
+    const core::Detection& d = result.detections[i];
+    const Eigen::Vector3d t = d.T_scene_model.translation();
+    std::printf("    #%zu score %.3f at (%.1f, %.1f, %.1f) mm\n", i + 1, d.score, t.x(), t.y(), t.z());
+  }
+  std::cout << "results: " << results_path.string() << "\npicture: " << picture_path.string()
+            << " (scene grey, detections red)\n"
+            << "desktop application: scanpick --scan " << scene_path.string() << " --model "
+            << model_path << " --recognize\n";
+  if (result.detections.empty())
+    throw core::Error("the demo found no support in the bin: the build or the preset '" + o.preset +
+                      "' is broken (run ./cmake/setup.sh test)");
+  return kOk;
+}
+
+} // namespace
 
 void registerDemoCommand(CLI::App& app) {
-  auto out = std::make_shared<std::string>();
-  CLI::App* demo = addCommand(app, "demo",
-                              "Generate the demo: a simulated PhoXi scan of 8 supports in a bin and the "
-                              "support's teach scan, with ground truth.",
-                              [out] {
-                                if (out->empty())
-                                  throw core::Error("--out DIR is required");
-                                for (const auto& f : core::writeDemoScenes(*out))
-                                  std::cout << "wrote " << f.string() << "\n";
-                                return kOk;
-                              });
-  demo->add_option("--out", *out, "output folder");
+  auto o = std::make_shared<DemoOptions>();
+  CLI::App* demo = addCommand(
+      app, "demo",
+      "The main job on the bundled demo: simulate a PhoXi scan of 8 supports in a bin and the "
+      "support's teach scans on two sides, teach a view from each, recognize the support in the "
+      "bin, write support.spmodel (resting on its legs), support-table.spmodel, "
+      "demo-results.json and demo-overlay.png.",
+      [o] { return runDemo(*o); });
+  demo->add_option("--out", o->out, "output folder")->required();
+  demo->add_option("--preset", o->preset, "parameter preset (name in resources/presets or file)")
+      ->capture_default_str();
 }
 
 } // namespace scanpick::cli

@@ -106,6 +106,11 @@ struct EdgeCheck {
   double tolerance_mm = 0.0;
 };
 
+/// Verification never expects fewer than this share of the model's points to be seen, however
+/// many are hidden: a pose confirmed on one leg of a bracket whose other leg falls behind other
+/// parts must not score as a whole part.
+constexpr double kMinExpectedShare = 0.75;
+
 /// cos 60°: model and scene normals closer than this agree.
 constexpr float kMinNormalAgreement = 0.5f;
 
@@ -202,39 +207,47 @@ double edgeAgreement(const VerifyModel& model, const SceneIndex& index, const Ei
 }
 
 /// Point-level verification of a pose (beyond the thesis): a model point (of the subsample) is
-/// confirmed when a scene point lies within `tolerance_mm`; on an organized scene whose size is
-/// the sensor's, an unconfirmed point is a violation when the camera sees the
+/// confirmed when a scene point facing the same way lies within `tolerance_mm`. On an organized
+/// scene whose size is the sensor's, an unconfirmed point is a violation when the camera sees the
 /// scene clearly behind it at its pixel (more than 3 x tolerance farther), i.e. looks through
-/// where the pose puts material (a hole, or the floor beside a part). Returns (confirmed −
-/// violations) ÷ model points, clamped to [0, 1]. Dividing by all points (not only those facing
-/// the camera) keeps a pose that turns the taught side away, such as a flip, from scoring on the
-/// few points left facing.
+/// where the pose puts material (a hole, or the floor beside a part), and hidden when the camera
+/// sees something clearly in front of it (another part); points turned away from the camera are
+/// hidden too. Returns (confirmed − violations) ÷ the points expected to be seen, clamped to
+/// [0, 1], times the edge agreement. The expected count is never taken below kMinExpectedShare of the model,
+/// so a pose that turns the taught side away, such as a flip, cannot score on the few points left.
 double verifyPose(const VerifyModel& model, const SceneIndex& index,
                   const PointCloud& scene, const SensorModel& sensor,
                   const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                   const EdgeCheck& edges) {
+  const auto& model_points = model.points;
+  if (model_points.empty())
+    return 0.0;
   const bool organized = scene.height > 1 && static_cast<int>(scene.width) == sensor.width &&
                          static_cast<int>(scene.height) == sensor.height && sensor.fx > 0;
   const Eigen::Isometry3f T = T_scene_model.cast<float>();
   const auto tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
   const auto margin = static_cast<float>(3.0 * tolerance_mm);
-  std::size_t confirmed = 0, violations = 0;
-  const auto& model_points = model.points;
+  std::size_t confirmed = 0, violations = 0, hidden = 0;
   for (std::size_t k = 0; k < model_points.size(); ++k) {
     const Eigen::Vector3f p = T * model_points[k];
+    const Eigen::Vector3f& n_model = model.normals[k];
+    // The camera sits at the scene origin.
+    const bool turned_away = n_model.allFinite() && (T.linear() * n_model).dot(-p) <= 0.0f;
     const std::int64_t near = index.nearest(p, tol_sq);
-    if (near >= 0) {
+    if (near >= 0 && !turned_away) {
       // A surface confirms a point only when it faces the same way: the far face of a thin plate
       // lies within tolerance of the near one's points but turned away.
       const Eigen::Vector3f& n_scene = index.normals()[static_cast<std::size_t>(near)];
-      const Eigen::Vector3f& n_model = model.normals[k];
       if (!n_scene.allFinite() || !n_model.allFinite() ||
-          (T.linear() * n_model).dot(n_scene) > kMinNormalAgreement)
+          (T.linear() * n_model).dot(n_scene) > kMinNormalAgreement) {
         ++confirmed;
+        continue;
+      }
+    }
+    if (turned_away) {
+      ++hidden;
       continue;
     }
-    // A point on the far side of the part needs no normal test: where the camera sees through
-    // it, it sees through the near side too.
     if (!organized || p.z() <= 0.0f)
       continue;
     const Eigen::Vector2d uv = sensor.project(p.cast<double>());
@@ -243,12 +256,16 @@ double verifyPose(const VerifyModel& model, const SceneIndex& index,
       continue;
     const Eigen::Vector3f& s = scene.points_mm[static_cast<std::size_t>(v) * scene.width +
                                                static_cast<std::size_t>(u)];
-    if (isValid(s) && s.z() > p.z() + margin)
+    if (!isValid(s))
+      continue;
+    if (s.z() > p.z() + margin)
       ++violations;
+    else if (s.z() < p.z() - margin)
+      ++hidden;
   }
-  if (model_points.empty())
-    return 0.0;
-  const double q = (double(confirmed) - double(violations)) / double(model_points.size());
+  const double expected =
+      std::max(double(model_points.size() - hidden), kMinExpectedShare * double(model_points.size()));
+  const double q = (double(confirmed) - double(violations)) / expected;
   return std::clamp(q, 0.0, 1.0) * edgeAgreement(model, index, T, tol_sq, edges);
 }
 

@@ -104,7 +104,11 @@ std::vector<std::filesystem::path> writeDemoScenes(const std::filesystem::path& 
   teach.relative_prefix = "support-teach";
   teach.request.layout = LayoutKind::Teach;
   teach.request.count = 1;
-  return writeSuite(dir, {bin, teach}, progress);
+  // In a bin the bracket mostly rests on both legs, a side the table scan does not show.
+  SuiteScene side = teach;
+  side.relative_prefix = "support-teach-side1";
+  side.request.teach_side = 1;
+  return writeSuite(dir, {bin, teach, side}, progress);
 }
 
 } // namespace scanpick::core

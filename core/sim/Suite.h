@@ -39,7 +39,8 @@ std::vector<std::filesystem::path> writeSuite(
     const std::function<void(const std::filesystem::path&)>& on_scene = {});
 
 /// Writes the demo scenes into `dir`: `demo-bin` (PhoXi M 1032, 8 supports in a bin, seed 7) and
-/// `support-teach` (one support on a table, same sensor). Returns the files written.
+/// `support-teach` (one support on a table, same sensor) and `support-teach-side1` (the same
+/// turned over, resting on both legs as most do in the bin). Returns the files written.
 std::vector<std::filesystem::path> writeDemoScenes(const std::filesystem::path& dir,
                                                    const ProgressFn& progress = {});
 

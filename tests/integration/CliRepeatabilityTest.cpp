@@ -54,15 +54,47 @@ TEST(CliRepeatability, TwoRecognizeRunsWriteTheSameResults) {
   const std::string preset =
       quoted(fs::path(SCANPICK_SOURCE_DIR) / "resources" / "presets" / "phoxi-bin.json");
   ASSERT_EQ(runCli({"demo", "--out", quoted(d)}), 0);
-  ASSERT_EQ(runCli({"teach", "--scan", quoted(d / "support-teach.pcd"), "--crop-from-truth",
-                    quoted(d / "support-teach.gt.json"), "--remove-floor", "--preset", preset,
-                    "--name", "support", "--out", quoted(d / "support.spmodel")}),
-            0);
+  // Two views (the table side and the side most supports rest on in the bin), searched together.
+  for (const char* view : {"support-teach", "support-teach-side1"})
+    ASSERT_EQ(runCli({"teach", "--scan", quoted(d / (std::string(view) + ".pcd")), "--crop-from-truth",
+                      quoted(d / (std::string(view) + ".gt.json")), "--remove-floor", "--preset",
+                      preset, "--name", "support", "--out", quoted(d / (std::string(view) + ".spmodel"))}),
+              0);
   for (const char* out : {"a.json", "b.json"})
-    ASSERT_EQ(runCli({"recognize", "--model", quoted(d / "support.spmodel"), "--scene",
-                      quoted(d / "demo-bin.pcd"), "--preset", preset, "--out", quoted(d / out)}),
+    ASSERT_EQ(runCli({"recognize", "--model", quoted(d / "support-teach.spmodel"), "--model",
+                      quoted(d / "support-teach-side1.spmodel"), "--scene", quoted(d / "demo-bin.pcd"),
+                      "--preset", preset, "--out", quoted(d / out)}),
               0);
   const auto a = withoutTimings(d / "a.json"), b = withoutTimings(d / "b.json");
   EXPECT_FALSE(a.at("detections").empty()) << "the demo bin should give detections";
   EXPECT_EQ(a.dump(), b.dump());
+}
+
+// The README's main job headless: `scanpick-cli demo` simulates the scenes, teaches the support,
+// recognizes it in the bin and writes the results and the overlay picture.
+TEST(CliDemo, TeachesRecognizesAndWritesResultsAndPicture) {
+  if (!fs::exists(kCli))
+    GTEST_SKIP() << kCli << " is not built (build the scanpick-cli target first)";
+  const scanpick::test::TempDir dir;
+  const fs::path d = dir.path() / "demo-output";
+  ASSERT_EQ(runCli({"demo", "--out", quoted(d)}), 0);
+  for (const char* file : {"demo-bin.pcd", "support-teach.pcd", "support.spmodel"})
+    EXPECT_TRUE(fs::exists(d / file)) << file;
+  ASSERT_TRUE(fs::exists(d / "demo-results.json"));
+  std::ifstream in(d / "demo-results.json");
+  const nlohmann::json results = nlohmann::json::parse(in);
+  ASSERT_TRUE(results.at("detections").is_array());
+  EXPECT_GE(results.at("detections").size(), 1u) << "the demo bin should give detections";
+  for (const auto& detection : results.at("detections"))
+    EXPECT_GT(detection.at("score").get<double>(), 0.0);
+  // The picture is a real PNG, not an empty file.
+  const fs::path picture = d / "demo-overlay.png";
+  ASSERT_TRUE(fs::exists(picture));
+  EXPECT_GT(fs::file_size(picture), 1000u);
+  std::ifstream png(picture, std::ios::binary);
+  char magic[8] = {};
+  png.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+  // A bad preset fails with a non-zero exit code instead of writing anything misleading.
+  EXPECT_NE(runCli({"demo", "--out", quoted(dir.path() / "bad"), "--preset", "no-such-preset"}), 0);
 }

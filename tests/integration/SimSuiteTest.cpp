@@ -70,7 +70,7 @@ TEST(SimSuite, WrittenScenesFollowTheLayoutAndAreReproducible) {
 TEST(SimSuite, DemoScenes) {
   TempDir dir;
   const auto files = writeDemoScenes(dir.path());
-  EXPECT_EQ(files.size(), 6u);
+  EXPECT_EQ(files.size(), 9u);
   const auto bin = nlohmann::json::parse(readFile(dir / "demo-bin.gt.json"));
   EXPECT_EQ(bin["instances"].size(), 8u);
   EXPECT_EQ(bin["sensor"]["preset"], "phoxi-m-1032");
