@@ -2,6 +2,7 @@
 // teaching. Wall and process CPU time are both reported, since the machine may be shared.
 #include "app/cli/CliCommon.h"
 #include "app/cli/Commands.h"
+#include "app/cli/ModelViews.h"
 #include "app/cli/RecipeOptions.h"
 
 #include "core/model/ModelFile.h"
@@ -35,32 +36,31 @@ double median(std::vector<double> v) {
 
 struct Options {
   RecipeOptions recipe;
-  std::string model, scene;
+  std::vector<std::string> models;
+  std::string scene;
   int runs = 5;
 };
 
 int run(const Options& o) {
   if (o.runs < 1)
     throw core::Error("--runs must be at least 1");
-  auto model = std::make_shared<core::TaughtModel>(core::loadModel(o.model));
+  const ModelViews views = loadModelViews(o.models);
+  const auto& model = views.models.front();
   const core::RecognitionParams params = resolveParams(o.recipe, model->params);
-  const std::string sensor_name =
-      !o.recipe.sensor.empty() ? o.recipe.sensor
-      : (model->sensor.preset.empty() || model->sensor.preset == "custom" ? "phoxi-m-1032"
-                                                                          : model->sensor.preset);
-  const core::SensorModel sensor = core::sensorPreset(sensor_name);
+  const core::SensorModel sensor = core::sensorPreset(sensorNameFor(o.recipe.sensor, *model));
   const core::PointCloud scene = loadWithUnitsCheck(o.scene, o.recipe.units);
-  std::printf("bench: %s (%u x %u, %zu valid points), model '%s' (%zu features), %d cold runs, "
-              "%u hardware threads\n",
+  std::printf("bench: %s (%u x %u, %zu valid points), model '%s' (%zu view(s), %zu features in the "
+              "first), %d cold runs, %u hardware threads\n",
               o.scene.c_str(), scene.width, scene.height, scene.validCount(), model->name.c_str(),
-              model->features.size(), o.runs, std::thread::hardware_concurrency());
+              views.models.size(), model->features.size(), o.runs,
+              std::thread::hardware_concurrency());
   std::vector<double> pre, clu, key, fea, mat, ref, total, cpu, wall;
   std::size_t detections = 0;
   for (int r = 0; r < o.runs; ++r) {
-    core::Recognizer recognizer(model);  // a fresh recognizer: nothing served from the cache
+    core::Recognizer recognizer;  // a fresh recognizer: nothing served from the cache
     const double cpu0 = processCpuMs();
     const auto t0 = std::chrono::steady_clock::now();
-    const auto result = recognizer.recognize(scene, sensor, params);
+    const auto result = core::recognizeViews(recognizer, views.models, scene, sensor, params);
     wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                        .count());
     cpu.push_back(processCpuMs() - cpu0);
@@ -112,7 +112,8 @@ void registerBenchCommand(CLI::App& app) {
   CLI::App* sub = addCommand(app, "bench",
                              "Time recognition of one scene per stage (median of cold runs)",
                              [o] { return run(*o); });
-  sub->add_option("--model", o->model, "Taught model (.spmodel)")->required();
+  sub->add_option("--model", o->models, "Taught model (.spmodel); repeat it for views of one part")
+      ->required();
   sub->add_option("--scene", o->scene, "Scene scan (.pcd or .ply)")->required();
   sub->add_option("--runs", o->runs, "Cold runs (a fresh recognizer each)")->capture_default_str();
   o->recipe.add(sub);

@@ -1,6 +1,7 @@
 // scanpick-cli recognize: find a taught part in one scene, or in every scene of a suite folder.
 #include "app/cli/CliCommon.h"
 #include "app/cli/Commands.h"
+#include "app/cli/ModelViews.h"
 #include "app/cli/RecipeOptions.h"
 
 #include "core/common/AtomicFile.h"
@@ -53,32 +54,8 @@ void printSummary(const std::string& scene, const core::RecognitionResult& r) {
   }
 }
 
-/// Every model given (views of one part), with what the results and pictures need of them.
-struct LoadedModels {
-  std::vector<std::shared_ptr<const core::TaughtModel>> models;
-  std::vector<core::ModelSource> sources;
-  std::vector<const core::PointCloud*> clouds;
-};
-
-LoadedModels loadModels(const std::vector<std::string>& paths) {
-  LoadedModels out;
-  for (const auto& path : paths) {
-    auto model = std::make_shared<const core::TaughtModel>(core::loadModel(path));
-    if (!out.models.empty() && model->name != out.models.front()->name)
-      throw core::Error("models '" + out.models.front()->name + "' and '" + model->name +
-                        "' are different parts: several --model must be views of one part "
-                        "(recognize each part in its own run)");
-    out.models.push_back(model);
-    out.sources.push_back({model.get(), path});
-    out.clouds.push_back(&model->cloud_mm);
-  }
-  return out;
-}
-
 int run(const Options& o) {
-  if (o.models.empty())
-    throw core::Error("--model is required");
-  const LoadedModels loaded = loadModels(o.models);
+  const ModelViews loaded = loadModelViews(o.models);
   const core::TaughtModel& first = *loaded.models.front();
   // Without --preset/--params the (first) model's own parameters are used.
   const core::RecognitionParams params = resolveParams(o.recipe, first.params);
@@ -86,9 +63,7 @@ int run(const Options& o) {
   const auto recognize = [&](const core::PointCloud& scene, const core::SensorModel& sensor) {
     return core::recognizeViews(recognizer, loaded.models, scene, sensor, params);
   };
-  const std::string default_sensor = first.sensor.preset.empty() || first.sensor.preset == "custom"
-                                         ? "phoxi-m-1032"
-                                         : first.sensor.preset;
+  const std::string default_sensor = sensorNameFor("", first);
   if (o.suite.empty()) {
     if (o.scene.empty() || o.out.empty())
       throw core::Error("give --scene and --out (or --suite DIR --out RESULTS_DIR)");

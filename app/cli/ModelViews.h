@@ -1,0 +1,49 @@
+#pragma once
+/// @file ModelViews.h
+/// Loading the --model options of recognize and bench: one model, or several views of one part.
+
+#include "core/common/Error.h"
+#include "core/model/ModelFile.h"
+#include "core/pipeline/ResultsJson.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace scanpick::cli {
+
+/// Every model given (views of one part), with what the results and pictures need of them.
+struct ModelViews {
+  std::vector<std::shared_ptr<const core::TaughtModel>> models;
+  std::vector<core::ModelSource> sources;
+  std::vector<const core::PointCloud*> clouds;
+};
+
+/// Loads `paths` (at least one). Throws core::Error for a file that does not load, or for
+/// models of different parts (several --model must be views of one part).
+inline ModelViews loadModelViews(const std::vector<std::string>& paths) {
+  if (paths.empty())
+    throw core::Error("--model is required");
+  ModelViews out;
+  for (const auto& path : paths) {
+    auto model = std::make_shared<const core::TaughtModel>(core::loadModel(path));
+    if (!out.models.empty() && model->name != out.models.front()->name)
+      throw core::Error("models '" + out.models.front()->name + "' and '" + model->name +
+                        "' are different parts: several --model must be views of one part "
+                        "(recognize each part in its own run)");
+    out.models.push_back(model);
+    out.sources.push_back({model.get(), path});
+    out.clouds.push_back(&model->cloud_mm);
+  }
+  return out;
+}
+
+/// The sensor preset for the run: `given`, else the (first) model's, else PhoXi M 1032.
+inline std::string sensorNameFor(const std::string& given, const core::TaughtModel& model) {
+  if (!given.empty())
+    return given;
+  return model.sensor.preset.empty() || model.sensor.preset == "custom" ? "phoxi-m-1032"
+                                                                        : model.sensor.preset;
+}
+
+} // namespace scanpick::cli
