@@ -2,85 +2,93 @@
 <!DOCTYPE TS>
 <TS version="2.1" language="it_IT">
 <context>
+    <name>main</name>
+    <message>
+        <location filename="../app/gui/main.cpp" line="45"/>
+        <source>3D object recognition for bin picking, taught from a scan</source>
+        <translation>Riconoscimento 3D di oggetti per il bin picking, appreso da una scansione</translation>
+    </message>
+</context>
+<context>
     <name>scanpick::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="37" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="37"/>
         <source>device id, e.g. kinect:0 or file:/path/scan.pcd</source>
         <translation>id del dispositivo, es. kinect:0 o file:/percorso/scansione.pcd</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="41" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="41"/>
         <source>Refresh</source>
         <translation>Aggiorna</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="42" />
-        <location filename="../ui/panels/DevicePanel.cpp" line="93" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="42"/>
+        <location filename="../ui/panels/DevicePanel.cpp" line="100"/>
         <source>Open</source>
         <translation>Apri</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="43" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="43"/>
         <source>Capture</source>
         <translation>Acquisizione</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="44" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="44"/>
         <source>Stream</source>
         <translation>Flusso</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="78" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="83"/>
         <source>This build has no camera support (SCANPICK_BUILD_DEVICES=OFF).</source>
         <translation>Questa build non supporta le telecamere (SCANPICK_BUILD_DEVICES=OFF).</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="93" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="100"/>
         <source>Close</source>
         <translation>Chiudi</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="100" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="107"/>
         <source>Looking for cameras…</source>
         <translation>Ricerca telecamere…</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="119" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="126"/>
         <source>No camera attached. A file:&lt;path&gt; id replays saved scans.</source>
         <translation>Nessuna telecamera collegata. Un id file:&lt;percorso&gt; riproduce scansioni salvate.</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="121" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="128"/>
         <source>%1 camera(s) found</source>
         <translation>%1 telecamera/e trovata/e</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="130" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="138"/>
         <source>Choose a camera in the list or type its id.</source>
-        <translation>Scegli una telecamera dall'elenco o scrivine l'id.</translation>
+        <translation>Scegli una telecamera dall&apos;elenco o scrivine l&apos;id.</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="133" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="141"/>
         <source>Opening %1…</source>
         <translation>Apertura di %1…</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="140" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="148"/>
         <source>Open: %1</source>
         <translation>Aperta: %1</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="159" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="167"/>
         <source>Closed</source>
         <translation>Chiusa</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="173" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="181"/>
         <source>capture %1</source>
         <translation>acquisizione %1</translation>
     </message>
     <message>
-        <location filename="../ui/panels/DevicePanel.cpp" line="194" />
+        <location filename="../ui/panels/DevicePanel.cpp" line="202"/>
         <source>stream %1</source>
         <translation>flusso %1</translation>
     </message>
@@ -88,7 +96,7 @@
 <context>
     <name>scanpick::ui::LogDock</name>
     <message>
-        <location filename="../ui/panels/LogDock.cpp" line="46" />
+        <location filename="../ui/panels/LogDock.cpp" line="46"/>
         <source>Log</source>
         <translation>Registro</translation>
     </message>
@@ -96,463 +104,577 @@
 <context>
     <name>scanpick::ui::MainWindow</name>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="40" />
+        <location filename="../ui/MainWindow.cpp" line="41"/>
         <source>scanpick</source>
         <translation>scanpick</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="61" />
+        <location filename="../ui/MainWindow.cpp" line="64"/>
         <source>Cancel</source>
         <translation>Annulla</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="83" />
+        <location filename="../ui/MainWindow.cpp" line="86"/>
         <source>Cancelled</source>
         <translation>Annullato</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="90" />
+        <location filename="../ui/MainWindow.cpp" line="93"/>
         <source>Open a scan (Ctrl+O) or drop a PCD/PLY file here</source>
         <translation>Apri una scansione (Ctrl+O) o trascina qui un file PCD/PLY</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="106" />
+        <location filename="../ui/MainWindow.cpp" line="109"/>
         <source>Parameters</source>
         <translation>Parametri</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="116" />
+        <location filename="../ui/MainWindow.cpp" line="119"/>
         <source>Results</source>
         <translation>Risultati</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="123" />
+        <location filename="../ui/MainWindow.cpp" line="126"/>
         <source>Capture</source>
         <translation>Acquisizione</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="133" />
+        <location filename="../ui/MainWindow.cpp" line="136"/>
         <source>Camera</source>
         <translation>Telecamera</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="142" />
+        <location filename="../ui/MainWindow.cpp" line="145"/>
         <source>&amp;File</source>
         <translation>&amp;File</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="143" />
+        <location filename="../ui/MainWindow.cpp" line="146"/>
         <source>&amp;Open scan or model…</source>
         <translation>&amp;Apri scansione o modello…</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="146" />
+        <location filename="../ui/MainWindow.cpp" line="149"/>
         <source>Open</source>
         <translation>Apri</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="147" />
+        <location filename="../ui/MainWindow.cpp" line="150"/>
         <source>Scans and models (*.pcd *.ply *.spmodel);;All files (*)</source>
         <translation>Scansioni e modelli (*.pcd *.ply *.spmodel);;Tutti i file (*)</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="152" />
+        <location filename="../ui/MainWindow.cpp" line="155"/>
         <source>Open &amp;recent</source>
         <translation>Apri &amp;recenti</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="155" />
+        <location filename="../ui/MainWindow.cpp" line="158"/>
         <source>&amp;Save model…</source>
         <translation>&amp;Salva modello…</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="157" />
-        <location filename="../ui/MainWindow.cpp" line="158" />
-        <location filename="../ui/MainWindow.cpp" line="373" />
-        <location filename="../ui/MainWindow.cpp" line="383" />
+        <location filename="../ui/MainWindow.cpp" line="160"/>
+        <location filename="../ui/MainWindow.cpp" line="161"/>
+        <location filename="../ui/MainWindow.cpp" line="407"/>
+        <location filename="../ui/MainWindow.cpp" line="417"/>
         <source>Save model</source>
         <translation>Salva modello</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="157" />
-        <location filename="../ui/MainWindow.cpp" line="373" />
+        <location filename="../ui/MainWindow.cpp" line="160"/>
+        <location filename="../ui/MainWindow.cpp" line="407"/>
         <source>Teach or open a model first.</source>
         <translation>Prima insegna o apri un modello.</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="159" />
+        <location filename="../ui/MainWindow.cpp" line="162"/>
         <source>Models (*.spmodel)</source>
         <translation>Modelli (*.spmodel)</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="164" />
+        <location filename="../ui/MainWindow.cpp" line="167"/>
         <source>Save &amp;scan…</source>
         <translation>Salva s&amp;cansione…</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="166" />
-        <location filename="../ui/MainWindow.cpp" line="167" />
-        <location filename="../ui/MainWindow.cpp" line="175" />
+        <location filename="../ui/MainWindow.cpp" line="169"/>
+        <location filename="../ui/MainWindow.cpp" line="170"/>
+        <location filename="../ui/MainWindow.cpp" line="391"/>
+        <location filename="../ui/MainWindow.cpp" line="400"/>
         <source>Save scan</source>
         <translation>Salva scansione</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="166" />
+        <location filename="../ui/MainWindow.cpp" line="169"/>
+        <location filename="../ui/MainWindow.cpp" line="391"/>
         <source>Open or capture a scan first.</source>
         <translation>Prima apri o acquisisci una scansione.</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="168" />
+        <location filename="../ui/MainWindow.cpp" line="171"/>
         <source>Scans (*.pcd *.ply)</source>
         <translation>Scansioni (*.pcd *.ply)</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="173" />
-        <location filename="../ui/MainWindow.cpp" line="380" />
-        <location filename="../ui/MainWindowRecognize.cpp" line="143" />
+        <location filename="../ui/MainWindow.cpp" line="206"/>
+        <source>&amp;Lasso crop</source>
+        <translation>Ritaglio a &amp;lazo</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindow.cpp" line="209"/>
+        <source>Draw around the part with the left button: the points inside are kept (undo with Ctrl+Z)</source>
+        <translation>Disegna attorno al pezzo con il tasto sinistro: i punti all&apos;interno vengono mantenuti (annulla con Ctrl+Z)</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindow.cpp" line="212"/>
+        <source>&amp;Preview floor</source>
+        <translation>&amp;Anteprima pavimento</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindow.cpp" line="215"/>
+        <source>Show the floor points (orange) that Remove floor would take away</source>
+        <translation>Mostra i punti del pavimento (arancione) che Rimuovi pavimento eliminerebbe</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindow.cpp" line="239"/>
+        <source>&amp;Language (applies at next start)</source>
+        <translation>&amp;Lingua (vale dal prossimo avvio)</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindow.cpp" line="397"/>
+        <location filename="../ui/MainWindow.cpp" line="414"/>
+        <location filename="../ui/MainWindowRecognize.cpp" line="144"/>
         <source>Saved %1</source>
         <translation>Salvato %1</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="178" />
+        <location filename="../ui/MainWindow.cpp" line="175"/>
         <source>&amp;Export results…</source>
         <translation>&amp;Esporta risultati…</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="179" />
-        <location filename="../ui/MainWindowRecognize.cpp" line="136" />
-        <location filename="../ui/MainWindowRecognize.cpp" line="146" />
+        <location filename="../ui/MainWindow.cpp" line="176"/>
+        <location filename="../ui/MainWindowRecognize.cpp" line="137"/>
+        <location filename="../ui/MainWindowRecognize.cpp" line="147"/>
         <source>Export results</source>
         <translation>Esporta risultati</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="180" />
+        <location filename="../ui/MainWindow.cpp" line="177"/>
         <source>Results (*.json)</source>
         <translation>Risultati (*.json)</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="184" />
+        <location filename="../ui/MainWindow.cpp" line="181"/>
         <source>Save screens&amp;hot…</source>
         <translation>Salva sc&amp;hermata…</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="185" />
+        <location filename="../ui/MainWindow.cpp" line="182"/>
         <source>Save screenshot</source>
         <translation>Salva schermata</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="186" />
+        <location filename="../ui/MainWindow.cpp" line="183"/>
         <source>Images (*.png)</source>
         <translation>Immagini (*.png)</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="192" />
+        <location filename="../ui/MainWindow.cpp" line="189"/>
         <source>&amp;Quit</source>
         <translation>&amp;Esci</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="194" />
+        <location filename="../ui/MainWindow.cpp" line="191"/>
         <source>&amp;Edit</source>
         <translation>&amp;Modifica</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="195" />
+        <location filename="../ui/MainWindow.cpp" line="192"/>
         <source>&amp;Undo</source>
         <translation>&amp;Annulla</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="197" />
+        <location filename="../ui/MainWindow.cpp" line="194"/>
         <source>&amp;Redo</source>
         <translation>&amp;Ripeti</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="202" />
+        <location filename="../ui/MainWindow.cpp" line="199"/>
         <source>&amp;Teach</source>
         <translation>&amp;Insegna</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="203" />
+        <location filename="../ui/MainWindow.cpp" line="200"/>
         <source>Crop &amp;box</source>
         <translation>&amp;Box di ritaglio</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="207" />
+        <location filename="../ui/MainWindow.cpp" line="204"/>
         <source>&amp;Apply crop</source>
         <translation>&amp;Applica ritaglio</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="209" />
+        <location filename="../ui/MainWindow.cpp" line="217"/>
         <source>Remove &amp;floor</source>
         <translation>Rimuovi &amp;pavimento</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="211" />
+        <location filename="../ui/MainWindow.cpp" line="219"/>
         <source>Place &amp;grip points</source>
         <translation>Posiziona punti di &amp;presa</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="214" />
-        <location filename="../ui/MainWindow.cpp" line="251" />
+        <location filename="../ui/MainWindow.cpp" line="222"/>
+        <location filename="../ui/MainWindow.cpp" line="260"/>
         <source>&amp;Teach model</source>
         <translation>&amp;Insegna modello</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="217" />
-        <location filename="../ui/MainWindow.cpp" line="218" />
+        <location filename="../ui/MainWindow.cpp" line="225"/>
+        <location filename="../ui/MainWindow.cpp" line="226"/>
         <source>&amp;Recognize</source>
         <translation>&amp;Riconosci</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="219" />
+        <location filename="../ui/MainWindow.cpp" line="227"/>
         <source>&amp;Cancel</source>
         <translation>&amp;Annulla</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="220" />
+        <location filename="../ui/MainWindow.cpp" line="228"/>
         <source>&amp;Live</source>
         <translation>&amp;Continuo</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="225" />
+        <location filename="../ui/MainWindow.cpp" line="233"/>
         <source>&amp;View</source>
         <translation>&amp;Vista</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="226" />
+        <location filename="../ui/MainWindow.cpp" line="234"/>
         <source>&amp;Reset camera</source>
         <translation>&amp;Ripristina vista</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="231" />
         <source>&amp;Language</source>
-        <translation>&amp;Lingua</translation>
+        <translation type="vanished">&amp;Lingua</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="242" />
+        <location filename="../ui/MainWindow.cpp" line="250"/>
         <source>Main</source>
         <translation>Principale</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="320" />
+        <location filename="../ui/MainWindow.cpp" line="329"/>
         <source>Loading %1…</source>
         <translation>Caricamento di %1…</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="331" />
+        <location filename="../ui/MainWindow.cpp" line="340"/>
         <source>Open scan</source>
         <translation>Apri scansione</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="332" />
+        <location filename="../ui/MainWindow.cpp" line="341"/>
         <source>Could not open %1</source>
         <translation>Impossibile aprire %1</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="348" />
+        <location filename="../ui/MainWindow.cpp" line="357"/>
         <source>scanpick — %1</source>
         <translation>scanpick — %1</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="350" />
+        <location filename="../ui/MainWindow.cpp" line="359"/>
         <source>%1: %2 points</source>
         <translation>%1: %2 punti</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="363" />
+        <location filename="../ui/MainWindow.cpp" line="381"/>
         <source>Model %1 loaded</source>
         <translation>Modello %1 caricato</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="366" />
+        <location filename="../ui/MainWindow.cpp" line="384"/>
         <source>Open model</source>
         <translation>Apri modello</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="428" />
         <source>Language</source>
-        <translation>Lingua</translation>
+        <translation type="vanished">Lingua</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="429" />
+        <location filename="../ui/MainWindow.cpp" line="466"/>
         <source>The language changes when scanpick is started again.</source>
         <translation>La lingua cambia al prossimo avvio di scanpick.</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="437" />
+        <location filename="../ui/MainWindow.cpp" line="474"/>
         <source>Screenshot</source>
         <translation>Schermata</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="437" />
+        <location filename="../ui/MainWindow.cpp" line="474"/>
         <source>Could not write %1: check the folder exists and is writable.</source>
         <translation>Impossibile scrivere %1: verifica che la cartella esista e sia scrivibile.</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="39" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="39"/>
         <source>preprocess %1 · clustering %2 · keypoints %3 · features %4 · matching %5 · total %6 ms</source>
         <translation>preelaborazione %1 · clustering %2 · keypoint %3 · feature %4 · matching %5 · totale %6 ms</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="53" />
-        <location filename="../ui/MainWindowRecognize.cpp" line="55" />
-        <location filename="../ui/MainWindowRecognize.cpp" line="77" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="53"/>
+        <location filename="../ui/MainWindowRecognize.cpp" line="55"/>
+        <location filename="../ui/MainWindowRecognize.cpp" line="78"/>
         <source>Recognize</source>
         <translation>Riconosci</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="53" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="53"/>
         <source>Teach a model or open one (.spmodel) first.</source>
         <translation>Prima insegna un modello o aprine uno (.spmodel).</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="55" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="55"/>
         <source>Open or capture a scene first.</source>
         <translation>Prima apri o acquisisci una scena.</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="60" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="61"/>
         <source>Recognizing…</source>
         <translation>Riconoscimento…</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/MainWindowRecognize.cpp" line="69" />
-        <location filename="../ui/MainWindowRecognize.cpp" line="202" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="70"/>
+        <location filename="../ui/MainWindowRecognize.cpp" line="207"/>
         <source>%n detection(s)</source>
-        <translation><numerusform>%n rilevamento</numerusform><numerusform>%n rilevamenti</numerusform></translation>
+        <translation>
+            <numerusform>%n rilevamento</numerusform>
+            <numerusform>%n rilevamenti</numerusform>
+        </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/MainWindowRecognize.cpp" line="74" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="75"/>
         <source>Found %n instance(s)</source>
-        <translation><numerusform>Trovata %n istanza</numerusform><numerusform>Trovate %n istanze</numerusform></translation>
+        <translation>
+            <numerusform>Trovata %n istanza</numerusform>
+            <numerusform>Trovate %n istanze</numerusform>
+        </translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="94" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="95"/>
         <source>Recognition cancelled</source>
         <translation>Riconoscimento annullato</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="130" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="131"/>
         <source>Detection %1: score %2</source>
         <translation>Rilevamento %1: punteggio %2</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="136" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="137"/>
         <source>Run a recognition first (F5).</source>
         <translation>Prima esegui un riconoscimento (F5).</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="163" />
-        <location filename="../ui/MainWindowRecognize.cpp" line="171" />
-        <location filename="../ui/MainWindowRecognize.cpp" line="209" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="164"/>
+        <location filename="../ui/MainWindowRecognize.cpp" line="173"/>
+        <location filename="../ui/MainWindowRecognize.cpp" line="218"/>
         <source>Live</source>
         <translation>Continuo</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="163" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="164"/>
         <source>Live needs a model and an open camera (Capture panel).</source>
         <translation>La modalità continua richiede un modello e una telecamera aperta (pannello Acquisizione).</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="171" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="173"/>
         <source>This build has no camera support.</source>
         <translation>Questa build non supporta le telecamere.</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="204" />
+        <location filename="../ui/MainWindowRecognize.cpp" line="209"/>
         <source>cycle %1 ms</source>
         <translation>ciclo %1 ms</translation>
     </message>
+    <message numerus="yes">
+        <location filename="../ui/MainWindowRecognize.cpp" line="210"/>
+        <source>Live: %n instance(s), cycle %1 ms</source>
+        <translation>
+            <numerusform>Continuo: %n istanza, ciclo %1 ms</numerusform>
+            <numerusform>Continuo: %n istanze, ciclo %1 ms</numerusform>
+        </translation>
+    </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="85" />
+        <location filename="../ui/MainWindowTeach.cpp" line="86"/>
         <source>Grip points (double-click to rename):</source>
         <translation>Punti di presa (doppio clic per rinominare):</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="89" />
+        <location filename="../ui/MainWindowTeach.cpp" line="90"/>
         <source>Remove grip point</source>
         <translation>Rimuovi punto di presa</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="104" />
-        <location filename="../ui/MainWindowTeach.cpp" line="374" />
-        <location filename="../ui/MainWindowTeach.cpp" line="406" />
+        <location filename="../ui/MainWindowTeach.cpp" line="105"/>
+        <location filename="../ui/MainWindowTeach.cpp" line="357"/>
+        <location filename="../ui/MainWindowTeach.cpp" line="390"/>
         <source>Teach</source>
         <translation>Insegna</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="205" />
+        <location filename="../ui/MainWindowTeach.cpp" line="210"/>
         <source>Show the crop box first (Ctrl+B)</source>
         <translation>Prima mostra il box di ritaglio (Ctrl+B)</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="211" />
-        <location filename="../ui/MainWindowTeach.cpp" line="215" />
+        <location filename="../ui/MainWindowTeach.cpp" line="216"/>
+        <location filename="../ui/MainWindowTeach.cpp" line="220"/>
         <source>Crop</source>
         <translation>Ritaglio</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="211" />
+        <location filename="../ui/MainWindowTeach.cpp" line="216"/>
         <source>The crop box holds no point: move or enlarge it.</source>
         <translation>Il box di ritaglio non contiene punti: spostalo o ingrandiscilo.</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="225" />
         <source>Removing the floor…</source>
-        <translation>Rimozione del pavimento…</translation>
+        <translation type="vanished">Rimozione del pavimento…</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="236" />
+        <location filename="../ui/MainWindowTools.cpp" line="45"/>
+        <source>Sensor:</source>
+        <translation>Sensore:</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="48"/>
+        <source>Sensor of scans that do not tell (unorganized clouds). An organized scan whose grid matches a sensor uses that sensor.</source>
+        <translation>Sensore delle scansioni che non lo indicano (nuvole non organizzate). Una scansione organizzata la cui griglia corrisponde a un sensore usa quel sensore.</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="68"/>
+        <source>Apply crop box</source>
+        <translation>Applica box di ritaglio</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="92"/>
+        <source>Open a scan first</source>
+        <translation>Prima apri una scansione</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="102"/>
+        <source>Lasso: drag around the part; the points inside are kept</source>
+        <translation>Lazo: trascina attorno al pezzo; i punti all&apos;interno vengono mantenuti</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="112"/>
+        <source>Lasso too small: drag around the part</source>
+        <translation>Lazo troppo piccolo: trascina attorno al pezzo</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="119"/>
+        <source>Lasso crop…</source>
+        <translation>Ritaglio a lazo…</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="128"/>
+        <location filename="../ui/MainWindowTools.cpp" line="132"/>
+        <location filename="../ui/MainWindowTools.cpp" line="135"/>
+        <source>Lasso crop</source>
+        <translation>Ritaglio a lazo</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="128"/>
+        <source>The lasso holds no point: draw around the part.</source>
+        <translation>Il lazo non contiene punti: disegna attorno al pezzo.</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="133"/>
+        <source>Lasso kept %1 points (Ctrl+Z undoes)</source>
+        <translation>Il lazo ha mantenuto %1 punti (Ctrl+Z annulla)</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="154"/>
+        <location filename="../ui/MainWindowTools.cpp" line="199"/>
+        <source>Floor</source>
+        <translation>Pavimento</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="154"/>
+        <source>Open a scan first.</source>
+        <translation>Prima apri una scansione.</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="157"/>
+        <source>Looking for the floor…</source>
+        <translation>Ricerca del pavimento…</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="192"/>
         <source>No plane large enough to remove</source>
         <translation>Nessun piano abbastanza grande da rimuovere</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="240" />
-        <location filename="../ui/MainWindowTeach.cpp" line="243" />
+        <location filename="../ui/MainWindowTools.cpp" line="193"/>
+        <source>%1 floor points shown in orange: Remove floor takes them away</source>
+        <translation>%1 punti del pavimento in arancione: Rimuovi pavimento li elimina</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTools.cpp" line="215"/>
         <source>Remove floor</source>
         <translation>Rimuovi pavimento</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="241" />
-        <source>Removed %1 floor points</source>
-        <translation>Rimossi %1 punti del pavimento</translation>
+        <location filename="../ui/MainWindowTools.cpp" line="217"/>
+        <source>Removed %1 floor points (Ctrl+Z undoes)</source>
+        <translation>Rimossi %1 punti del pavimento (Ctrl+Z annulla)</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="265" />
+        <source>Removed %1 floor points</source>
+        <translation type="vanished">Rimossi %1 punti del pavimento</translation>
+    </message>
+    <message>
+        <location filename="../ui/MainWindowTeach.cpp" line="248"/>
         <source>grip %1</source>
         <translation>presa %1</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="343" />
+        <location filename="../ui/MainWindowTeach.cpp" line="326"/>
         <source>Preview: %1</source>
         <translation>Anteprima: %1</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="360" />
+        <location filename="../ui/MainWindowTeach.cpp" line="343"/>
         <source>keypoints %1 · lines %2 · circles %3</source>
         <translation>keypoint %1 · linee %2 · cerchi %3</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="366" />
+        <location filename="../ui/MainWindowTeach.cpp" line="349"/>
         <source>keypoints %1 ms · features %2 ms</source>
         <translation>keypoint %1 ms · feature %2 ms</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="369" />
+        <location filename="../ui/MainWindowTeach.cpp" line="352"/>
         <source>keypoints cached · features %1 ms</source>
         <translation>keypoint in cache · feature %1 ms</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="374" />
+        <location filename="../ui/MainWindowTeach.cpp" line="357"/>
         <source>Open a scan and crop the part first.</source>
         <translation>Prima apri una scansione e ritaglia il pezzo.</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="387" />
+        <location filename="../ui/MainWindowTeach.cpp" line="371"/>
         <source>Teaching…</source>
         <translation>Apprendimento…</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindowTeach.cpp" line="403" />
+        <location filename="../ui/MainWindowTeach.cpp" line="387"/>
         <source>Model taught: %1 features. Save it with Ctrl+S.</source>
         <translation>Modello appreso: %1 feature. Salvalo con Ctrl+S.</translation>
     </message>
@@ -560,60 +682,60 @@
 <context>
     <name>scanpick::ui::ParameterPanel</name>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="50" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="50"/>
         <source>Bundled parameter presets</source>
         <translation>Preset di parametri inclusi</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="51" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="51"/>
         <source>Load…</source>
         <translation>Carica…</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="52" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="52"/>
         <source>Save…</source>
         <translation>Salva…</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="65" />
-        <location filename="../ui/panels/ParameterPanel.cpp" line="76" />
-        <location filename="../ui/panels/ParameterPanel.cpp" line="87" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="65"/>
+        <location filename="../ui/panels/ParameterPanel.cpp" line="76"/>
+        <location filename="../ui/panels/ParameterPanel.cpp" line="87"/>
         <source>Preset</source>
         <translation>Preset</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="69" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="69"/>
         <source>Load preset</source>
         <translation>Carica preset</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="70" />
-        <location filename="../ui/panels/ParameterPanel.cpp" line="81" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="70"/>
+        <location filename="../ui/panels/ParameterPanel.cpp" line="81"/>
         <source>Presets (*.json)</source>
         <translation>Preset (*.json)</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="81" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="81"/>
         <source>Save preset</source>
         <translation>Salva preset</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="111" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="111"/>
         <source>Random</source>
         <translation>Casualità</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="116" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="116"/>
         <source>Seed of every random choice: the same scan, parameters and seed give the same result.</source>
         <translation>Seme di ogni scelta casuale: stessa scansione, parametri e seme danno lo stesso risultato.</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="118" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="118"/>
         <source>Seed</source>
         <translation>Seme</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="250" />
+        <location filename="../ui/panels/ParameterPanel.cpp" line="250"/>
         <source>(choose a preset)</source>
         <translation>(scegli un preset)</translation>
     </message>
@@ -621,37 +743,29 @@
 <context>
     <name>scanpick::ui::ResultsTable</name>
     <message>
-        <location filename="../ui/panels/ResultsTable.cpp" line="11" />
+        <location filename="../ui/panels/ResultsTable.cpp" line="11"/>
         <source>Score</source>
         <translation>Punteggio</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ResultsTable.cpp" line="11" />
+        <location filename="../ui/panels/ResultsTable.cpp" line="11"/>
         <source>Position x, y, z (mm)</source>
         <translation>Posizione x, y, z (mm)</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ResultsTable.cpp" line="12" />
+        <location filename="../ui/panels/ResultsTable.cpp" line="12"/>
         <source>Orientation r, p, y (°)</source>
         <translation>Orientamento r, p, y (°)</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ResultsTable.cpp" line="12" />
+        <location filename="../ui/panels/ResultsTable.cpp" line="12"/>
         <source>Cluster</source>
         <translation>Cluster</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ResultsTable.cpp" line="12" />
+        <location filename="../ui/panels/ResultsTable.cpp" line="12"/>
         <source>Grip points (mm)</source>
         <translation>Punti di presa (mm)</translation>
-    </message>
-</context>
-<context>
-    <name>main</name>
-    <message>
-        <location filename="../app/gui/main.cpp" line="42" />
-        <source>3D object recognition for bin picking, taught from a scan</source>
-        <translation>Riconoscimento 3D di oggetti per il bin picking, appreso da una scansione</translation>
     </message>
 </context>
 </TS>

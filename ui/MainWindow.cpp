@@ -55,6 +55,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
   m_status_counts = new QLabel(this);
   m_status_timings = new QLabel(this);
+  m_status_counts->setObjectName(QStringLiteral("statusCounts"));
+  m_status_timings->setObjectName(QStringLiteral("statusTimings"));
   m_progress = new QProgressBar(this);
   m_progress->setRange(0, 1000);
   m_progress->setMaximumWidth(180);
@@ -167,14 +169,8 @@ void MainWindow::buildActions() {
       return showError(tr("Save scan"), tr("Open or capture a scan first."));
     const QString path = QFileDialog::getSaveFileName(this, tr("Save scan"), QString(),
                                                       tr("Scans (*.pcd *.ply)"));
-    if (path.isEmpty())
-      return;
-    try {
-      core::saveCloud(path.toStdString(), *m_scan);
-      statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
-    } catch (const std::exception& e) {
-      showError(tr("Save scan"), QString::fromUtf8(e.what()));
-    }
+    if (!path.isEmpty())
+      saveScan(path);
   });
   file->addAction(tr("&Export results…"), this, [this] {
     const QString path = QFileDialog::getSaveFileName(this, tr("Export results"), QString(),
@@ -207,8 +203,19 @@ void MainWindow::buildActions() {
   connect(m_crop_action, &QAction::toggled, this, &MainWindow::setCropBoxVisible);
   teach_menu->addAction(tr("&Apply crop"), this, [this] { applyCrop(); })
       ->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Return));
-  teach_menu->addAction(tr("Remove &floor"), this, &MainWindow::removeFloorFromPart)
-      ->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_F));
+  m_lasso_action = teach_menu->addAction(tr("&Lasso crop"));
+  m_lasso_action->setCheckable(true);
+  m_lasso_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_L));
+  m_lasso_action->setToolTip(tr("Draw around the part with the left button: the points inside "
+                                "are kept (undo with Ctrl+Z)"));
+  connect(m_lasso_action, &QAction::toggled, this, &MainWindow::setLassoActive);
+  m_floor_preview_action = teach_menu->addAction(tr("&Preview floor"), this, &MainWindow::previewFloor);
+  m_floor_preview_action->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_F));
+  m_floor_preview_action->setToolTip(
+      tr("Show the floor points (orange) that Remove floor would take away"));
+  m_floor_remove_action =
+      teach_menu->addAction(tr("Remove &floor"), this, &MainWindow::removeFloorFromPart);
+  m_floor_remove_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_F));
   m_grip_action = teach_menu->addAction(tr("Place &grip points"));
   m_grip_action->setCheckable(true);
   m_grip_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_G));
@@ -229,7 +236,7 @@ void MainWindow::buildActions() {
   view->addSeparator();
   for (QDockWidget* dock : findChildren<QDockWidget*>())
     view->addAction(dock->toggleViewAction());
-  QMenu* language = view->addMenu(tr("&Language"));
+  QMenu* language = view->addMenu(tr("&Language (applies at next start)"));
   auto* group = new QActionGroup(this);
   const QString current = QSettings().value(settings::kLanguage, QStringLiteral("en")).toString();
   for (const auto& [code, name] : {std::pair{QStringLiteral("en"), QStringLiteral("English")},
@@ -244,6 +251,7 @@ void MainWindow::buildActions() {
   tools->setObjectName(QStringLiteral("MainToolBar"));
   tools->addAction(open);
   tools->addAction(m_crop_action);
+  tools->addAction(m_lasso_action);
   tools->addAction(m_grip_action);
   tools->addAction(undo);
   tools->addAction(redo);
@@ -345,15 +353,19 @@ void MainWindow::setScan(std::shared_ptr<const core::PointCloud> scan_mm, const 
   refreshGripList();
   clearLayers({QStringLiteral("detections"), QStringLiteral("grips"), QStringLiteral("scene")});
   setPart(m_scan);
-  // Look as the sensor does: scans are in the camera frame (z forward, y down).
+  lookFromSensor();
+  setWindowTitle(tr("scanpick — %1").arg(name));
+  core::logger()->info("scan {}: {} valid points", name.toStdString(), m_scan->validCount());
+  statusBar()->showMessage(tr("%1: %2 points").arg(name).arg(m_scan->validCount()), 5000);
+}
+
+void MainWindow::lookFromSensor() {
+  // Scans are in the camera frame: z forward, y down.
   vtkCamera* camera = m_view->renderer()->GetActiveCamera();
   camera->SetPosition(0, 0, 0);
   camera->SetFocalPoint(0, 0, 1);
   camera->SetViewUp(0, -1, 0);
   m_view->resetCamera();
-  setWindowTitle(tr("scanpick — %1").arg(name));
-  core::logger()->info("scan {}: {} valid points", name.toStdString(), m_scan->validCount());
-  statusBar()->showMessage(tr("%1: %2 points").arg(name).arg(m_scan->validCount()), 5000);
 }
 
 bool MainWindow::openModel(const QString& path) {
@@ -370,6 +382,22 @@ bool MainWindow::openModel(const QString& path) {
     return true;
   } catch (const std::exception& e) {
     showError(tr("Open model"), QString::fromUtf8(e.what()));
+    return false;
+  }
+}
+
+bool MainWindow::saveScan(const QString& path) {
+  if (!m_scan) {
+    showError(tr("Save scan"), tr("Open or capture a scan first."));
+    return false;
+  }
+  try {
+    core::saveCloud(path.toStdString(), *m_scan);
+    core::logger()->info("saved scan to {}", path.toStdString());
+    statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+    return true;
+  } catch (const std::exception& e) {
+    showError(tr("Save scan"), QString::fromUtf8(e.what()));
     return false;
   }
 }
@@ -431,8 +459,11 @@ void MainWindow::clearLayers(const QStringList& names) {
 
 void MainWindow::setLanguage(const QString& code) {
   QSettings().setValue(settings::kLanguage, code);
-  QMessageBox::information(this, tr("Language"),
-                           tr("The language changes when scanpick is started again."));
+  // Menus and panels are built once with their translated texts, so a switch applies at the next
+  // start; the menu entry says so too.
+  core::logger()->info("language set to '{}': applies when scanpick is started again",
+                       code.toStdString());
+  statusBar()->showMessage(tr("The language changes when scanpick is started again."), 8000);
 }
 
 QImage MainWindow::screenshot() { return m_view->grabFramebuffer(); }

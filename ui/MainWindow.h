@@ -13,13 +13,17 @@
 #include "core/params/ParameterTable.h"
 #include "core/pipeline/Recognizer.h"
 
+#include <QColor>
 #include <QMainWindow>
+#include <QPolygonF>
 #include <QPointer>
 #include <map>
+#include <optional>
 #include <memory>
 #include <vtkSmartPointer.h>
 
 class QAction;
+class QComboBox;
 class QLabel;
 class QListWidget;
 class QMenu;
@@ -27,6 +31,7 @@ class QProgressBar;
 class QPushButton;
 class QTimer;
 class QUndoStack;
+class QVBoxLayout;
 class vtkBoxWidget2;
 class vtkProp;
 
@@ -34,6 +39,7 @@ namespace scanpick::ui {
 
 class DevicePanel;
 class JobRunner;
+class LassoOverlay;
 class LogDock;
 class ParameterPanel;
 class QtVtkViewport;
@@ -67,6 +73,8 @@ public:
   bool openModel(const QString& path);
   /// Saves the taught model; returns false (and says why) on failure.
   bool saveModel(const QString& path);
+  /// Saves the current scan (PCD or PLY by extension); returns false (and says why) on failure.
+  bool saveScan(const QString& path);
 
   // --- teach ---
   /// Shows or hides the interactive crop box (placed around the working cloud when shown).
@@ -76,8 +84,28 @@ public:
   [[nodiscard]] core::OrientedBox cropBox() const;
   /// Crops the working cloud to the box (undoable). Returns false when nothing would remain.
   bool applyCrop();
-  /// Removes the floor from the working cloud (background job, undoable).
+  /// Shows or hides the lasso tool: drag on the viewport to draw a polygon; on release the points
+  /// whose projection lies inside are kept (see applyLasso).
+  void setLassoActive(bool active);
+  /// Keeps the working-cloud points whose screen projection (current camera) falls inside
+  /// `polygon_px` (viewport widget coordinates, logical pixels). Runs in the background and is
+  /// undoable; emits partChanged. A polygon with fewer than 3 corners or keeping nothing is
+  /// refused with a message.
+  void applyLasso(const QPolygonF& polygon_px);
+  /// Finds the floor (dominant planes, params.floor) in the working cloud in the background and
+  /// shows the points that would be removed in orange (kFloorPreviewColour); emits
+  /// floorPreviewReady. Nothing is removed yet.
+  void previewFloor();
+  /// Removes the floor from the working cloud (undoable): uses the preview when it is for the
+  /// current working cloud, otherwise finds the floor first (background job).
   void removeFloorFromPart();
+  /// Points the last floor preview would remove (0 without a preview).
+  [[nodiscard]] std::size_t floorPreviewCount() const;
+  /// The sensor the current scan comes from: the preset whose grid matches an organized scan,
+  /// otherwise the one chosen in the Teach panel.
+  [[nodiscard]] core::SensorModel currentSensor() const;
+  /// The sensor preset whose grid (width × height) matches an organized `cloud`, if any.
+  static std::optional<core::SensorModel> sensorOfGrid(const core::PointCloud& cloud);
   /// Adds a grip point (scan frame, mm) with an automatic name.
   void addGripPoint(const Eigen::Vector3d& position_mm);
   /// Teaches the model from the working cloud in the background; emits modelTaught.
@@ -101,6 +129,9 @@ public:
   [[nodiscard]] ParameterPanel* parameterPanel() const { return m_params; }
   [[nodiscard]] ResultsTable* resultsTable() const { return m_results; }
   [[nodiscard]] LogDock* logDock() const { return m_log; }
+  [[nodiscard]] DevicePanel* devicePanel() const { return m_devices; }
+  [[nodiscard]] JobRunner* jobs() const { return m_jobs; }
+  [[nodiscard]] bool liveRunning() const { return m_live; }
   [[nodiscard]] JobRunner* previewJobs() const { return m_preview_jobs; }
   [[nodiscard]] JobRunner* recognizeJobs() const { return m_recognize_jobs; }
   [[nodiscard]] QUndoStack* undoStack() const { return m_undo; }
@@ -117,8 +148,16 @@ public:
   /// Replaces the working cloud (used by the crop commands; undoable through them).
   void setPart(std::shared_ptr<const core::PointCloud> part_mm);
 
+  /// Colour of the points a floor removal would take away, in the preview.
+  static QColor floorPreviewColour() { return {255, 110, 0}; }
+
 signals:
   void scanLoaded();
+  /// The working cloud changed (crop, lasso, floor removal, undo/redo, new scan).
+  void partChanged();
+  void floorPreviewReady(std::size_t removed_points);
+  /// One live capture → recognize cycle ended and is shown.
+  void liveCycleFinished(double cycle_ms, int detections);
   void previewUpdated();
   void modelTaught();
   void recognitionFinished(bool ok);
@@ -150,10 +189,17 @@ private:
   void showGrips();
   void refreshGripList();
   void onViewportClick(int x, int y);
+  void showFloorPreview();
+  /// Pushes an undoable replacement of the working cloud by `after`.
+  void replacePart(std::shared_ptr<const core::PointCloud> after, const QString& text);
+  // MainWindowTools.cpp
+  void buildToolButtons(QVBoxLayout* layout);
   // MainWindowRecognize.cpp
   void showResult(int selected);
   void onResultSelected(int row);
   void runLiveCycle();
+  /// Points the camera as the sensor looks (scans are in the camera frame) and fits the view.
+  void lookFromSensor();
 
   QtVtkViewport* m_view = nullptr;
   ParameterPanel* m_params = nullptr;
@@ -174,6 +220,12 @@ private:
   QAction* m_crop_action = nullptr;
   QAction* m_grip_action = nullptr;
   QAction* m_live_action = nullptr;
+  QAction* m_lasso_action = nullptr;
+  QAction* m_floor_preview_action = nullptr;
+  QAction* m_floor_remove_action = nullptr;
+  bool m_apply_floor_pending = false;  // Remove floor asked before a preview existed
+  QComboBox* m_sensor_combo = nullptr;
+  LassoOverlay* m_lasso = nullptr;
   vtkSmartPointer<vtkBoxWidget2> m_box_widget;
   std::map<QString, vtkSmartPointer<vtkProp>> m_layers;
 
@@ -187,7 +239,14 @@ private:
   std::shared_ptr<core::Recognizer> m_recognizer;
   std::shared_ptr<const PreviewResult> m_preview;
   std::shared_ptr<const core::RecognitionResult> m_result;
+  struct FloorPreview {
+    std::shared_ptr<const core::PointCloud> part;       // the working cloud it was computed for
+    std::shared_ptr<const core::PointCloud> remaining;  // the working cloud without the floor
+    std::shared_ptr<const core::PointCloud> removed;    // the floor points, for display
+  };
+  std::shared_ptr<const FloorPreview> m_floor_preview;
   bool m_live = false;
+  int m_live_cycles = 0;  // cycles shown since Live started
 };
 
 } // namespace scanpick::ui

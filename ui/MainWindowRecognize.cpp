@@ -56,7 +56,8 @@ void MainWindow::recognize() {
   const auto scene = m_scan;
   const auto recognizer = m_recognizer;
   const core::RecognitionParams params = m_params->params();
-  const core::SensorModel sensor = m_model->sensor;
+  // The scene's own sensor when its grid tells, otherwise the one the model was taught with.
+  const core::SensorModel sensor = sensorOfGrid(*scene).value_or(m_model->sensor);
   statusBar()->showMessage(tr("Recognizing…"));
   const quint64 gen = m_recognize_jobs->run<core::RecognitionResult>(
       [scene, recognizer, params, sensor](const core::ProgressFn& progress) {
@@ -164,6 +165,7 @@ void MainWindow::setLiveRunning(bool running) {
     return;
   }
   m_live = true;
+  m_live_cycles = 0;
   core::logger()->info("live recognition started");
   runLiveCycle();
 #else
@@ -181,16 +183,17 @@ void MainWindow::runLiveCycle() {
   }
   const auto recognizer = m_recognizer;
   const core::RecognitionParams params = m_params->params();
-  const core::SensorModel sensor = m_model->sensor;
+  const core::SensorModel model_sensor = m_model->sensor;
   // Each cycle schedules the next one when it ends, so cycles never overlap.
   m_recognize_jobs->run<LiveCycle>(
-      [camera, recognizer, params, sensor](const core::ProgressFn& progress) {
+      [camera, recognizer, params, model_sensor](const core::ProgressFn& progress) {
         QElapsedTimer timer;
         timer.start();
         LiveCycle c;
         c.scene = std::make_shared<const core::PointCloud>(
             camera->capture(std::chrono::seconds(5)).cloud);
-        c.result = recognizer->recognize(*c.scene, sensor, params, progress);
+        c.result = recognizer->recognize(*c.scene, sensorOfGrid(*c.scene).value_or(model_sensor),
+                                         params, progress);
         c.cycle_ms = static_cast<double>(timer.nsecsElapsed()) / 1e6;
         return c;
       },
@@ -199,9 +202,15 @@ void MainWindow::runLiveCycle() {
         m_result = std::shared_ptr<const core::RecognitionResult>(c, &c->result);
         m_results->setDetections(m_result->detections, m_model.get());
         showResult(-1);
+        if (m_live_cycles++ == 0)
+          lookFromSensor();  // the operator may have been looking elsewhere, or at nothing
         m_status_counts->setText(tr("%n detection(s)", nullptr,
                                     static_cast<int>(m_result->detections.size())));
         m_status_timings->setText(tr("cycle %1 ms").arg(c->cycle_ms, 0, 'f', 0));
+        statusBar()->showMessage(tr("Live: %n instance(s), cycle %1 ms", nullptr,
+                                    static_cast<int>(m_result->detections.size()))
+                                     .arg(c->cycle_ms, 0, 'f', 0));
+        emit liveCycleFinished(c->cycle_ms, static_cast<int>(m_result->detections.size()));
         QTimer::singleShot(0, this, &MainWindow::runLiveCycle);
       },
       [this](const QString& e) {

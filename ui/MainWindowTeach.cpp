@@ -82,6 +82,7 @@ double pointSize() { return QSettings().value(settings::kPointSize, 2.0).toDoubl
 void MainWindow::buildTeachDock() {
   auto* panel = new QWidget(this);
   auto* layout = new QVBoxLayout(panel);
+  buildToolButtons(layout);
   layout->addWidget(new QLabel(tr("Grip points (double-click to rename):"), panel));
   m_grip_list = new QListWidget(panel);
   m_grip_list->setObjectName(QStringLiteral("gripList"));
@@ -117,7 +118,9 @@ void MainWindow::setPart(std::shared_ptr<const core::PointCloud> part_mm) {
   m_part = std::move(part_mm);
   ++m_part_version;
   showPart();
+  showFloorPreview();  // hides a preview made for another working cloud
   schedulePreview(core::Stage::Keypoints);
+  emit partChanged();
 }
 
 void MainWindow::showPart() {
@@ -142,6 +145,8 @@ void MainWindow::setCropBoxVisible(bool visible) {
     m_box_widget->SetRepresentation(rep);
     m_box_widget->SetInteractor(m_view->interactor());
   }
+  if (visible && m_lasso_action->isChecked())
+    m_lasso_action->setChecked(false);
   if (visible && m_part) {
     const Eigen::AlignedBox3f box = core::boundingBox(*m_part);
     core::OrientedBox oriented;
@@ -212,35 +217,13 @@ bool MainWindow::applyCrop() {
     return false;
   }
   core::logger()->info("crop: {} of {} points kept", cropped->validCount(), m_part->validCount());
-  m_undo->push(new ReplacePartCommand(this, m_part, cropped, tr("Crop")));
+  replacePart(cropped, tr("Crop"));
   setCropBoxVisible(false);
   return true;
 }
 
-void MainWindow::removeFloorFromPart() {
-  if (!m_part)
-    return;
-  const auto part = m_part;
-  const core::RecognitionParams params = m_params->params();
-  statusBar()->showMessage(tr("Removing the floor…"));
-  m_jobs->run<core::FloorRemovalResult>(
-      [part, params](const core::ProgressFn& progress) {
-        core::FloorParams floor = params.floor;
-        floor.enabled = true;
-        return core::removeFloor(*part, floor, params.seed, progress);
-      },
-      [this, part](std::shared_ptr<const core::FloorRemovalResult> r) {
-        core::logger()->info("floor removal: {} planes, {} points removed", r->planes.size(),
-                             r->removed_points);
-        if (r->removed_points == 0) {
-          statusBar()->showMessage(tr("No plane large enough to remove"), 5000);
-          return;
-        }
-        m_undo->push(new ReplacePartCommand(
-            this, part, std::make_shared<const core::PointCloud>(r->remaining), tr("Remove floor")));
-        statusBar()->showMessage(tr("Removed %1 floor points").arg(r->removed_points), 5000);
-      },
-      [this](const QString& e) { showError(tr("Remove floor"), e); });
+void MainWindow::replacePart(std::shared_ptr<const core::PointCloud> after, const QString& text) {
+  m_undo->push(new ReplacePartCommand(this, m_part, std::move(after), text));
 }
 
 void MainWindow::onViewportClick(int x, int y) {
@@ -382,6 +365,7 @@ void MainWindow::teach() {
   bounds.max() += Eigen::Vector3f::Constant(1.0f);
   options.crop_box_mm = bounds;
   options.grips_scan = m_grips;
+  options.sensor = currentSensor();
   const auto part = m_part;
   const core::RecognitionParams params = m_params->params();
   statusBar()->showMessage(tr("Teaching…"));

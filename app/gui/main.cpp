@@ -1,6 +1,8 @@
 // scanpick: the desktop application. Options let scripts and the docs drive it:
-//   scanpick [--scene S] [--model M] [--preset P] [--recognize] [--screenshot out.png]
+//   scanpick [--scan S] [--model M] [--preset P] [--recognize] [--screenshot out.png]
 //            [--quit-after-screenshot] [files...]
+// `./cmake/setup.sh demo` opens the demo this way:
+//   scanpick --scan demo-output/demo-bin.pcd --model demo-output/support.spmodel --recognize
 #include "core/common/Log.h"
 #include "ui/MainWindow.h"
 #include "ui/Settings.h"
@@ -41,7 +43,7 @@ int main(int argc, char** argv) {
   parser.setApplicationDescription(
       QApplication::translate("main", "3D object recognition for bin picking, taught from a scan"));
   parser.addHelpOption();
-  const QCommandLineOption scene({"s", "scene"}, "Scan to open (PCD or PLY).", "file");
+  const QCommandLineOption scene({"s", "scan", "scene"}, "Scan to open (PCD or PLY).", "file");
   const QCommandLineOption model({"m", "model"}, "Taught model to open (.spmodel).", "file");
   const QCommandLineOption preset("preset", "Parameter preset to load (JSON).", "file");
   const QCommandLineOption recognize("recognize", "Recognize the model in the scene at start.");

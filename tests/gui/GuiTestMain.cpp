@@ -3,6 +3,7 @@
 #include "ui/viewport/QtVtkViewport.h"
 
 #include <QApplication>
+#include <QSettings>
 #include <QStandardPaths>
 #include <cstring>
 #include <gtest/gtest.h>
@@ -22,6 +23,9 @@ int main(int argc, char** argv) {
     QApplication::setApplicationName("scanpick-gui-tests");
     // QSettings and caches go to a test location, never the user's.
     QStandardPaths::setTestModeEnabled(true);
+    // Each test process starts from empty settings, so no test sees what another left behind
+    // (last preset, device id, layout).
+    QSettings().clear();
   }
   return RUN_ALL_TESTS();
 }

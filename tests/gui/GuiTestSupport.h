@@ -4,6 +4,7 @@
 #include <QDir>
 #include <QImage>
 #include <QString>
+#include <QWidget>
 #include <cstdlib>
 #include <set>
 
@@ -40,6 +41,23 @@ inline int distinctColours(const QImage& image) {
       seen.insert((qRed(p) >> 4) << 8 | (qGreen(p) >> 4) << 4 | (qBlue(p) >> 4));
     }
   return static_cast<int>(seen.size());
+}
+
+} // namespace scanpick::test
+
+namespace scanpick::test {
+
+/// Saves a picture of the whole `widget` (viewport included) for the user guide:
+/// screenshotDir()/docs/<name>, at most 1000 px wide so it stays small (< 300 KB).
+/// `./tests/gui/update-doc-images.sh` copies these into docs/images. Returns the grabbed image.
+inline QImage saveDocImage(QWidget& widget, const QString& name) {
+  QImage image = widget.grab().toImage();
+  if (image.width() > 1000)
+    image = image.scaledToWidth(1000, Qt::SmoothTransformation);
+  const QString dir = screenshotDir() + QStringLiteral("/docs");
+  QDir().mkpath(dir);
+  image.convertToFormat(QImage::Format_RGB888).save(dir + "/" + name);
+  return image;
 }
 
 } // namespace scanpick::test

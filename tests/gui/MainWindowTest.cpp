@@ -14,6 +14,9 @@
 #include "ui/viewport/QtVtkViewport.h"
 
 #include <QDoubleSpinBox>
+#include <QMenu>
+#include <QMenuBar>
+#include <QTranslator>
 #include <QSignalSpy>
 #include <QTest>
 #include <QUndoStack>
@@ -113,6 +116,7 @@ TEST_F(WindowFixture, PreviewFollowsParametersAndReusesKeypoints) {
   ASSERT_TRUE(previews.wait(30000));
   EXPECT_EQ(window.preview()->keypoints_ms, 0.0) << "keypoints were recomputed";
   EXPECT_EQ(window.preview()->keypoints.get(), first->keypoints.get());
+  test::saveDocImage(window, "gui-tune.png");
 
   // Raising the ransac size above every feature's support empties the preview.
   window.parameterPanel()->setValue("features.ransac_size", 5000);
@@ -184,6 +188,7 @@ TEST_F(WindowFixture, TeachRecognizeAndResultsTable) {
   EXPECT_GT(test::distinctColours(image), 20) << "blank screenshot";
   EXPECT_GT(test::countColour(image, ui::detectionColour(0)), 20)
       << "the selected detection's colour is not in the picture";
+  test::saveDocImage(window, "gui-recognize-ideal.png");
 
   // Results export.
   const QString json = test::screenshotDir() + "/results.json";
@@ -222,4 +227,31 @@ TEST_F(WindowFixture, LogDockReceivesCoreLogFromAnyThread) {
   worker.join();
   QTRY_VERIFY_WITH_TIMEOUT(window.logDock()->text().contains("message from a worker thread"), 5000);
   EXPECT_GT(window.logDock()->lineCount(), before);
+}
+
+// The Italian translation (translations/scanpick_it.ts, embedded as :/i18n/scanpick_it.qm) covers
+// the window's menus, the teach tools included; the language menu says when a switch applies.
+TEST(Translation, ItalianMenusAndTheNextStartNote) {
+  QTranslator italian;
+  ASSERT_TRUE(italian.load(QStringLiteral(":/i18n/scanpick_it.qm")));
+  QCoreApplication::installTranslator(&italian);
+  QStringList titles;
+  QStringList teach_entries;
+  {
+    MainWindow window;
+    for (QAction* menu_action : window.menuBar()->actions()) {
+      titles << menu_action->text();
+      if (menu_action->menu() && menu_action->text() == QStringLiteral("&Insegna"))
+        for (QAction* a : menu_action->menu()->actions())
+          teach_entries << a->text();
+    }
+  }
+  QCoreApplication::removeTranslator(&italian);
+  EXPECT_TRUE(titles.contains(QStringLiteral("&Modifica"))) << titles.join(' ').toStdString();
+  EXPECT_TRUE(teach_entries.contains(QStringLiteral("Ritaglio a &lazo")))
+      << teach_entries.join(" | ").toStdString();
+  EXPECT_TRUE(teach_entries.contains(QStringLiteral("&Anteprima pavimento")));
+  EXPECT_EQ(QCoreApplication::translate("scanpick::ui::MainWindow", "&Language (applies at next start)"),
+            QStringLiteral("&Language (applies at next start)"))
+      << "without the translator the English text is back";
 }

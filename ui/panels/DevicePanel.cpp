@@ -43,10 +43,15 @@ DevicePanel::DevicePanel(QWidget* parent) : QWidget(parent) {
   m_capture = new QPushButton(tr("Capture"), this);
   m_stream = new QPushButton(tr("Stream"), this);
   m_stream->setCheckable(true);
+  m_open->setObjectName(QStringLiteral("openDeviceButton"));
+  m_capture->setObjectName(QStringLiteral("captureButton"));
+  m_stream->setObjectName(QStringLiteral("streamButton"));
+  refresh_button->setObjectName(QStringLiteral("refreshDevicesButton"));
   for (QPushButton* b : {refresh_button, m_open, m_capture, m_stream})
     row->addWidget(b);
   layout->addLayout(row);
   m_state = new QLabel(this);
+  m_state->setObjectName(QStringLiteral("deviceState"));
   m_state->setWordWrap(true);
   layout->addWidget(m_state);
 
@@ -89,6 +94,8 @@ DevicePanel::~DevicePanel() {
 #endif
 }
 
+QString DevicePanel::stateText() const { return m_state->text(); }
+
 void DevicePanel::updateButtons() {
   m_open->setText(m_camera ? tr("Close") : tr("Open"));
   m_capture->setEnabled(m_camera != nullptr && !m_stream->isChecked());
@@ -119,6 +126,7 @@ void DevicePanel::refresh() {
         m_state->setText(found->first.empty() ? tr("No camera attached. A file:<path> id replays "
                                                    "saved scans.")
                                               : tr("%1 camera(s) found").arg(found->first.size()));
+        emit devicesListed(static_cast<int>(found->first.size()));
       },
       [this](const QString& e) { m_state->setText(e); });
 #endif

@@ -37,13 +37,17 @@ public:
   /// Captures one frame in the background; emits frameCaptured or deviceError.
   void captureOne();
   void setStreaming(bool on);
-  /// Re-enumerates the devices in the background.
+  /// Re-enumerates the devices in the background; emits devicesListed when done.
   void refresh();
+  /// What the panel says about the devices (found, opening, open, last error).
+  [[nodiscard]] QString stateText() const;
 
 signals:
   void frameCaptured(std::shared_ptr<const scanpick::core::PointCloud> cloud, const QString& name);
   void cameraOpened(const QString& id);
   void deviceError(const QString& message);
+  /// The device list was refreshed (`count` cameras found).
+  void devicesListed(int count);
 
 private:
   void updateButtons();

@@ -1,0 +1,68 @@
+#pragma once
+// The demo's simulated scenes (core/sim), written at test time into a temporary folder: PhoXi
+// teach scans of one support on a table and a bin of 8 supports, with ground truth. The crop box
+// and grip points are read from the teach scene's ground truth as an operator would place them.
+#include "core/common/AtomicFile.h"
+#include "core/model/TaughtModel.h"
+#include "core/sim/Suite.h"
+#include "tests/support/TempDir.h"
+
+#include <QString>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+namespace scanpick::test {
+
+struct DemoScenes {
+  TempDir dir;
+  std::filesystem::path teach_scan, teach_truth, bin_scan, bin_truth;
+
+  DemoScenes() {
+    core::writeDemoScenes(dir.path());
+    // The view the demo's main model (support.spmodel) is taught from: the support resting on its
+    // legs, as it mostly lies in the bin.
+    teach_scan = dir / "support-teach-side1.pcd";
+    teach_truth = dir / "support-teach-side1.gt.json";
+    bin_scan = dir / "demo-bin.pcd";
+    bin_truth = dir / "demo-bin.gt.json";
+  }
+
+  /// The teach scene's crop box (scan frame), centred on its own origin.
+  [[nodiscard]] core::OrientedBox cropBox() const {
+    const auto box = nlohmann::json::parse(core::readFile(teach_truth)).at("crop_box");
+    Eigen::Matrix4d m;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        m(r, c) = box.at("T_scene_box").at(r).at(c).get<double>();
+    const auto vec = [](const nlohmann::json& v) {
+      return Eigen::Vector3d(v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>());
+    };
+    const Eigen::Vector3d lo = vec(box.at("min_mm")), hi = vec(box.at("max_mm"));
+    core::OrientedBox oriented;
+    oriented.T_scan_box = (Eigen::Isometry3d(m) * Eigen::Translation3d(0.5 * (lo + hi))).cast<float>();
+    oriented.half_extents_mm = (0.5 * (hi - lo)).cast<float>();
+    return oriented;
+  }
+
+  /// The part's grip points in the teach scan (scan frame, mm).
+  [[nodiscard]] std::vector<Eigen::Vector3d> gripPoints() const {
+    std::vector<Eigen::Vector3d> out;
+    const auto doc = nlohmann::json::parse(core::readFile(teach_truth));
+    for (const auto& g : doc.at("instances").at(0).value("grip_points", nlohmann::json::array()))
+      out.emplace_back(g.at("position_mm").at(0).get<double>(), g.at("position_mm").at(1).get<double>(),
+                       g.at("position_mm").at(2).get<double>());
+    return out;
+  }
+
+  /// Instances placed in the bin.
+  [[nodiscard]] std::size_t binInstances() const {
+    return nlohmann::json::parse(core::readFile(bin_truth)).at("instances").size();
+  }
+};
+
+/// The preset the demo uses (PhoXi bin picking).
+inline QString phoxiBinPreset() {
+  return QStringLiteral(SCANPICK_SOURCE_DIR "/resources/presets/phoxi-bin.json");
+}
+
+} // namespace scanpick::test
