@@ -84,7 +84,8 @@ struct MatchingParams {
   int max_detections = 0;                ///< 0 = no limit
   int max_instances_per_cluster = 4;     ///< repeated searches per cluster (merged parts)
   /// Beyond the thesis: point-level verification. A pose is checked by the share of the model's
-  /// visible points that have a scene point within this distance (mm); 0 = off (the thesis).
+  /// points the camera should see that have a scene point facing the same way within this
+  /// distance (mm), less those the scan looks through; 0 = off (the thesis).
   double verify_tolerance_mm = 0.0;
   /// With verification on, detections confirming a smaller share of visible points are dropped.
   double min_coverage = 0.0;
