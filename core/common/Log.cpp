@@ -4,6 +4,7 @@
 #include "core/common/Progress.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 namespace scanpick::core {
@@ -12,7 +13,9 @@ std::shared_ptr<spdlog::logger> logger() {
   static const std::shared_ptr<spdlog::logger> instance = [] {
     auto sink = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
     auto log = std::make_shared<spdlog::logger>("scanpick", sink);
-    log->set_level(spdlog::level::info);
+    // SCANPICK_LOG_LEVEL=debug (trace, info, warn, error, off) shows more or less.
+    const char* level = std::getenv("SCANPICK_LOG_LEVEL");
+    log->set_level(level ? spdlog::level::from_str(level) : spdlog::level::info);
     log->set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
     return log;
   }();

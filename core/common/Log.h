@@ -7,7 +7,8 @@
 
 namespace scanpick::core {
 
-/// The shared "scanpick" logger (created on first use, stderr sink, level info).
+/// The shared "scanpick" logger (created on first use, stderr sink, level info or the one named
+/// by the environment variable SCANPICK_LOG_LEVEL: trace, debug, info, warn, error, off).
 std::shared_ptr<spdlog::logger> logger();
 
 } // namespace scanpick::core

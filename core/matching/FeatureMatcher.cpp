@@ -358,6 +358,15 @@ MatchCandidate scoreTransformation(const FeatureList& model, const FeatureList& 
   return scoreWithBound(prep, T_scene_model, 0, &count);
 }
 
+MatchCandidate refineOnFeatures(const FeatureList& model, const FeatureList& scene,
+                                const Eigen::Isometry3d& T_scene_model,
+                                const MatchingParams& params) {
+  const std::vector<char> all;
+  const Prepared prep(model, scene, params, all, false);
+  int count = 0;
+  return refineOnConfirmedPairs(prep, model, scene, scoreWithBound(prep, T_scene_model, 0, &count));
+}
+
 std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
                                                      const FeatureList& scene,
                                                      const MatchingParams& params,

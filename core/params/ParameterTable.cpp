@@ -224,6 +224,22 @@ std::vector<ParamInfo> buildTable() {
            "Beyond the thesis, for bins of touching parts: with verification on, one search keeps "
            "up to this many distinct poses from all seed pairs, verifies each and reports every "
            "one reaching the min coverage (instead of repeated best-first searches); 0 = off.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::surface_sampling_mm,
+      make("matching.surface_sampling_mm", "Surface sampling", "mm", Stage::Matching, D, 0, 100,
+           0.5,
+           "Beyond the thesis: with verification on, surface point pair voting adds pose "
+           "hypotheses that need no line or circle pairs (parts whose edges are hidden by their "
+           "neighbours); model and scene are sampled with voxels of this edge, about 4 % of the "
+           "part's diameter; 0 = off.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::surface_reference_stride,
+      make("matching.surface_reference_stride", "Surface reference stride", "", Stage::Matching, I,
+           1, 100, 1,
+           "Surface voting: every n-th sampled scene point votes as a reference; lower finds more "
+           "(partly hidden) parts, higher is faster.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::surface_poses,
+      make("matching.surface_poses", "Surface poses", "", Stage::Matching, I, 1, 5000, 10,
+           "Surface voting: at most this many voted poses (most votes first) are refined and "
+           "verified.")));
   // --- Refinement (beyond the thesis) ---
   t.push_back(entry(&RP::refine, &RefineParams::enabled,
       make("refine.enabled", "ICP refinement", "", Stage::Refine, B, 0, 1, 1,

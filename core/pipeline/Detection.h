@@ -22,7 +22,8 @@ struct Detection {
   /// Share of the model points visible at this pose with a scene point within
   /// matching.verify_tolerance_mm (after refinement, if on), [0, 1]; -1 when not verified.
   double coverage = -1.0;
-  bool refined = false;  ///< the pose was refined by ICP (refine.enabled)
+  /// The pose was refined by ICP: refine.enabled, or a surface-voting pose that ICP polished.
+  bool refined = false;
   /// Matched (model feature index, scene feature index) pairs behind the pose.
   std::vector<std::pair<int, int>> matched_features;
   std::vector<GripPoint> grip_points_scene;  ///< the model's grip points mapped into the scene

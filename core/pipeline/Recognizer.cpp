@@ -4,6 +4,7 @@
 #include "core/common/Log.h"
 #include "core/features/FeatureExtraction.h"
 #include "core/matching/FeatureMatcher.h"
+#include "core/matching/PointPairVoting.h"
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "core/preprocess/SceneSplit.h"
@@ -15,6 +16,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <optional>
 
 namespace scanpick::core {
@@ -100,6 +102,17 @@ struct VerifyModel {
   std::vector<Eigen::Vector3f> keypoints;  ///< the model's keypoints (edges), strided
 };
 
+/// A model prepared for verification, refinement and surface voting.
+struct ModelPrep {
+  std::shared_ptr<const TaughtModel> model;
+  int points = 0;                ///< refine.model_points it was prepared with
+  double normal_radius_mm = 0;   ///< keypoints.normal_radius_mm it was prepared with
+  std::shared_ptr<const VerifyModel> verify;
+  std::shared_ptr<const RefineModel> refine;           ///< when ICP or surface voting needs it
+  double surface_sampling_mm = 0;                      ///< of `pairs`
+  std::shared_ptr<const PointPairModel> pairs;         ///< when surface voting is on
+};
+
 /// The scene's keypoints (of every object) indexed, for the edge check of verification.
 struct EdgeCheck {
   const SceneIndex* scene_keypoints = nullptr;
@@ -126,66 +139,85 @@ struct Recognizer::Cache {
   std::shared_ptr<const std::vector<Keypoints>> keypoints;
   std::optional<FeatureKey> feature_key;
   std::shared_ptr<const std::vector<FeatureList>> features;
-  /// Verification and refinement: the preprocessed scene indexed (key: pre_key) and the model's
-  /// point subsample (key: model and point count).
+  /// Verification and refinement: the preprocessed scene indexed (key: pre_key), and the
+  /// preparation of the last few models searched (views alternate from scene to scene).
   std::optional<PreKey> index_key;
   std::shared_ptr<const SceneIndex> scene_index;
-  std::shared_ptr<const TaughtModel> refine_model_for;
-  int refine_model_points = 0;
-  std::shared_ptr<const RefineModel> refine_model;
-  /// Verification: the model's valid points, strided to at most refine.model_points.
-  std::shared_ptr<const VerifyModel> verify_points;
+  std::vector<std::shared_ptr<const ModelPrep>> model_preps;
   /// Every object's keypoints in one index (key: keypoint_key), for the edge check.
   std::optional<KeypointKey> edge_key;
   std::shared_ptr<const SceneIndex> edge_index;
+  /// Surface voting: the sampled scene (key: pre_key and the sampling).
+  std::optional<PreKey> surface_scene_key;
+  double surface_scene_sampling = 0.0;
+  std::shared_ptr<const OrientedPoints> surface_scene;
 };
 
 namespace {
-/// Builds (or keeps from the cache) the scene index and the model's point subsample used by
-/// verification and refinement.
-void prepareVerificationImpl(std::optional<PreKey>& index_key,
-                             std::shared_ptr<const SceneIndex>& scene_index,
-                             std::shared_ptr<const TaughtModel>& refine_model_for, int& refine_model_points,
-                             std::shared_ptr<const RefineModel>& refine_model,
-                             std::shared_ptr<const VerifyModel>& verify_points,
-                             const PointCloud& pre, const std::shared_ptr<const TaughtModel>& model,
-                             const PreKey& pre_key,
-                             const RecognitionParams& params) {
-  if (index_key != pre_key || !scene_index) {
-    SceneIndexOptions options;
-    options.normal_radius_mm = params.keypoints.normal_radius_mm;
-    scene_index = std::make_shared<const SceneIndex>(pre, options);
-    index_key = pre_key;
+/// The model's point subsample for verification: every valid point, evenly strided, with its
+/// normal where one can be estimated (wire-like models, such as the thesis's ideal part, have
+/// none and are verified by position alone), and its keypoints.
+std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int points,
+                                                   double normal_radius_mm) {
+  SceneIndexOptions model_options;
+  model_options.normal_radius_mm = normal_radius_mm;
+  model_options.viewpoint_mm = model.T_teach_model.inverse().translation();
+  const SceneIndex model_index(model.cloud_mm, model_options);
+  const auto& valid = model_index.points();
+  const std::size_t stride =
+      std::max<std::size_t>(1, (valid.size() + std::size_t(points) - 1) / std::size_t(points));
+  auto strided = std::make_shared<VerifyModel>();
+  for (std::size_t i = 0; i < valid.size(); i += stride) {
+    strided->points.push_back(valid[i]);
+    strided->normals.push_back(model_index.normals()[i]);
   }
-  const int points = std::max(10, params.refine.model_points);
-  if (refine_model_for != model || refine_model_points != points || !verify_points ||
-      (params.refine.enabled && !refine_model)) {
-    refine_model.reset();
-    if (params.refine.enabled)
-      refine_model = std::make_shared<const RefineModel>(
-          model->cloud_mm, points, Eigen::Vector3d(model->T_teach_model.inverse().translation()));
-    // Every valid point, evenly strided, with its normal where one can be estimated: wire-like
-    // models (the thesis's ideal part) have none and are verified by position alone.
-    SceneIndexOptions model_options;
-    model_options.normal_radius_mm = params.keypoints.normal_radius_mm;
-    model_options.viewpoint_mm = model->T_teach_model.inverse().translation();
-    const SceneIndex model_index(model->cloud_mm, model_options);
-    const auto& valid = model_index.points();
-    const std::size_t stride = std::max<std::size_t>(1, (valid.size() + points - 1) / points);
-    auto strided = std::make_shared<VerifyModel>();
-    for (std::size_t i = 0; i < valid.size(); i += stride) {
-      strided->points.push_back(valid[i]);
-      strided->normals.push_back(model_index.normals()[i]);
-    }
-    const std::size_t key_stride =
-        std::max<std::size_t>(1, (model->keypoints_mm.size() + 399) / 400);
-    for (std::size_t i = 0; i < model->keypoints_mm.size(); i += key_stride)
-      strided->keypoints.push_back(model->keypoints_mm[i]);
-    verify_points = std::move(strided);
-    refine_model_for = model;
-    refine_model_points = points;
-  }
+  const std::size_t key_stride = std::max<std::size_t>(1, (model.keypoints_mm.size() + 399) / 400);
+  for (std::size_t i = 0; i < model.keypoints_mm.size(); i += key_stride)
+    strided->keypoints.push_back(model.keypoints_mm[i]);
+  return strided;
 }
+
+/// The cached preparation of `model` for these parameters, made (and cached, replacing the
+/// oldest of at most 8) when missing or lacking what the parameters need.
+std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const ModelPrep>>& preps,
+                                              const std::shared_ptr<const TaughtModel>& model,
+                                              const RecognitionParams& params) {
+  const int points = std::max(10, params.refine.model_points);
+  const double radius = params.keypoints.normal_radius_mm;
+  const double sampling = params.matching.surface_sampling_mm;
+  // ICP needs the model prepared: for refinement, and to polish surface voting's poses.
+  const bool needs_refine = params.refine.enabled || sampling > 0;
+  auto found = std::find_if(preps.begin(), preps.end(), [&](const auto& p) {
+    return p->model == model && p->points == points && p->normal_radius_mm == radius;
+  });
+  if (found != preps.end() && (!needs_refine || (*found)->refine) &&
+      (sampling <= 0 || ((*found)->pairs && (*found)->surface_sampling_mm == sampling)))
+    return *found;
+  auto prep = std::make_shared<ModelPrep>();
+  if (found != preps.end()) {
+    *prep = **found;
+    preps.erase(found);
+  } else {
+    prep->model = model;
+    prep->points = points;
+    prep->normal_radius_mm = radius;
+    prep->verify = makeVerifyModel(*model, points, radius);
+  }
+  if (needs_refine && !prep->refine)
+    prep->refine = std::make_shared<const RefineModel>(
+        model->cloud_mm, points, Eigen::Vector3d(model->T_teach_model.inverse().translation()));
+  if (sampling > 0 && (!prep->pairs || prep->surface_sampling_mm != sampling)) {
+    prep->pairs = std::make_shared<const PointPairModel>(
+        sampleOriented(prep->verify->points, prep->verify->normals, sampling), sampling);
+    prep->surface_sampling_mm = sampling;
+  }
+  constexpr std::size_t kKeptModels = 8;
+  if (preps.size() >= kKeptModels)
+    preps.erase(preps.begin());
+  preps.push_back(prep);
+  return prep;
+}
+
 /// Share of the model's keypoints lying on confirmed scene surface that also have a scene keypoint
 /// within the edge tolerance (1 when off or when fewer than 10 lie on surface): a flat face
 /// matched onto another flat face at a wrong turn confirms its surface but not its outline.
@@ -267,6 +299,74 @@ double verifyPose(const VerifyModel& model, const SceneIndex& index,
       std::max(double(model_points.size() - hidden), kMinExpectedShare * double(model_points.size()));
   const double q = (double(confirmed) - double(violations)) / expected;
   return std::clamp(q, 0.0, 1.0) * edgeAgreement(model, index, T, tol_sq, edges);
+}
+
+/// Moves a pose closer to the scene (ICP).
+using PosePolisher = std::function<Eigen::Isometry3d(const Eigen::Isometry3d&)>;
+
+/// Surface voting's poses as detections (cluster -1), each polished into the version that
+/// verifies best: as voted, fitted on the scene features it confirms, or (with `polish`, ICP)
+/// refined; kept when the coverage reaches params.min_coverage. Best first.
+std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
+                                         const OrientedPoints& scene_points,
+                                         const FeatureList& model_features,
+                                         const std::vector<FeatureList>& object_features,
+                                         const MatchingParams& params, double cluster_mm,
+                                         const PoseVerifier& verify,
+                                         const PosePolisher& polish,
+                                         const ProgressFn& progress) {
+  VotingOptions options;
+  options.reference_stride = params.surface_reference_stride;
+  options.max_poses = params.surface_poses;
+  options.cluster_distance_mm = cluster_mm;
+  const auto t0 = Clock::now();
+  const std::vector<VotedPose> poses = model_pairs.vote(scene_points, options, progress);
+  logger()->debug("surface voting: {} model points ({} pairs), {} scene points, {} poses, "
+                  "{:.0f} ms",
+                  model_pairs.pointCount(), model_pairs.pairCount(), scene_points.points.size(),
+                  poses.size(), msSince(t0));
+  FeatureList scene_features;
+  for (const auto& f : object_features)
+    scene_features.insert(scene_features.end(), f.begin(), f.end());
+  std::vector<Detection> out(poses.size());
+  tbb::parallel_for(std::size_t{0}, poses.size(), [&](std::size_t k) {
+    Detection& d = out[k];
+    d.cluster = -1;
+    d.T_scene_model = poses[k].T_scene_model;
+    d.coverage = verify(d.T_scene_model);
+    const MatchCandidate fitted =
+        refineOnFeatures(model_features, scene_features, d.T_scene_model, params);
+    d.feature_score = fitted.score;
+    if (fitted.matched_features.size() >= 2) {
+      const double coverage = verify(fitted.T_scene_model);
+      if (coverage > d.coverage) {
+        d.T_scene_model = fitted.T_scene_model;
+        d.coverage = coverage;
+        d.matched_features = fitted.matched_features;
+      }
+    }
+    // ICP only where the surface already half agrees: it cannot rescue a wrong pose, and it is
+    // the costly step.
+    if (polish && d.coverage >= 0.5 * params.min_coverage) {
+      const Eigen::Isometry3d T = polish(d.T_scene_model);
+      const double coverage = verify(T);
+      if (coverage > d.coverage) {
+        d.T_scene_model = T;
+        d.coverage = coverage;
+        d.refined = true;
+      }
+    }
+    d.score = d.coverage;
+  });
+  for (std::size_t k = 0; k < std::min<std::size_t>(out.size(), 20); ++k)
+    logger()->trace("surface pose {}: {} votes, coverage {:.3f}, {} features{}", k, poses[k].votes,
+                    out[k].coverage, out[k].matched_features.size(), out[k].refined ? ", ICP" : "");
+  std::erase_if(out, [&](const Detection& d) { return d.coverage < params.min_coverage; });
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Detection& a, const Detection& b) { return a.score > b.score; });
+  logger()->debug("surface voting: {} poses verified and polished, {} kept, {:.0f} ms in all",
+                  poses.size(), out.size(), msSince(t0));
+  return out;
 }
 
 } // namespace
@@ -360,12 +460,16 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     result.timings.features_ms = msSince(t0);
   }
   const bool verifying = params.matching.verify_tolerance_mm > 0;
+  std::shared_ptr<const ModelPrep> prep;
   if ((verifying || params.refine.enabled) && cache.pre && cache.pre->validCount() > 0) {
     const auto t0 = Clock::now();
-    prepareVerificationImpl(cache.index_key, cache.scene_index, cache.refine_model_for,
-                            cache.refine_model_points, cache.refine_model, cache.verify_points,
-                            *cache.pre, model,
-                            pre_key, params);
+    if (cache.index_key != pre_key || !cache.scene_index) {
+      SceneIndexOptions options;
+      options.normal_radius_mm = params.keypoints.normal_radius_mm;
+      cache.scene_index = std::make_shared<const SceneIndex>(*cache.pre, options);
+      cache.index_key = pre_key;
+    }
+    prep = prepareModel(cache.model_preps, model, params);
     result.timings.matching_ms += msSince(t0);
   }
   const bool edge_check = verifying && params.matching.edge_tolerance_mm > 0;
@@ -380,6 +484,18 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   const EdgeCheck edges{edge_check ? cache.edge_index.get() : nullptr,
                         params.matching.edge_tolerance_mm};
+  const double sampling_mm = params.matching.surface_sampling_mm;
+  const bool surface = verifying && sampling_mm > 0 && prep;
+  if (surface) {
+    const auto t0 = Clock::now();
+    if (cache.surface_scene_key != pre_key || cache.surface_scene_sampling != sampling_mm) {
+      cache.surface_scene = std::make_shared<const OrientedPoints>(sampleOriented(
+          cache.scene_index->points(), cache.scene_index->normals(), sampling_mm));
+      cache.surface_scene_key = pre_key;
+      cache.surface_scene_sampling = sampling_mm;
+    }
+    result.timings.matching_ms += msSince(t0);
+  }
   {
     const std::lock_guard lock(m_mutex);
     m_cache = std::make_shared<Cache>(cache);
@@ -387,9 +503,9 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
 
   const auto t_match = Clock::now();
   PoseVerifier verify;
-  if (verifying && cache.scene_index && cache.verify_points)
+  if (verifying && prep)
     verify = [&](const Eigen::Isometry3d& T) {
-      return verifyPose(*cache.verify_points, *cache.scene_index, scene_mm, sensor, T,
+      return verifyPose(*prep->verify, *cache.scene_index, scene_mm, sensor, T,
                         params.matching.verify_tolerance_mm, edges);
     };
   std::vector<std::vector<MatchCandidate>> candidates(objects.size());
@@ -407,6 +523,15 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       d.cluster = static_cast<int>(i);
       result.detections.push_back(std::move(d));
     }
+  if (surface) {
+    const auto polish = [&](const Eigen::Isometry3d& T) {
+      return refinePose(*prep->refine, *cache.scene_index, T, params.refine).T_scene_model;
+    };
+    for (auto& d : surfaceDetections(*prep->pairs, *cache.surface_scene, model->features,
+                                     *cache.features, params.matching, 0.1 * model->diameter_mm,
+                                     verify, polish, subProgress(progress, 0.95, 0.98)))
+      result.detections.push_back(std::move(d));
+  }
   std::stable_sort(result.detections.begin(), result.detections.end(),
                    [](const Detection& a, const Detection& b) { return a.score > b.score; });
   result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
@@ -414,12 +539,12 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       result.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
     result.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
   result.timings.matching_ms += msSince(t_match);
-  if (params.refine.enabled && cache.scene_index && cache.refine_model) {
+  if (params.refine.enabled && prep) {
     const auto t0 = Clock::now();
     tbb::parallel_for(std::size_t{0}, result.detections.size(), [&](std::size_t k) {
       Detection& d = result.detections[k];
       const RefinementResult r =
-          refinePose(*cache.refine_model, *cache.scene_index, d.T_scene_model, params.refine);
+          refinePose(*prep->refine, *cache.scene_index, d.T_scene_model, params.refine);
       if (!verifying) {
         d.T_scene_model = r.T_scene_model;
         d.refined = true;
@@ -427,7 +552,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       }
       // The refined pose is kept only when it verifies at least as well: ICP can slide a part
       // seen edge-on along its extrusion.
-      const double coverage = verifyPose(*cache.verify_points, *cache.scene_index, scene_mm,
+      const double coverage = verifyPose(*prep->verify, *cache.scene_index, scene_mm,
                                          sensor, r.T_scene_model,
                                          params.matching.verify_tolerance_mm, edges);
       if (coverage >= d.coverage) {

@@ -1,0 +1,284 @@
+#include "core/matching/PointPairVoting.h"
+
+#include "core/common/Error.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <nanoflann.hpp>
+#include <tbb/parallel_for.h>
+#include <tuple>
+
+namespace scanpick::core {
+namespace {
+
+constexpr float kTwoPi = 6.28318530717958647692f;
+
+struct PointSource {
+  const std::vector<Eigen::Vector3f>* points = nullptr;
+  [[nodiscard]] std::size_t kdtree_get_point_count() const { return points->size(); }
+  [[nodiscard]] float kdtree_get_pt(std::size_t i, std::size_t dim) const {
+    return (*points)[i][static_cast<Eigen::Index>(dim)];
+  }
+  template <class Box> bool kdtree_get_bbox(Box&) const { return false; }
+};
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointSource>,
+                                                   PointSource, 3, std::uint32_t>;
+
+/// The frame in which `p` is the origin and `n` the +x axis.
+Eigen::Isometry3f localFrame(const Eigen::Vector3f& p, const Eigen::Vector3f& n) {
+  Eigen::Isometry3f T = Eigen::Isometry3f::Identity();
+  T.linear() = Eigen::Quaternionf::FromTwoVectors(n, Eigen::Vector3f::UnitX()).toRotationMatrix();
+  T.translation() = -(T.linear() * p);
+  return T;
+}
+
+/// Rotation about x that brings a point given in a local frame into the half plane z = 0, y > 0.
+float planeAngle(const Eigen::Vector3f& local) {
+  return std::atan2(-local.z(), local.y());
+}
+
+float angleBetween(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+  return std::acos(std::clamp(a.dot(b), -1.0f, 1.0f));
+}
+
+/// A voted pose before clustering, with its order key (reference index) for determinism.
+struct RawPose {
+  Eigen::Isometry3f T;
+  int votes = 0;
+  std::size_t reference = 0;
+};
+
+} // namespace
+
+OrientedPoints sampleOriented(const std::vector<Eigen::Vector3f>& points_mm,
+                              const std::vector<Eigen::Vector3f>& normals, double voxel_mm) {
+  if (points_mm.size() != normals.size())
+    throw Error("sampleOriented: points and normals differ in count");
+  if (!(voxel_mm > 0.0))
+    throw Error("sampleOriented: the voxel size must be positive");
+  struct Sum {
+    Eigen::Vector3d p = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
+    int count = 0;
+  };
+  // A voxel may hold both faces of a thin wall: its points are grouped by normal direction
+  // (within 90° of a group's first normal), one sample per group.
+  std::map<std::tuple<long, long, long>, std::vector<Sum>> voxels;
+  for (std::size_t i = 0; i < points_mm.size(); ++i) {
+    const Eigen::Vector3f& p = points_mm[i];
+    const Eigen::Vector3f& n = normals[i];
+    if (!p.allFinite() || !n.allFinite())
+      continue;
+    auto& groups = voxels[{std::lround(std::floor(p.x() / voxel_mm)),
+                           std::lround(std::floor(p.y() / voxel_mm)),
+                           std::lround(std::floor(p.z() / voxel_mm))}];
+    auto group = std::find_if(groups.begin(), groups.end(),
+                              [&](const Sum& s) { return s.n.dot(n.cast<double>()) > 0.0; });
+    if (group == groups.end())
+      group = groups.insert(groups.end(), Sum{});
+    group->p += p.cast<double>();
+    group->n += n.cast<double>();
+    ++group->count;
+  }
+  OrientedPoints out;
+  for (const auto& [key, groups] : voxels)
+    for (const auto& s : groups) {
+      if (s.n.norm() < 1e-6 * s.count)
+        continue;
+      out.points.push_back((s.p / s.count).cast<float>());
+      out.normals.push_back(s.n.normalized().cast<float>());
+    }
+  return out;
+}
+
+PointPairModel::PointPairModel(OrientedPoints model, double distance_step_mm, int angle_bins)
+    : m_model(std::move(model)), m_distance_step_mm(distance_step_mm), m_angle_bins(angle_bins) {
+  const std::size_t n = m_model.points.size();
+  if (n < 3 || m_model.normals.size() != n)
+    throw Error("point pair model: fewer than 3 oriented model points (widen the crop or lower "
+                "the surface sampling)");
+  if (!(distance_step_mm > 0.0) || angle_bins < 4 || angle_bins > 360)
+    throw Error("point pair model: distance step must be > 0 and angle bins in [4, 360]");
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      m_diameter_mm =
+          std::max(m_diameter_mm, double((m_model.points[i] - m_model.points[j]).norm()));
+  m_to_local.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    m_to_local.push_back(localFrame(m_model.points[i], m_model.normals[i]));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j)
+        continue;
+      bool valid = false;
+      const std::uint32_t k =
+          key(m_model.points[i], m_model.normals[i], m_model.points[j], m_model.normals[j], &valid);
+      if (!valid)
+        continue;
+      m_table.push_back(
+          {k, static_cast<std::uint32_t>(i), planeAngle(m_to_local[i] * m_model.points[j])});
+    }
+  std::stable_sort(m_table.begin(), m_table.end(),
+                   [](const Entry& a, const Entry& b) { return a.key < b.key; });
+  // Dense offsets: the entries of key k are m_table[m_offsets[k], m_offsets[k + 1]).
+  const std::uint32_t keys = m_table.empty() ? 0 : m_table.back().key + 1;
+  m_offsets.assign(keys + 1, 0);
+  for (const auto& e : m_table)
+    ++m_offsets[e.key + 1];
+  for (std::uint32_t k = 0; k < keys; ++k)
+    m_offsets[k + 1] += m_offsets[k];
+}
+
+std::uint32_t PointPairModel::key(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1,
+                                  const Eigen::Vector3f& p2, const Eigen::Vector3f& n2,
+                                  bool* valid) const {
+  const Eigen::Vector3f d = p2 - p1;
+  const float distance = d.norm();
+  *valid = false;
+  if (distance < 0.5f * float(m_distance_step_mm))
+    return 0;
+  const Eigen::Vector3f u = d / distance;
+  const int half = m_angle_bins / 2;
+  const float step = float(M_PI) / float(half);
+  auto bin = [&](float angle) { return std::min(half - 1, static_cast<int>(angle / step)); };
+  const int a1 = bin(angleBetween(n1, u)), a2 = bin(angleBetween(n2, u)),
+            a3 = bin(angleBetween(n1, n2));
+  // Two points of one plane (normals parallel, both across the joining line) tell nothing but
+  // their distance, and flat parts have very many of them: such pairs are not used.
+  const int across = half / 2;
+  if (a3 == 0 && a1 == across && a2 == across)
+    return 0;
+  const auto d_bin = static_cast<std::uint32_t>(distance / float(m_distance_step_mm));
+  *valid = true;
+  return ((d_bin * half + a1) * half + a2) * half + a3;
+}
+
+std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
+                                            const VotingOptions& options,
+                                            const ProgressFn& progress) const {
+  const std::size_t n_scene = scene.points.size();
+  if (n_scene < 2)
+    return {};
+  const auto stride = static_cast<std::size_t>(std::max(1, options.reference_stride));
+  PointSource source{&scene.points};
+  KdTree tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  tree.buildIndex();
+  const std::size_t n_refs = (n_scene + stride - 1) / stride;
+  std::vector<RawPose> raw(n_refs);
+  const auto radius_sq = static_cast<float>(m_diameter_mm * m_diameter_mm);
+  const auto n_model = m_model.points.size();
+  const auto bins = static_cast<std::size_t>(m_angle_bins);
+  const float alpha_step = kTwoPi / float(m_angle_bins);
+  std::atomic<std::size_t> done{0};
+  std::mutex progress_mutex;
+  std::atomic<bool> cancelled{false};
+  auto voteFrom = [&](std::size_t r) {
+    const std::size_t s = r * stride;
+    const Eigen::Vector3f& p = scene.points[s];
+    const Eigen::Vector3f& n = scene.normals[s];
+    const Eigen::Isometry3f to_local = localFrame(p, n);
+    std::vector<std::pair<std::uint32_t, float>> neighbours;
+    tree.radiusSearch(p.data(), radius_sq, neighbours, nanoflann::SearchParams(32, 0.0f, false));
+    std::sort(neighbours.begin(), neighbours.end()); // visiting order must not matter
+    std::vector<std::uint16_t> accumulator(n_model * bins, 0);
+    for (const auto& [i, distance_sq] : neighbours) {
+      if (i == s)
+        continue;
+      bool valid = false;
+      const std::uint32_t k = key(p, n, scene.points[i], scene.normals[i], &valid);
+      if (!valid)
+        continue;
+      if (k + 1 >= m_offsets.size() || m_offsets[k] == m_offsets[k + 1])
+        continue;
+      const float alpha_scene = planeAngle(to_local * scene.points[i]);
+      const Entry* end = m_table.data() + m_offsets[k + 1];
+      for (const Entry* e = m_table.data() + m_offsets[k]; e != end; ++e) {
+        float alpha = e->alpha - alpha_scene;
+        alpha -= kTwoPi * std::floor(alpha / kTwoPi);
+        const auto bin = std::min(bins - 1, static_cast<std::size_t>(alpha / alpha_step));
+        auto& cell = accumulator[e->model_point * bins + bin];
+        if (cell < 0xFFFF)
+          ++cell;
+      }
+    }
+    const auto peak = std::max_element(accumulator.begin(), accumulator.end());
+    RawPose& out = raw[r];
+    out.reference = r;
+    out.votes = *peak;
+    if (out.votes == 0)
+      return;
+    const auto cell = static_cast<std::size_t>(peak - accumulator.begin());
+    const std::size_t m = cell / bins;
+    const float alpha = (float(cell % bins) + 0.5f) * alpha_step;
+    out.T = to_local.inverse() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) * m_to_local[m];
+  };
+  tbb::parallel_for(std::size_t{0}, n_refs, [&](std::size_t r) {
+    if (cancelled.load(std::memory_order_relaxed))
+      return;
+    voteFrom(r);
+    const std::size_t finished = ++done;
+    if (progress && finished % 64 == 0) {
+      const std::lock_guard lock(progress_mutex);
+      try {
+        reportProgress(progress, double(finished) / double(n_refs));
+      } catch (const Cancelled&) {
+        cancelled = true;
+      }
+    }
+  });
+  if (cancelled)
+    throw Cancelled();
+
+  // Pose clustering: most votes first; each pose joins the first cluster whose seed pose is close.
+  std::stable_sort(raw.begin(), raw.end(),
+                   [](const RawPose& a, const RawPose& b) { return a.votes > b.votes; });
+  struct Cluster {
+    Eigen::Isometry3f seed;
+    Eigen::Vector3d t_sum = Eigen::Vector3d::Zero();
+    Eigen::Vector4d q_sum = Eigen::Vector4d::Zero();
+    int votes = 0;
+  };
+  std::vector<Cluster> clusters;
+  const auto max_t = static_cast<float>(options.cluster_distance_mm);
+  const auto max_angle = static_cast<float>(options.cluster_angle_rad);
+  for (const auto& pose : raw) {
+    if (pose.votes == 0)
+      break;
+    Cluster* home = nullptr;
+    for (auto& c : clusters)
+      if ((c.seed.translation() - pose.T.translation()).norm() <= max_t &&
+          Eigen::AngleAxisf(c.seed.linear().transpose() * pose.T.linear()).angle() <= max_angle) {
+        home = &c;
+        break;
+      }
+    if (!home) {
+      clusters.push_back({pose.T});
+      home = &clusters.back();
+    }
+    const Eigen::Quaternionf seed_q(home->seed.linear());
+    Eigen::Quaternionf q(pose.T.linear());
+    if (q.dot(seed_q) < 0)
+      q.coeffs() = -q.coeffs();
+    home->t_sum += double(pose.votes) * pose.T.translation().cast<double>();
+    home->q_sum += double(pose.votes) * q.coeffs().cast<double>();
+    home->votes += pose.votes;
+  }
+  std::stable_sort(clusters.begin(), clusters.end(),
+                   [](const Cluster& a, const Cluster& b) { return a.votes > b.votes; });
+  if (clusters.size() > static_cast<std::size_t>(std::max(0, options.max_poses)))
+    clusters.resize(static_cast<std::size_t>(std::max(0, options.max_poses)));
+  std::vector<VotedPose> out;
+  out.reserve(clusters.size());
+  for (const auto& c : clusters) {
+    VotedPose v;
+    v.votes = c.votes;
+    v.T_scene_model.linear() = Eigen::Quaterniond(c.q_sum).normalized().toRotationMatrix();
+    v.T_scene_model.translation() = c.t_sum / double(c.votes);
+    out.push_back(v);
+  }
+  return out;
+}
+
+} // namespace scanpick::core

@@ -1,0 +1,67 @@
+#pragma once
+// Helpers of the integration tests: teach a built-in part from a virtual teach scan, and tell
+// which simulated instance a detection lies on.
+#include "core/model/TaughtModel.h"
+#include "core/pipeline/Detection.h"
+#include "core/sim/Synth.h"
+
+#include <limits>
+#include <memory>
+#include <string>
+
+namespace scanpick::test {
+
+/// A model taught from one part on a table (resting on side `teach_side`, see
+/// core::teachSideTurn), cropped with the box an operator would draw, and the part's pose in that
+/// teach scan.
+struct SynthTeach {
+  std::shared_ptr<core::TaughtModel> model;
+  Eigen::Isometry3d T_teach_part = Eigen::Isometry3d::Identity();
+};
+
+inline SynthTeach teachFromSynth(const std::string& part, std::uint64_t seed,
+                                 const core::RecognitionParams& params, int teach_side = 0) {
+  core::SynthRequest request;
+  request.parts = {part};
+  request.layout = core::LayoutKind::Teach;
+  request.count = 1;
+  request.seed = seed;
+  request.teach_side = teach_side;
+  const core::SynthScene scan = core::synthesize(request);
+  core::TeachOptions options;
+  options.name = part;
+  options.sensor = scan.sensor;
+  options.remove_floor = true;
+  const Eigen::AlignedBox3d box = scan.scene.crop_box_world.value();
+  core::OrientedBox crop;
+  crop.T_scan_box = (scan.scene.T_camera_world * Eigen::Translation3d(box.center())).cast<float>();
+  crop.half_extents_mm = (0.5 * box.sizes()).cast<float>();
+  options.crop_oriented = crop;
+  SynthTeach out;
+  out.model = std::make_shared<core::TaughtModel>(core::teach(scan.render.cloud, options, params));
+  out.T_teach_part = scan.scene.T_scene_part(scan.scene.instances.at(0));
+  return out;
+}
+
+/// The instance nearest a detection's part origin (as scanpick-cli eval places it).
+struct NearestInstance {
+  int id = -1;
+  std::string part;
+  double distance_mm = std::numeric_limits<double>::max();
+};
+
+inline NearestInstance nearestInstance(const core::Detection& d, const SynthTeach& taught,
+                                       const core::Scene& scene) {
+  const Eigen::Isometry3d T_scene_part =
+      d.T_scene_model * taught.model->T_teach_model.inverse() * taught.T_teach_part;
+  NearestInstance out;
+  for (const auto& instance : scene.instances) {
+    const double dist =
+        (scene.T_scene_part(instance).translation() - T_scene_part.translation()).norm();
+    if (dist < out.distance_mm)
+      out = {instance.id, scene.parts.at(instance.part).name, dist};
+  }
+  return out;
+}
+
+} // namespace scanpick::test

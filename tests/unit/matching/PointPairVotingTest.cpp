@@ -1,0 +1,161 @@
+#include "core/matching/PointPairVoting.h"
+
+#include "core/common/Error.h"
+
+#include <gtest/gtest.h>
+#include <random>
+
+using namespace scanpick::core;
+
+namespace {
+
+/// Oriented points on the outside of an axis-aligned box [lo, hi] (mm), one every `step` mm,
+/// outward normals; faces listed in `faces` (0..5 = -x, +x, -y, +y, -z, +z) only.
+void addBox(OrientedPoints& out, const Eigen::Vector3f& lo, const Eigen::Vector3f& hi, float step,
+            std::initializer_list<int> faces) {
+  for (int face : faces) {
+    const int axis = face / 2;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    Eigen::Vector3f n = Eigen::Vector3f::Zero();
+    n[axis] = face % 2 ? 1.0f : -1.0f;
+    for (float a = lo[u]; a <= hi[u] + 1e-4f; a += step)
+      for (float b = lo[v]; b <= hi[v] + 1e-4f; b += step) {
+        Eigen::Vector3f p;
+        p[axis] = face % 2 ? hi[axis] : lo[axis];
+        p[u] = a;
+        p[v] = b;
+        out.points.push_back(p);
+        out.normals.push_back(n);
+      }
+  }
+}
+
+/// An asymmetric bracket as a camera above it sees it: an L of two plates and a block on one leg,
+/// upward and sideways faces only.
+OrientedPoints bracket(float step) {
+  OrientedPoints part;
+  addBox(part, {0, 0, 0}, {60, 30, 5}, step, {1, 3, 5});         // leg on the floor
+  addBox(part, {0, 0, 5}, {5, 30, 45}, step, {0, 1, 3, 5});      // upright leg
+  addBox(part, {35, 5, 5}, {50, 15, 15}, step, {0, 1, 2, 3, 5}); // block
+  return part;
+}
+
+OrientedPoints transformed(const OrientedPoints& in, const Eigen::Isometry3f& T) {
+  OrientedPoints out;
+  for (std::size_t i = 0; i < in.points.size(); ++i) {
+    out.points.push_back(T * in.points[i]);
+    out.normals.push_back(T.linear() * in.normals[i]);
+  }
+  return out;
+}
+
+Eigen::Isometry3f pose(float angle, const Eigen::Vector3f& axis, const Eigen::Vector3f& t) {
+  Eigen::Isometry3f T = Eigen::Isometry3f::Identity();
+  T.linear() = Eigen::AngleAxisf(angle, axis.normalized()).toRotationMatrix();
+  T.translation() = t;
+  return T;
+}
+
+double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3f& b) {
+  return (a.translation() - b.translation().cast<double>()).norm();
+}
+double rotationError(const Eigen::Isometry3d& a, const Eigen::Isometry3f& b) {
+  return Eigen::AngleAxisd(a.linear().transpose() * b.linear().cast<double>()).angle();
+}
+
+constexpr float kSampling = 3.0f;
+
+} // namespace
+
+TEST(PointPairVoting, SamplingAveragesEachVoxelAndKeepsBothFacesOfAThinWall) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const Eigen::Vector3f tilted = Eigen::Vector3f(0, 1, 1).normalized();
+  const std::vector<Eigen::Vector3f> points = {
+      {0.1f, 0.1f, 0.1f},
+      {0.9f, 0.9f, 0.9f}, // one voxel, normals 45° apart: one sample
+      {5.0f, 0.0f, 0.0f},
+      {5.5f, 0.0f, 0.0f},  // one voxel, opposite normals: two samples
+      {9.0f, 9.0f, 9.0f}}; // no normal: dropped
+  const std::vector<Eigen::Vector3f> normals = {
+      {0, 0, 1}, tilted, {1, 0, 0}, {-1, 0, 0}, {nan, 0, 0}};
+  const OrientedPoints s = sampleOriented(points, normals, 2.0);
+  ASSERT_EQ(s.points.size(), 3u);
+  EXPECT_TRUE(s.points[0].isApprox(Eigen::Vector3f(0.5f, 0.5f, 0.5f)));
+  EXPECT_TRUE(s.normals[0].isApprox((Eigen::Vector3f(0, 0, 1) + tilted).normalized()));
+  EXPECT_TRUE(s.normals[1].isApprox(Eigen::Vector3f(1, 0, 0)));
+  EXPECT_TRUE(s.normals[2].isApprox(Eigen::Vector3f(-1, 0, 0)));
+  EXPECT_FLOAT_EQ(s.points[2].x(), 5.5f);
+  EXPECT_THROW(sampleOriented(points, {}, 2.0), Error);
+  EXPECT_THROW(sampleOriented(points, normals, 0.0), Error);
+}
+
+TEST(PointPairVoting, FindsAnInstanceAtItsPose) {
+  const OrientedPoints part =
+      sampleOriented(bracket(1.0f).points, bracket(1.0f).normals, kSampling);
+  const PointPairModel model(part, kSampling);
+  EXPECT_GT(model.pairCount(), 1000u);
+  EXPECT_NEAR(model.diameter(), 80.8, 4.0); // the box diagonal of the L
+  const Eigen::Isometry3f truth = pose(1.1f, {0.3f, -0.5f, 0.8f}, {120, -40, 600});
+  const OrientedPoints raw = transformed(bracket(1.0f), truth);
+  const OrientedPoints scene = sampleOriented(raw.points, raw.normals, kSampling);
+  VotingOptions options;
+  options.reference_stride = 3;
+  const auto poses = model.vote(scene, options);
+  ASSERT_FALSE(poses.empty());
+  // Within a few sampling steps and about one angle bin (12°).
+  EXPECT_LT(translationError(poses.front().T_scene_model, truth), 2.0 * kSampling);
+  EXPECT_LT(rotationError(poses.front().T_scene_model, truth), 0.2);
+}
+
+TEST(PointPairVoting, FindsEveryInstanceOfASceneAndIsRepeatable) {
+  const OrientedPoints part =
+      sampleOriented(bracket(1.0f).points, bracket(1.0f).normals, kSampling);
+  const PointPairModel model(part, kSampling);
+  const std::vector<Eigen::Isometry3f> truths = {pose(0.4f, {0, 0, 1}, {0, 0, 500}),
+                                                 pose(2.5f, {1, 1, 0}, {150, 20, 520}),
+                                                 pose(-1.2f, {0, 1, 1}, {-40, 160, 480})};
+  OrientedPoints raw;
+  for (const auto& T : truths) {
+    const OrientedPoints one = transformed(bracket(1.0f), T);
+    raw.points.insert(raw.points.end(), one.points.begin(), one.points.end());
+    raw.normals.insert(raw.normals.end(), one.normals.begin(), one.normals.end());
+  }
+  // A floor-like distractor plane with noise on the normals.
+  std::mt19937 rng(7);
+  std::normal_distribution<float> noise(0.0f, 0.02f);
+  for (float x = -150; x <= 300; x += 2)
+    for (float y = -150; y <= 300; y += 2) {
+      raw.points.emplace_back(x, y, 700);
+      raw.normals.push_back(Eigen::Vector3f(noise(rng), noise(rng), -1).normalized());
+    }
+  const OrientedPoints scene = sampleOriented(raw.points, raw.normals, kSampling);
+  VotingOptions options;
+  options.reference_stride = 2;
+  options.max_poses = 30;
+  const auto poses = model.vote(scene, options);
+  for (const auto& truth : truths) {
+    const bool found = std::any_of(poses.begin(), poses.end(), [&](const VotedPose& v) {
+      return translationError(v.T_scene_model, truth) < 2.0 * kSampling &&
+             rotationError(v.T_scene_model, truth) < 0.2;
+    });
+    EXPECT_TRUE(found) << "instance at " << truth.translation().transpose();
+  }
+  const auto again = model.vote(scene, options);
+  ASSERT_EQ(again.size(), poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_EQ(again[i].votes, poses[i].votes);
+    EXPECT_TRUE(again[i].T_scene_model.isApprox(poses[i].T_scene_model, 0.0));
+  }
+}
+
+TEST(PointPairVoting, RejectsTooFewPointsAndStopsWhenCancelled) {
+  OrientedPoints two;
+  two.points = {{0, 0, 0}, {1, 0, 0}};
+  two.normals = {{0, 0, 1}, {0, 0, 1}};
+  EXPECT_THROW(PointPairModel(two, 1.0), Error);
+  const OrientedPoints part =
+      sampleOriented(bracket(1.0f).points, bracket(1.0f).normals, kSampling);
+  const PointPairModel model(part, kSampling);
+  EXPECT_THROW(model.vote(part, VotingOptions{1}, [](double) { return false; }), Cancelled);
+  EXPECT_TRUE(model.vote(OrientedPoints{}, VotingOptions{}).empty());
+}
