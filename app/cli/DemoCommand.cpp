@@ -59,7 +59,7 @@ void teachOptionsFromTruth(const fs::path& gt_path, core::TeachOptions& options)
 
 struct DemoOptions {
   std::string out;
-  std::string preset = "phoxi-bin";
+  std::string preset = "phoxi-bin-support";
 };
 
 int runDemo(const DemoOptions& o) {
