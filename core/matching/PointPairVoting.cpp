@@ -1,5 +1,6 @@
 #include "core/matching/PointPairVoting.h"
 
+#include "core/cloud/PointKdTree.h"
 #include "core/common/Error.h"
 
 #include <algorithm>
@@ -7,7 +8,6 @@
 #include <cmath>
 #include <map>
 #include <mutex>
-#include <nanoflann.hpp>
 #include <tbb/parallel_for.h>
 #include <tuple>
 
@@ -15,17 +15,6 @@ namespace scanpick::core {
 namespace {
 
 constexpr float kTwoPi = 6.28318530717958647692f;
-
-struct PointSource {
-  const std::vector<Eigen::Vector3f>* points = nullptr;
-  [[nodiscard]] std::size_t kdtree_get_point_count() const { return points->size(); }
-  [[nodiscard]] float kdtree_get_pt(std::size_t i, std::size_t dim) const {
-    return (*points)[i][static_cast<Eigen::Index>(dim)];
-  }
-  template <class Box> bool kdtree_get_bbox(Box&) const { return false; }
-};
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointSource>,
-                                                   PointSource, 3, std::uint32_t>;
 
 /// The frame in which `p` is the origin and `n` the +x axis.
 Eigen::Isometry3f localFrame(const Eigen::Vector3f& p, const Eigen::Vector3f& n) {
@@ -162,8 +151,8 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
   if (n_scene < 2)
     return {};
   const auto stride = static_cast<std::size_t>(std::max(1, options.reference_stride));
-  PointSource source{&scene.points};
-  KdTree tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  PointVectorSource source{&scene.points};
+  PointKdTree tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   tree.buildIndex();
   const std::size_t n_refs = (n_scene + stride - 1) / stride;
   std::vector<RawPose> raw(n_refs);

@@ -1,8 +1,9 @@
 #pragma once
 /// @file Recognizer.h
 /// The recognition pipeline of §3.5: floor removal → downsampling → split into objects → per
-/// object keypoints → features → matching (Algorithm 8, several instances per object) →
-/// duplicate suppression → detections with grip points. Each stage's output is cached, keyed by
+/// object keypoints → features → matching (Algorithm 8, several instances per object; beyond the
+/// thesis, with matching.surface_sampling_mm, also surface point pair voting over the whole
+/// scene) → duplicate suppression → detections with grip points. Each stage's output is cached, keyed by
 /// the scene's content and that stage's parameters, so changing a matching tolerance re-runs the
 /// matching only (the GUI's live tuning relies on this).
 

@@ -1,12 +1,12 @@
 #include "core/refine/SceneIndex.h"
 
+#include "core/cloud/PointKdTree.h"
 #include "core/common/Error.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <nanoflann.hpp>
 #include <string>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -14,19 +14,6 @@
 namespace scanpick::core {
 
 namespace {
-
-/// nanoflann's dataset adaptor over the indexed points.
-struct PointSource {
-  const std::vector<Eigen::Vector3f>* points = nullptr;
-  [[nodiscard]] std::size_t kdtree_get_point_count() const { return points->size(); }
-  [[nodiscard]] float kdtree_get_pt(std::size_t i, std::size_t dim) const {
-    return (*points)[i][static_cast<Eigen::Index>(dim)];
-  }
-  template <class Box> bool kdtree_get_bbox(Box&) const { return false; }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PointSource>,
-                                                   PointSource, 3, std::uint32_t>;
 
 /// Keeps the single nearest point; starts with the caller's radius so the search prunes early.
 class NearestResult {
@@ -101,8 +88,8 @@ void blockedParallel(std::size_t n, const ProgressFn& progress, Body&& body) {
 // the SceneIndex.
 struct SceneIndex::Tree {
   std::vector<Eigen::Vector3f> points;
-  PointSource source;
-  KdTree tree;
+  PointVectorSource source;
+  PointKdTree tree;
   explicit Tree(std::vector<Eigen::Vector3f> points_mm)
       : points(std::move(points_mm)), source{&points},
         tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
