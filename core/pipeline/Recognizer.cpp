@@ -555,6 +555,11 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       const double coverage = verifyPose(*prep->verify, *cache.scene_index, scene_mm,
                                          sensor, r.T_scene_model,
                                          params.matching.verify_tolerance_mm, edges);
+      logger()->trace("ICP of detection {}: coverage {:.3f} -> {:.3f}, moved {:.2f} mm, {} "
+                      "iterations, converged {}",
+                      k, d.coverage, coverage,
+                      (r.T_scene_model.translation() - d.T_scene_model.translation()).norm(),
+                      r.iterations, r.converged);
       if (coverage >= d.coverage) {
         d.T_scene_model = r.T_scene_model;
         d.refined = true;
