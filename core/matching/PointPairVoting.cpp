@@ -33,11 +33,10 @@ float angleBetween(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
   return std::acos(std::clamp(a.dot(b), -1.0f, 1.0f));
 }
 
-/// A voted pose before clustering, with its order key (reference index) for determinism.
+/// A voted pose before clustering (kept in reference order, so ties sort deterministically).
 struct RawPose {
   Eigen::Isometry3f T;
   int votes = 0;
-  std::size_t reference = 0;
 };
 
 } // namespace
@@ -194,7 +193,6 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
     }
     const auto peak = std::max_element(accumulator.begin(), accumulator.end());
     RawPose& out = raw[r];
-    out.reference = r;
     out.votes = *peak;
     if (out.votes == 0)
       return;
