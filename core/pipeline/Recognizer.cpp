@@ -124,6 +124,9 @@ struct EdgeCheck {
 /// parts must not score as a whole part.
 constexpr double kMinExpectedShare = 0.75;
 
+/// A refined pose whose coverage is lower by less than this is still kept (see recognize()).
+constexpr double kIcpCoverageSlack = 0.01;
+
 /// cos 60°: model and scene normals closer than this agree.
 constexpr float kMinNormalAgreement = 0.5f;
 
@@ -550,8 +553,9 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
         d.refined = true;
         return;
       }
-      // The refined pose is kept only when it verifies at least as well: ICP can slide a part
-      // seen edge-on along its extrusion.
+      // The refined pose is kept only when it verifies about as well (within kIcpCoverageSlack):
+      // ICP can slide a part seen edge-on along its extrusion, which loses much more; a better
+      // pose can lose a point or two of the strided verification sample at the 1 mm edge.
       const double coverage = verifyPose(*prep->verify, *cache.scene_index, scene_mm,
                                          sensor, r.T_scene_model,
                                          params.matching.verify_tolerance_mm, edges);
@@ -560,7 +564,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
                       k, d.coverage, coverage,
                       (r.T_scene_model.translation() - d.T_scene_model.translation()).norm(),
                       r.iterations, r.converged);
-      if (coverage >= d.coverage) {
+      if (coverage >= d.coverage - kIcpCoverageSlack) {
         d.T_scene_model = r.T_scene_model;
         d.refined = true;
         d.coverage = coverage;
