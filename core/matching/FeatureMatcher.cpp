@@ -358,13 +358,18 @@ MatchCandidate scoreTransformation(const FeatureList& model, const FeatureList& 
   return scoreWithBound(prep, T_scene_model, 0, &count);
 }
 
-MatchCandidate refineOnFeatures(const FeatureList& model, const FeatureList& scene,
-                                const Eigen::Isometry3d& T_scene_model,
-                                const MatchingParams& params) {
+std::vector<MatchCandidate> refineOnFeatures(const FeatureList& model, const FeatureList& scene,
+                                             const std::vector<Eigen::Isometry3d>& T_scene_model,
+                                             const MatchingParams& params) {
   const std::vector<char> all;
   const Prepared prep(model, scene, params, all, false);
-  int count = 0;
-  return refineOnConfirmedPairs(prep, model, scene, scoreWithBound(prep, T_scene_model, 0, &count));
+  std::vector<MatchCandidate> out(T_scene_model.size());
+  tbb::parallel_for(std::size_t{0}, out.size(), [&](std::size_t k) {
+    int count = 0;
+    out[k] = refineOnConfirmedPairs(prep, model, scene,
+                                    scoreWithBound(prep, T_scene_model[k], 0, &count));
+  });
+  return out;
 }
 
 std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,

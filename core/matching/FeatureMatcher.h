@@ -61,12 +61,13 @@ MatchCandidate scoreTransformation(const FeatureList& model, const FeatureList& 
                                    const MatchingParams& params,
                                    const std::vector<char>& scene_available = {});
 
-/// Scores `T_scene_model` as scoreTransformation does and, with two or more confirmed pairs,
-/// refines it on them as the search refines its winners (a pose found otherwise, e.g. by surface
-/// voting, then gets the accuracy of the feature fit). Returns the scored (refined) candidate.
-MatchCandidate refineOnFeatures(const FeatureList& model, const FeatureList& scene,
-                                const Eigen::Isometry3d& T_scene_model,
-                                const MatchingParams& params);
+/// Scores each pose of `T_scene_model` as scoreTransformation does and, with two or more
+/// confirmed pairs, refines it on them as the search refines its winners (poses found otherwise,
+/// e.g. by surface voting, then get the accuracy of the feature fit). The scene is indexed once
+/// for all poses, which are handled in parallel. Returns the scored (refined) candidates, in order.
+std::vector<MatchCandidate> refineOnFeatures(const FeatureList& model, const FeatureList& scene,
+                                             const std::vector<Eigen::Isometry3d>& T_scene_model,
+                                             const MatchingParams& params);
 
 /// Algorithm 8 on one scene (cluster): the best-scoring transform, refined on its confirmed pairs,
 /// or nullopt when no pair of pairs matches (fewer than two model or scene features, or no

@@ -101,8 +101,8 @@ struct MatchingParams {
   /// best-first rounds of max_instances_per_cluster. 0 = the rounds.
   int pool_size = 0;
   /// Beyond the thesis: surface point pair voting (PointPairVoting.h) adds pose hypotheses that
-  /// need no feature pairs; each is refined on the features it confirms and verified like the
-  /// others (verification must be on). The model and scene are sampled with voxels of this edge
+  /// need no feature pairs; each is refined on the features it confirms or by ICP, whichever
+  /// verifies best, and verified like the others (verification must be on). The model and scene are sampled with voxels of this edge
   /// (mm; about 4 % of the part's diameter); 0 = off.
   double surface_sampling_mm = 0.0;
   /// Every n-th sampled scene point is a voting reference.

@@ -331,14 +331,18 @@ std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
   FeatureList scene_features;
   for (const auto& f : object_features)
     scene_features.insert(scene_features.end(), f.begin(), f.end());
+  std::vector<Eigen::Isometry3d> voted;
+  for (const auto& pose : poses)
+    voted.push_back(pose.T_scene_model);
+  const std::vector<MatchCandidate> fits =
+      refineOnFeatures(model_features, scene_features, voted, params);
   std::vector<Detection> out(poses.size());
   tbb::parallel_for(std::size_t{0}, poses.size(), [&](std::size_t k) {
     Detection& d = out[k];
     d.cluster = -1;
-    d.T_scene_model = poses[k].T_scene_model;
+    d.T_scene_model = voted[k];
     d.coverage = verify(d.T_scene_model);
-    const MatchCandidate fitted =
-        refineOnFeatures(model_features, scene_features, d.T_scene_model, params);
+    const MatchCandidate& fitted = fits[k];
     d.feature_score = fitted.score;
     if (fitted.matched_features.size() >= 2) {
       const double coverage = verify(fitted.T_scene_model);
