@@ -767,5 +767,15 @@
         <source>Grip points (mm)</source>
         <translation>Punti di presa (mm)</translation>
     </message>
+    <message>
+        <location filename="../ui/panels/ResultsTable.cpp" line="42"/>
+        <source>(turn free)</source>
+        <translation>(rotazione libera)</translation>
+    </message>
+    <message>
+        <location filename="../ui/panels/ResultsTable.cpp" line="43"/>
+        <source>The view that found this part is round about its axis (direction %1, %2, %3): its turn about that axis is not seen. Grip points on the axis are right.</source>
+        <translation>La vista che ha trovato questo pezzo è rotonda attorno al suo asse (direzione %1, %2, %3): la sua rotazione attorno a quell&apos;asse non si vede. I punti di presa sull&apos;asse sono corretti.</translation>
+    </message>
 </context>
 </TS>

@@ -105,13 +105,22 @@ SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& resul
       throw Error(results.source + ": detection " + std::to_string(detection.id) +
                   " names a model the file does not list");
     const Eigen::Isometry3d T_scene_part_est = detection.T_scene_model * T_model_part[detection.model];
+    // A reported free turn is scored as a symmetry of this detection alone.
+    PartInfo scored = part;
+    if (tolerances.accept_free_turns && detection.free_turn_axis &&
+        !part.symmetry.continuous_axis) {
+      const Eigen::Isometry3d T_part_scene = T_scene_part_est.inverse();
+      scored.symmetry.continuous_axis =
+          ContinuousAxis{T_part_scene * detection.free_turn_axis->point_mm,
+                         T_part_scene.linear() * detection.free_turn_axis->direction};
+    }
     DetectionOutcome outcome;
     outcome.detection_id = detection.id;
     outcome.score = detection.score;
     double nearest_cost = 0.0, match_cost = 0.0;
     std::optional<PoseError> match_error;
     for (const std::size_t i : targets) {
-      PoseError e = symmetricPoseError(T_scene_part_est, truth.instances[i].T_scene_part, part,
+      PoseError e = symmetricPoseError(T_scene_part_est, truth.instances[i].T_scene_part, scored,
                                        group, tolerances);
       const double cost = poseCost(e, part.diameter_mm);
       if (!outcome.error || cost < nearest_cost) {

@@ -15,6 +15,9 @@ struct Tolerances {
   double translation_fraction = 0.1; ///< true positive: origin error ≤ this × part diameter
   double rotation_deg = 10.0;        ///< true positive: rotation error ≤ this
   double min_visible_fraction = 0.5; ///< recall counts instances at least this visible
+  /// A detection that reports a free turn axis (its view does not show the turn) is scored up
+  /// to a turn about that axis, as if the part were symmetric about it; off: strictly.
+  bool accept_free_turns = false;
   bool operator==(const Tolerances&) const = default;
 };
 

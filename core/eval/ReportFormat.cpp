@@ -76,7 +76,8 @@ nlohmann::ordered_json reportToJson(const EvalReport& report) {
            {"tolerances",
             {{"translation_fraction_of_diameter", report.tolerances.translation_fraction},
              {"rotation_deg", report.tolerances.rotation_deg},
-             {"min_visible_fraction", report.tolerances.min_visible_fraction}}},
+             {"min_visible_fraction", report.tolerances.min_visible_fraction},
+             {"accept_free_turns", report.tolerances.accept_free_turns}}},
            {"overall", summaryToJson(report.overall)}};
   doc["per_part"] = Json::array();
   for (const auto& s : report.per_part)
@@ -112,8 +113,9 @@ std::string reportToTable(const EvalReport& report, bool details) {
   const auto& t = report.tolerances;
   out << "true positive: origin within " << format("%g", t.translation_fraction)
       << " x diameter and rotation within " << format("%g", t.rotation_deg)
-      << " deg (symmetry-aware); recall over instances at least "
-      << format("%g", t.min_visible_fraction * 100.0) << " % visible\n\n";
+      << " deg (symmetry-aware" << (t.accept_free_turns ? ", and up to reported free turns" : "")
+      << "); recall over instances at least " << format("%g", t.min_visible_fraction * 100.0)
+      << " % visible\n\n";
 
   out << pad("part", 18, true) << pad("scenes", 7) << pad("det", 6) << pad("TP", 6) << pad("FP", 6)
       << pad("visible", 9) << pad("precision", 11) << pad("recall", 8) << pad("R@P99", 8)

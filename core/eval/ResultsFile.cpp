@@ -69,6 +69,17 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
         d.grip_points_scene.push_back(std::move(p));
       }
     }
+    if (value.contains("free_turn_axis")) {
+      const auto& axis = value["free_turn_axis"];
+      const std::string aat = at + ".free_turn_axis";
+      const Eigen::Vector3d point =
+          readVector3(requireField(axis, "point_mm", aat), aat + ".point_mm");
+      const Eigen::Vector3d direction =
+          readVector3(requireField(axis, "direction", aat), aat + ".direction");
+      if (direction.norm() < 1e-6)
+        throw Error(aat + ".direction is zero: it must be a unit vector");
+      d.free_turn_axis = ContinuousAxis{point, direction.normalized()};
+    }
     results.detections.push_back(std::move(d));
   }
 

@@ -24,6 +24,8 @@ struct ResultDetection {
   Eigen::Isometry3d T_scene_model = Eigen::Isometry3d::Identity();
   std::vector<NamedPoint> grip_points_scene; ///< as reported (informative only)
   std::size_t model = 0;                     ///< index into ResultsFile::models
+  /// The axis (scene frame) about which the detection's turn was not seen, when reported.
+  std::optional<ContinuousAxis> free_turn_axis;
 };
 
 /// One taught model (view) the results were produced with.

@@ -4,12 +4,18 @@
 
 #include "core/common/GripPoint.h"
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace scanpick::core {
 
+/// A line in the scene frame about which a detection's turn is not known (Detection).
+struct FreeTurnAxis {
+  Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();  ///< a point on the axis, scene frame (mm)
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< unit, scene frame
+};
 
 /// One recognized instance.
 struct Detection {
@@ -30,6 +36,11 @@ struct Detection {
   int cluster = -1;                          ///< scene cluster it was found in (-1: whole scene)
   /// Which model found it, when several views of a part are searched (recognizeViews); else 0.
   int model_index = 0;
+  /// Set when the view that found it is a surface of revolution about this axis (RevolutionAxis.h,
+  /// such as a flanged pipe taught from the side): the part's turn about the axis is not seen,
+  /// and T_scene_model is one of the poses turned about it that fit equally well. Grip points on
+  /// the axis are unaffected; a grip that depends on the turn must not trust it.
+  std::optional<FreeTurnAxis> free_turn_axis;
 };
 
 } // namespace scanpick::core

@@ -5,6 +5,7 @@
 #include "core/features/FeatureExtraction.h"
 #include "core/matching/FeatureMatcher.h"
 #include "core/matching/PointPairVoting.h"
+#include "core/matching/RevolutionAxis.h"
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "core/preprocess/SceneSplit.h"
@@ -108,6 +109,8 @@ struct ModelPrep {
   int points = 0;                ///< refine.model_points it was prepared with
   double normal_radius_mm = 0;   ///< keypoints.normal_radius_mm it was prepared with
   std::shared_ptr<const VerifyModel> verify;
+  /// The axis about which the model is a surface of revolution, if it is one.
+  std::optional<RevolutionAxis> axis;
   std::shared_ptr<const RefineModel> refine;           ///< when ICP or surface voting needs it
   double surface_sampling_mm = 0;                      ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs;         ///< when surface voting is on
@@ -205,6 +208,14 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     prep->points = points;
     prep->normal_radius_mm = radius;
     prep->verify = makeVerifyModel(*model, points, radius);
+    prep->axis = fitRevolutionAxis(prep->verify->points, prep->verify->normals);
+    if (prep->axis)
+      logger()->debug("model '{}' is a surface of revolution ({:.0f} % of its normals), its "
+                      "turn is not seen: axis through ({:.1f}, {:.1f}, {:.1f}) mm along ({:.3f}, {:.3f}, {:.3f})",
+                      model->name, 100.0 * prep->axis->inlier_share, prep->axis->point_mm.x(),
+                      prep->axis->point_mm.y(), prep->axis->point_mm.z(),
+                      prep->axis->direction.x(), prep->axis->direction.y(),
+                      prep->axis->direction.z());
   }
   if (needs_refine && !prep->refine)
     prep->refine = std::make_shared<const RefineModel>(
@@ -579,9 +590,13 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
                      [](const Detection& a, const Detection& b) { return a.score > b.score; });
     result.timings.refine_ms = msSince(t0);
   }
-  for (auto& d : result.detections)
+  for (auto& d : result.detections) {
     for (const auto& g : model->grip_points)
       d.grip_points_scene.push_back({g.name, d.T_scene_model * g.position_mm});
+    if (prep && prep->axis)
+      d.free_turn_axis = FreeTurnAxis{d.T_scene_model * prep->axis->point_mm,
+                                      d.T_scene_model.linear() * prep->axis->direction};
+  }
   reportProgress(progress, 1.0);
 
   result.preprocessed = cache.pre;

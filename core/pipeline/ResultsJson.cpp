@@ -47,6 +47,9 @@ json resultsToJson(const RecognitionResult& result, const std::vector<ModelSourc
                           {"quaternion_wxyz", json::array({q.w(), q.x(), q.y(), q.z()})},
                           {"grip_points", grips},
                           {"matched_features", pairs}});
+    if (d.free_turn_axis)
+      detections.back()["free_turn_axis"] = {{"point_mm", vec(d.free_turn_axis->point_mm)},
+                                             {"direction", vec(d.free_turn_axis->direction)}};
   }
   const StageTimings& t = result.timings;
   return {{"format", "scanpick-results"},

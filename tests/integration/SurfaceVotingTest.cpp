@@ -1,6 +1,7 @@
 // Surface point pair voting beyond the thesis (matching.surface_sampling_mm): in a bin of
 // supports it finds instances the line and circle pairs miss, without false detections, and the
-// same input gives the same output.
+// same input gives the same output. In a bin of pump-connectors, the views taught from the side
+// report their free turn about the pipe axis.
 #include "core/params/ParamsJson.h"
 #include "core/pipeline/Recognizer.h"
 #include "tests/integration/SynthTeach.h"
@@ -32,6 +33,8 @@ std::set<int> foundInstances(const RecognitionResult& result,
   }
   return found;
 }
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 } // namespace
 
@@ -77,4 +80,64 @@ TEST(SurfaceVoting, FindsMoreSupportsInBinsWithoutFalseDetections) {
   std::printf("instances found in three bins of ten: %zu by features, %zu with surface voting\n",
               total_features, total_surface);
   EXPECT_GT(total_surface, total_features);
+}
+
+TEST(SurfaceVoting, PumpConnectorsSeenFromTheSideReportTheirPipeAxisAsFreeTurn) {
+  const RecognitionParams params = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
+                                              "resources/presets/phoxi-bin-pump-connector.json")
+                                       .params;
+  std::vector<test::SynthTeach> views;
+  std::vector<std::shared_ptr<const TaughtModel>> models;
+  for (int side = 0; side < kTeachSides; ++side) {
+    views.push_back(test::teachFromSynth("pump-connector", 5, params, side));
+    models.push_back(views.back().model);
+  }
+  SynthRequest request;
+  request.parts = {"pump-connector"};
+  request.layout = LayoutKind::Bin;
+  request.count = 8;
+  request.seed = 31;
+  const SynthScene bin = synthesize(request);
+  Recognizer recognizer;
+  const RecognitionResult result =
+      recognizeViews(recognizer, models, bin.render.cloud, bin.sensor, params);
+  // The part frame's z is the pipe axis and (0, 0, 50) the pipe's centre, the same under every
+  // symmetry of the part (the origin is at one flange: an end-to-end flip moves it 100 mm).
+  const Eigen::Vector3d pipe_centre(0, 0, 50);
+  std::set<int> found, views_with_free_turn, views_without;
+  for (const auto& d : result.detections) {
+    const auto& view = views.at(static_cast<std::size_t>(d.model_index));
+    const Eigen::Vector3d centre_est =
+        d.T_scene_model * view.model->T_teach_model.inverse() * view.T_teach_part * pipe_centre;
+    const PartInstance* nearest = nullptr;
+    for (const auto& instance : bin.scene.instances)
+      if (!nearest || (bin.scene.T_scene_part(instance) * pipe_centre - centre_est).norm() <
+                          (bin.scene.T_scene_part(*nearest) * pipe_centre - centre_est).norm())
+        nearest = &instance;
+    const Eigen::Isometry3d T_true = bin.scene.T_scene_part(*nearest);
+    const Eigen::Vector3d centre = T_true * pipe_centre;
+    std::printf("score %.3f, view %d, free turn %d: instance %d, pipe centre %.2f mm off\n",
+                d.score, d.model_index, int(d.free_turn_axis.has_value()), nearest->id,
+                (centre - centre_est).norm());
+    EXPECT_LT((centre - centre_est).norm(), 3.0) << "the pipe's centre is right";
+    EXPECT_TRUE(found.insert(nearest->id).second) << "instance found twice";
+    (d.free_turn_axis ? views_with_free_turn : views_without).insert(d.model_index);
+    if (!d.free_turn_axis)
+      continue;
+    const Eigen::Vector3d true_axis = T_true.linear() * Eigen::Vector3d::UnitZ();
+    EXPECT_GT(std::abs(d.free_turn_axis->direction.dot(true_axis)), std::cos(3.0 * kDegToRad))
+        << "the reported axis is the pipe's";
+    const Eigen::Vector3d off = centre - d.free_turn_axis->point_mm;
+    EXPECT_LT((off - off.dot(true_axis) * true_axis).norm(), 2.0)
+        << "the axis runs through the pipe";
+  }
+  std::printf("pump-connectors found: %zu of 8; views with a free turn:", found.size());
+  for (int v : views_with_free_turn)
+    std::printf(" %d", v);
+  std::printf("\n");
+  EXPECT_GE(found.size(), 4u);
+  // A view either is a surface of revolution or not: no view is on both sides.
+  for (int v : views_with_free_turn)
+    EXPECT_FALSE(views_without.contains(v)) << "view " << v;
+  EXPECT_FALSE(views_with_free_turn.empty()) << "parts lying on their side are found by side views";
 }

@@ -39,8 +39,18 @@ void ResultsTable::setDetections(const std::vector<core::Detection>& detections,
                         fmt(g.position_mm.y()), fmt(g.position_mm.z()));
     setItem(row, 0, new QTableWidgetItem(QString::number(d.score, 'f', 3)));
     setItem(row, 1, new QTableWidgetItem(QStringLiteral("%1, %2, %3").arg(fmt(t.x()), fmt(t.y()), fmt(t.z()))));
-    setItem(row, 2, new QTableWidgetItem(
-                        QStringLiteral("%1, %2, %3").arg(fmt(ypr[2]), fmt(ypr[1]), fmt(ypr[0]))));
+    auto* orientation = new QTableWidgetItem(
+        QStringLiteral("%1, %2, %3").arg(fmt(ypr[2]), fmt(ypr[1]), fmt(ypr[0])));
+    if (d.free_turn_axis) {
+      const Eigen::Vector3d& a = d.free_turn_axis->direction;
+      orientation->setText(orientation->text() + QStringLiteral(" ") + tr("(turn free)"));
+      orientation->setToolTip(tr("The view that found this part is round about its axis "
+                                 "(direction %1, %2, %3): its turn about that axis is not seen. "
+                                 "Grip points on the axis are right.")
+                                  .arg(QString::number(a.x(), 'f', 3), QString::number(a.y(), 'f', 3),
+                                       QString::number(a.z(), 'f', 3)));
+    }
+    setItem(row, 2, orientation);
     setItem(row, 3, new QTableWidgetItem(QString::number(d.cluster)));
     setItem(row, 4, new QTableWidgetItem(grips.join(QStringLiteral("; "))));
   }

@@ -153,6 +153,13 @@ TEST(EvalFiles, BadInputThrowsClearErrors) {
   mirrored["model"]["T_teach_model"] = transformToJson(Eigen::Isometry3d::Identity());
   mirrored["model"]["T_teach_model"][2][2] = -1.0;
   expectError([&] { f.evalResults(mirrored); }, "reflection");
+  json zero_axis = good;
+  zero_axis["detections"][0]["free_turn_axis"] = {{"point_mm", {0, 0, 0}},
+                                                  {"direction", {0, 0, 0}}};
+  expectError([&] { f.evalResults(zero_axis); }, "free_turn_axis.direction is zero");
+  json axis_without_point = good;
+  axis_without_point["detections"][0]["free_turn_axis"] = {{"direction", {0, 0, 1}}};
+  expectError([&] { f.evalResults(axis_without_point); }, "missing field 'point_mm'");
 
   json truth_bad = f.truth;
   truth_bad["parts"]["widget"].erase("diameter_mm");

@@ -4,6 +4,7 @@
 #include "core/common/Error.h"
 #include "tests/unit/eval/EvalTestSupport.h"
 
+#include <cmath>
 #include <gtest/gtest.h>
 
 using namespace scanpick;
@@ -140,6 +141,38 @@ TEST(Evaluator, ContinuousAxisIgnoresRotationAboutIt) {
   EXPECT_NEAR(scene.outcomes[0].error->translation_mm, 0.0, 1e-6);
   EXPECT_FALSE(scene.outcomes[1].true_positive);
   EXPECT_NEAR(scene.outcomes[1].error->rotation_deg, 20.0, 1e-6);
+}
+
+TEST(Evaluator, ReportedFreeTurnIsAcceptedOnlyWhenAsked) {
+  // A part without symmetry, detected turned 30° about a line parallel to its z axis through
+  // (0, 5, 0) (part frame). The detection reports that line (scene frame) as its free turn axis:
+  // strictly it is wrong; with accept_free_turns it is right, with zero error. A detection
+  // turned about another line (x) stays wrong either way.
+  const auto part = test::makePart("pipe", 100.0);
+  const auto teach = test::makeTeachTruth(part);
+  GroundTruth truth;
+  truth.parts[part.name] = part;
+  const Eigen::Isometry3d T_true = pose({20, 0, 780}, 70, Eigen::Vector3d(1, 0, 1));
+  truth.instances.push_back({0, part.name, T_true, 0.9, 900});
+  const Eigen::Isometry3d turn = pose({0, 5, 0}) * pose({0, 0, 0}, 30) * pose({0, -5, 0});
+  const Eigen::Isometry3d T_turned = T_true * turn;
+  const core::eval::ContinuousAxis axis_scene{T_turned * Eigen::Vector3d(0, 5, 0),
+                                              T_turned.linear() * Eigen::Vector3d::UnitZ()};
+  for (const bool accept : {false, true}) {
+    auto results = test::makeResults();
+    test::addDetection(results, 0.9, T_turned, teach);
+    test::addDetection(results, 0.8, T_true * pose({0, 0, 0}, 30, Eigen::Vector3d::UnitX()), teach);
+    for (auto& d : results.detections)
+      d.free_turn_axis = axis_scene;
+    core::eval::Tolerances tolerances;
+    tolerances.accept_free_turns = accept;
+    const auto scene = core::eval::evaluateScene(truth, results, teach, tolerances, "scene");
+    ASSERT_EQ(scene.outcomes.size(), 2u);
+    EXPECT_EQ(scene.outcomes[0].true_positive, accept);
+    EXPECT_NEAR(scene.outcomes[0].error->rotation_deg, accept ? 0.0 : 30.0, 1e-6);
+    EXPECT_NEAR(scene.outcomes[0].error->translation_mm, accept ? 0.0 : 2.0 * 5.0 * std::sin(test::degToRad(15.0)), 1e-6);
+    EXPECT_FALSE(scene.outcomes[1].true_positive) << "turned about another axis";
+  }
 }
 
 TEST(Evaluator, GreedyOneToOneMatchingAndThresholdSweep) {

@@ -1,0 +1,41 @@
+#pragma once
+/// @file RevolutionAxis.h
+/// Beyond the thesis, for near-symmetric parts: the axis about which a taught view's surface is a
+/// surface of revolution, such as a pipe with flanges seen from the side, whose bolt holes face
+/// away from the camera. Turned about that axis the view matches itself, so nothing in it tells
+/// the part's turn about the axis: the recognizer reports that axis with each detection made by
+/// such a view (Detection::free_turn_axis), and the turn it reports is only one of many.
+///
+/// The fit is the line-geometry one (Pottmann and Wallner, "Computational Line Geometry"): on a
+/// surface of revolution every normal line meets the axis, i.e. ((p − c) × n) · a = 0 for each
+/// point p with normal n, axis point c and direction a. That is linear in (a, c × a); the
+/// direction is the smallest eigenvector of the Schur complement of the 6 × 6 normal matrix.
+
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+namespace scanpick::core {
+
+/// An axis in the model frame.
+struct RevolutionAxis {
+  Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();       ///< on the axis, nearest the centroid
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();     ///< unit
+  /// Share of the points that can tell (with a normal, off the axis, and not facing along it as
+  /// a flat end face does) whose normal lies within the angle tolerance of the plane through the
+  /// axis and the point.
+  double inlier_share = 0.0;
+};
+
+/// Fits the axis of revolution of `points_mm` with unit `normals` (entries with a non-finite
+/// normal are skipped). Returns nothing when fewer than 20 points have normals or can tell, when
+/// the normals do not pin down an axis (a single plane, whose every normal is an axis), or when
+/// fewer than `min_inlier_share` of the points agree within `angle_tolerance_rad`. The defaults
+/// (10°, 98 %) accept a flanged pipe seen from the side (100 %) and reject a cup whose handle
+/// shows (93–95 %) and a plate with a hook (≤ 48 %).
+std::optional<RevolutionAxis> fitRevolutionAxis(const std::vector<Eigen::Vector3f>& points_mm,
+                                                const std::vector<Eigen::Vector3f>& normals,
+                                                double angle_tolerance_rad = 0.17,
+                                                double min_inlier_share = 0.98);
+
+} // namespace scanpick::core

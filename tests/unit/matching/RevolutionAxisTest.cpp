@@ -1,0 +1,112 @@
+// The axis of revolution of a taught view (core/matching/RevolutionAxis.h): found for a flanged
+// pipe seen from its side, refused for views whose turn shows or that pin down no axis.
+#include "core/matching/RevolutionAxis.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <limits>
+#include <numbers>
+
+using namespace scanpick::core;
+
+namespace {
+
+struct Oriented {
+  std::vector<Eigen::Vector3f> points, normals;
+  void add(const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
+    points.push_back(p.cast<float>());
+    normals.push_back(n.normalized().cast<float>());
+  }
+};
+
+constexpr double kPi = std::numbers::pi;
+
+/// The upper half (as a camera above sees it) of a pipe along z (Ø40, 100 mm) with two Ø90
+/// flanges 8 mm thick: the pipe's wall, the flanges' rims and their inner faces (normals along z).
+Oriented flangedPipeSide() {
+  Oriented out;
+  for (double angle = 0.0; angle <= kPi; angle += kPi / 60) {
+    const Eigen::Vector3d radial(std::cos(angle), std::sin(angle), 0.0);
+    for (double z = 8; z <= 92; z += 2)
+      out.add(20.0 * radial + Eigen::Vector3d(0, 0, z), radial);
+    for (const double z0 : {0.0, 92.0})
+      for (double z = z0; z <= z0 + 8; z += 2)
+        out.add(45.0 * radial + Eigen::Vector3d(0, 0, z), radial);
+    for (double r = 22; r <= 44; r += 2) {
+      out.add(r * radial + Eigen::Vector3d(0, 0, 8), Eigen::Vector3d::UnitZ());
+      out.add(r * radial + Eigen::Vector3d(0, 0, 92), -Eigen::Vector3d::UnitZ());
+    }
+  }
+  return out;
+}
+
+Oriented transformed(const Oriented& in, const Eigen::Isometry3d& T) {
+  Oriented out;
+  for (std::size_t i = 0; i < in.points.size(); ++i)
+    out.add(T * in.points[i].cast<double>(), T.linear() * in.normals[i].cast<double>());
+  return out;
+}
+
+/// A flat plate: every normal is the same.
+Oriented plate() {
+  Oriented out;
+  for (double x = 0; x <= 80; x += 2)
+    for (double y = 0; y <= 80; y += 2)
+      out.add({x, y, 0}, Eigen::Vector3d::UnitZ());
+  return out;
+}
+
+} // namespace
+
+TEST(RevolutionAxis, FindsTheAxisOfAFlangedPipeSeenFromItsSide) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 0.5).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(30, -12, 640);
+  const Oriented pipe = transformed(flangedPipeSide(), T);
+  const auto axis = fitRevolutionAxis(pipe.points, pipe.normals);
+  ASSERT_TRUE(axis);
+  EXPECT_GT(axis->inlier_share, 0.99);
+  const Eigen::Vector3d true_direction = T.linear() * Eigen::Vector3d::UnitZ();
+  EXPECT_GT(std::abs(axis->direction.dot(true_direction)), std::cos(0.2 * kPi / 180));
+  EXPECT_NEAR(axis->direction.norm(), 1.0, 1e-9);
+  // The fitted point lies on the true axis line.
+  const Eigen::Vector3d offset = axis->point_mm - T.translation();
+  EXPECT_LT((offset - offset.dot(true_direction) * true_direction).norm(), 0.1);
+}
+
+TEST(RevolutionAxis, RefusesViewsThatShowTheirTurnOrPinDownNoAxis) {
+  // A fin on the pipe's wall, like a cup's handle: its faces look along the turn, out of the
+  // meridian planes.
+  Oriented handled = flangedPipeSide();
+  for (double x = 20; x <= 45; x += 2)
+    for (double z = 30; z <= 70; z += 2)
+      handled.add({x, 0, z}, Eigen::Vector3d::UnitY());
+  const auto with_handle = fitRevolutionAxis(handled.points, handled.normals);
+  EXPECT_FALSE(with_handle) << "share " << (with_handle ? with_handle->inlier_share : 0.0);
+  // The same view is accepted at a share it reaches.
+  EXPECT_TRUE(fitRevolutionAxis(handled.points, handled.normals, 0.17, 0.5));
+
+  const Oriented flat = plate();
+  EXPECT_FALSE(fitRevolutionAxis(flat.points, flat.normals)) << "a plane has no single axis";
+
+  // An L of two plates: each plate's normal is an axis of that plate only.
+  Oriented bracket = plate();
+  for (double y = 0; y <= 80; y += 2)
+    for (double z = 0; z <= 80; z += 2)
+      bracket.add({0, y, z}, -Eigen::Vector3d::UnitX());
+  EXPECT_FALSE(fitRevolutionAxis(bracket.points, bracket.normals));
+}
+
+TEST(RevolutionAxis, SkipsPointsWithoutNormalsAndNeedsEnough) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  Oriented pipe = flangedPipeSide();
+  for (std::size_t i = 0; i < pipe.normals.size(); i += 3)
+    pipe.normals[i] = Eigen::Vector3f(nan, nan, nan);
+  EXPECT_TRUE(fitRevolutionAxis(pipe.points, pipe.normals));
+
+  const Oriented few{{pipe.points.begin(), pipe.points.begin() + 10},
+                     {pipe.normals.begin() + 1, pipe.normals.begin() + 11}};
+  EXPECT_FALSE(fitRevolutionAxis(few.points, few.normals));
+  EXPECT_FALSE(fitRevolutionAxis({}, {}));
+}
