@@ -255,3 +255,29 @@ TEST(Translation, ItalianMenusAndTheNextStartNote) {
             QStringLiteral("&Language (applies at next start)"))
       << "without the translator the English text is back";
 }
+
+TEST(ResultsTableFreeTurn, MarksATurnTheScanDoesNotShow) {
+  // Two detections: one with a free turn axis (a pipe found by a view taken from its side), one
+  // without; only the first is marked, and its tooltip names the axis. In Italian too.
+  std::vector<core::Detection> detections(2);
+  detections[0].score = 0.9;
+  detections[0].free_turn_axis = core::FreeTurnAxis{{10, 20, 700}, {0, 1, 0}};
+  detections[1].score = 0.8;
+  ui::ResultsTable table;
+  table.setDetections(detections, nullptr);
+  ASSERT_EQ(table.rowCount(), 2);
+  EXPECT_TRUE(table.item(0, 2)->text().endsWith(QStringLiteral("(turn free)")))
+      << table.item(0, 2)->text().toStdString();
+  EXPECT_TRUE(table.item(0, 2)->toolTip().contains(QStringLiteral("0.000, 1.000, 0.000")))
+      << table.item(0, 2)->toolTip().toStdString();
+  EXPECT_FALSE(table.item(1, 2)->text().contains(QStringLiteral("free")));
+  EXPECT_TRUE(table.item(1, 2)->toolTip().isEmpty());
+
+  QTranslator italian;
+  ASSERT_TRUE(italian.load(QStringLiteral(":/i18n/scanpick_it.qm")));
+  QCoreApplication::installTranslator(&italian);
+  table.setDetections(detections, nullptr);
+  QCoreApplication::removeTranslator(&italian);
+  EXPECT_TRUE(table.item(0, 2)->text().endsWith(QStringLiteral("(rotazione libera)")))
+      << table.item(0, 2)->text().toStdString();
+}
