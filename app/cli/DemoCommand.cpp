@@ -59,7 +59,7 @@ void teachOptionsFromTruth(const fs::path& gt_path, core::TeachOptions& options)
 
 struct DemoOptions {
   std::string out;
-  std::string preset = "phoxi-bin-support";
+  std::string preset = "phoxi-bin-surface";
 };
 
 int runDemo(const DemoOptions& o) {

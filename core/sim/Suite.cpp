@@ -3,7 +3,11 @@
 #include "core/common/Error.h"
 #include "core/sim/PartCatalog.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
+#include <map>
 
 namespace scanpick::core {
 namespace {
@@ -66,6 +70,17 @@ std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed)
           v.request.seed = hashMix(s.request.seed, static_cast<std::uint64_t>(side), 4);
           out.push_back(v);
         }
+        // And the view of a part lying in a bin that no table side shows.
+        SuiteScene b = s;
+        b.relative_prefix += "-bin";
+        b.request.layout = LayoutKind::Bin;
+        b.request.count = 10;
+        b.request.seed = hashMix(s.request.seed, 0, 5);
+        for (int side = 0; side < kTeachSides; ++side)
+          b.novel_against.push_back(side == 0 ? s.relative_prefix
+                                              : std::filesystem::path(s.relative_prefix.string() +
+                                                                      "-side" + std::to_string(side)));
+        out.push_back(b);
       }
     return out;
   }
@@ -75,16 +90,92 @@ std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed)
   throw Error("unknown suite '" + name + "': use one of " + known);
 }
 
+Eigen::Vector3d viewDirectionInPart(const Scene& scene, const PartInstance& instance) {
+  const Eigen::Isometry3d T = scene.T_scene_part(instance);
+  return T.linear().transpose() * (T * scene.parts[instance.part].center_mm()).normalized();
+}
+
+SynthScene isolateNovelView(SynthScene bin, const std::vector<Eigen::Vector3d>& taught_views_part) {
+  Scene& scene = bin.scene;
+  if (scene.instances.empty())
+    throw Error("the bin scan holds no part to cut a teach view from");
+  const auto& part_of = [&](const PartInstance& i) -> const Part& { return scene.parts[i.part]; };
+  // Angle to the nearest taught view; a symmetry S makes the views d and Sᵀd the same.
+  const auto novelty = [&](const PartInstance& instance) {
+    const Eigen::Vector3d view = viewDirectionInPart(scene, instance);
+    std::vector<Eigen::Matrix3d> equivalent{Eigen::Matrix3d::Identity()};
+    for (const auto& S : part_of(instance).symmetry.discrete)
+      equivalent.push_back(S.linear());
+    double nearest = 4.0;  // radians, more than any angle
+    for (const auto& taught : taught_views_part)
+      for (const auto& S : equivalent)
+        nearest = std::min(
+            nearest, std::acos(std::clamp((S.transpose() * view).dot(taught), -1.0, 1.0)));
+    return nearest;
+  };
+  const auto& visible = bin.render.visible_fraction;
+  const auto visibility = [&](const PartInstance& i) {
+    return visible.at(static_cast<std::size_t>(i.id));
+  };
+  constexpr double kWellVisible = 0.9;
+  const PartInstance* chosen = nullptr;
+  for (const auto& instance : scene.instances) {
+    if (!chosen) {
+      chosen = &instance;
+      continue;
+    }
+    const bool well = visibility(instance) >= kWellVisible, chosen_well = visibility(*chosen) >= kWellVisible;
+    if (well != chosen_well ? well
+                            : (well ? novelty(instance) > novelty(*chosen)
+                                    : visibility(instance) > visibility(*chosen)))
+      chosen = &instance;
+  }
+  if (visibility(*chosen) <= 0.0)
+    throw Error("no part of the bin scan is in view: cannot cut a teach view from it");
+  const PartInstance kept = *chosen;
+  auto& points = bin.render.cloud.points_mm;
+  const Eigen::Vector3f nan = Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const std::int32_t label = bin.render.labels[k];
+    if (label != kept.id && label != kLabelEnvironment)
+      points[k] = nan;
+  }
+  Eigen::AlignedBox3d box;
+  for (const auto& c : part_of(kept).components)
+    for (const auto& v : c.vertices_mm)
+      box.extend(kept.T_world_part * v);
+  scene.crop_box_world = Eigen::AlignedBox3d(box.min() - Eigen::Vector3d::Constant(1.0),
+                                             box.max() + Eigen::Vector3d::Constant(1.0));
+  scene.instances = {kept};
+  scene.layout = LayoutKind::Teach;
+  return bin;
+}
+
 std::vector<std::filesystem::path> writeSuite(const std::filesystem::path& out_dir,
                                               const std::vector<SuiteScene>& scenes, const ProgressFn& progress,
                                               const std::function<void(const std::filesystem::path&)>& on_scene) {
   for (const auto& s : scenes)
     validateRequest(s.request);
   std::vector<std::filesystem::path> files;
+  std::map<std::filesystem::path, Eigen::Vector3d> teach_views;  // of the teach scenes written
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const double a = static_cast<double>(i) / static_cast<double>(scenes.size());
     const double b = static_cast<double>(i + 1) / static_cast<double>(scenes.size());
-    const SynthScene synth = synthesize(scenes[i].request, subProgress(progress, a, b));
+    SynthScene synth = synthesize(scenes[i].request, subProgress(progress, a, b));
+    if (synth.scene.layout == LayoutKind::Teach)
+      teach_views[scenes[i].relative_prefix] =
+          viewDirectionInPart(synth.scene, synth.scene.instances.front());
+    if (!scenes[i].novel_against.empty()) {
+      std::vector<Eigen::Vector3d> taught;
+      for (const auto& prefix : scenes[i].novel_against) {
+        const auto found = teach_views.find(prefix);
+        if (found == teach_views.end())
+          throw Error("the teach view " + prefix.string() + " must come before " +
+                      scenes[i].relative_prefix.string() + " in the suite");
+        taught.push_back(found->second);
+      }
+      synth = isolateNovelView(std::move(synth), taught);
+    }
     const auto written = writeSynthScene(out_dir / scenes[i].relative_prefix, synth);
     files.insert(files.end(), written.begin(), written.end());
     if (on_scene)

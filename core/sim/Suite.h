@@ -16,12 +16,28 @@ namespace scanpick::core {
 struct SuiteScene {
   std::filesystem::path relative_prefix;  ///< e.g. "phoxi-bin/scene-000"
   SynthRequest request;
+  /// When not empty: a bin scan turned into a teach scan by isolateNovelView (written as kind
+  /// "teach"), avoiding the views of these teach scenes of the suite (written before it).
+  std::vector<std::filesystem::path> novel_against;
 };
+
+/// The direction from the camera towards an instance's centre, in the part frame (unit).
+Eigen::Vector3d viewDirectionInPart(const Scene& scene, const PartInstance& instance);
+
+/// A teach scan cut from a bin scan, for the view of a part as it lies in a bin that the table
+/// scans do not show (a support face-down on one leg, the other leg hanging below it). Of the
+/// instances at least 90 % visible (else the most visible one), it keeps the one whose viewing
+/// direction (viewDirectionInPart), up to the part's symmetries, is farthest from every one of
+/// `taught_views_part`; the scan keeps that instance's points and the bin's (as an operator's
+/// lasso around it leaves them), the others become NaN, and the scene holds that instance only,
+/// with its bounding box as the crop box. Throws Error when the bin has no instance in view.
+SynthScene isolateNovelView(SynthScene bin, const std::vector<Eigen::Vector3d>& taught_views_part);
 
 /// The suites: "phoxi-bin" (20 one-part bins, 5 per built-in part, 6-15 instances, plus 4 mixed
 /// bins), "kinect-bin" (12 one-part bins, 6-12 instances), "teach" (each part alone on a table,
 /// for each sensor preset: teach/<sensor>/<part>, and the other sides it can rest on,
-/// teach/<sensor>/<part>-side1..3, for models taught from several views).
+/// teach/<sensor>/<part>-side1..3, for models taught from several views, plus
+/// teach/<sensor>/<part>-bin, one part cut from a bin of ten by isolateNovelView).
 std::vector<std::string> suiteNames();
 
 /// The scenes of suite `name` for `seed` (kDefaultSuiteSeed unless testing). Throws Error for an

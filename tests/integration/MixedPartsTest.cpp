@@ -14,7 +14,7 @@ using namespace scanpick::core;
 
 TEST(MixedParts, OnlyTheTaughtTypeIsReported) {
   const RecognitionParams params =
-      loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) / "resources/presets/phoxi-bin-support.json")
+      loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) / "resources/presets/phoxi-bin-surface.json")
           .params;
   const test::SynthTeach taught = test::teachFromSynth("support", 5, params);
 

@@ -2,6 +2,7 @@
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 #include "core/sim/PartCatalog.h"
+#include "core/sim/Renderer.h"
 #include "core/sim/Scene.h"
 #include "core/sim/Suite.h"
 #include "tests/support/TempDir.h"
@@ -9,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 
 using namespace scanpick::core;
@@ -41,7 +44,11 @@ TEST(SimSuite, KinectAndTeachSuites) {
   for (const auto& s : kinect)
     EXPECT_EQ(s.request.sensor, "kinect-v1");
   const auto teach = suiteScenes("teach", kDefaultSuiteSeed);
-  EXPECT_EQ(teach.size(), builtInPartNames().size() * sensorPresetNames().size() * kTeachSides);
+  // kTeachSides table scans and one view cut from a bin, per part and sensor.
+  EXPECT_EQ(teach.size(), builtInPartNames().size() * sensorPresetNames().size() * (kTeachSides + 1));
+  EXPECT_EQ(teach.at(kTeachSides).relative_prefix,
+            std::filesystem::path("teach/phoxi-m-1032/support-bin"));
+  EXPECT_EQ(teach.at(kTeachSides).novel_against.size(), static_cast<std::size_t>(kTeachSides));
   EXPECT_EQ(teach.front().relative_prefix, std::filesystem::path("teach/phoxi-m-1032/support"));
   EXPECT_THROW(suiteScenes("lidar-bin", 1), Error);
 }
@@ -51,7 +58,7 @@ TEST(SimSuite, WrittenScenesFollowTheLayoutAndAreReproducible) {
   // One scene of each kind keeps the test short; the suite writes them all the same way.
   std::vector<SuiteScene> some = {suiteScenes("phoxi-bin", kDefaultSuiteSeed).front(),
                                   suiteScenes("kinect-bin", kDefaultSuiteSeed).back(),
-                                  suiteScenes("teach", kDefaultSuiteSeed).back()};
+                                  *std::prev(suiteScenes("teach", kDefaultSuiteSeed).end(), 2)};
   const auto files = writeSuite(dir.path(), some);
   EXPECT_EQ(files.size(), 9u);
   for (const char* f : {"phoxi-bin/scene-000.pcd", "phoxi-bin/scene-000.png", "phoxi-bin/scene-000.gt.json",
@@ -100,4 +107,51 @@ TEST(SimSuite, TeachSidesShowThePartFromOtherSides) {
   bad.count = 1;
   bad.teach_side = kTeachSides;
   EXPECT_THROW(buildScene(bad, sensorPreset("phoxi-m-1032")), Error);
+}
+
+TEST(SimSuite, BinViewKeepsTheInstanceSeenMostDifferentlyFromTheTableScans) {
+  // The support's table scans, then a bin of ten: the kept instance is well visible, its view is
+  // the farthest from every taught view among the well visible ones, and only its points and the
+  // bin's are left in the scan.
+  std::vector<SuiteScene> teach_suite = suiteScenes("teach", kDefaultSuiteSeed);
+  teach_suite.resize(kTeachSides + 1);
+  std::vector<Eigen::Vector3d> taught;
+  for (int side = 0; side < kTeachSides; ++side) {
+    const SynthScene scan = synthesize(teach_suite[static_cast<std::size_t>(side)].request);
+    taught.push_back(viewDirectionInPart(scan.scene, scan.scene.instances.front()));
+  }
+  const SynthScene bin = synthesize(teach_suite.back().request);
+  const SynthScene view = isolateNovelView(bin, taught);
+  ASSERT_EQ(view.scene.instances.size(), 1u);
+  EXPECT_EQ(view.scene.layout, LayoutKind::Teach);
+  ASSERT_TRUE(view.scene.crop_box_world);
+  const PartInstance& kept = view.scene.instances.front();
+  EXPECT_GE(view.render.visible_fraction.at(static_cast<std::size_t>(kept.id)), 0.9);
+
+  const Eigen::Matrix3d S = bin.scene.parts.front().symmetry.discrete.at(0).linear();
+  const auto novelty = [&](const PartInstance& instance) {
+    const Eigen::Vector3d d = viewDirectionInPart(bin.scene, instance);
+    double nearest = 4.0;
+    for (const auto& t : taught)
+      for (const Eigen::Vector3d& e : {d, Eigen::Vector3d(S.transpose() * d)})
+        nearest = std::min(nearest, std::acos(std::clamp(e.dot(t), -1.0, 1.0)));
+    return nearest;
+  };
+  for (const auto& other : bin.scene.instances)
+    if (bin.render.visible_fraction.at(static_cast<std::size_t>(other.id)) >= 0.9)
+      EXPECT_LE(novelty(other), novelty(kept) + 1e-12) << "instance " << other.id;
+  // Seen from a new side: more than 20° from every table scan.
+  EXPECT_GT(novelty(kept), 20.0 * 3.14159265358979 / 180.0);
+
+  std::size_t own = 0, others_left = 0;
+  for (std::size_t k = 0; k < view.render.cloud.points_mm.size(); ++k) {
+    if (!view.render.cloud.points_mm[k].allFinite())
+      continue;
+    const std::int32_t label = view.render.labels[k];
+    own += label == kept.id;
+    others_left += label != kept.id && label != kLabelEnvironment;
+  }
+  EXPECT_EQ(others_left, 0u);
+  EXPECT_EQ(own, view.render.visible_points.at(static_cast<std::size_t>(kept.id)));
+  EXPECT_THROW(isolateNovelView(SynthScene{}, taught), Error);
 }

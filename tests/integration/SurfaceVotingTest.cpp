@@ -40,7 +40,7 @@ constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 TEST(SurfaceVoting, FindsMoreSupportsInBinsWithoutFalseDetections) {
   const RecognitionParams with_surface = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
-                                                    "resources/presets/phoxi-bin-support.json")
+                                                    "resources/presets/phoxi-bin-surface.json")
                                              .params;
   ASSERT_GT(with_surface.matching.surface_sampling_mm, 0.0);
   RecognitionParams features_only = with_surface;
@@ -84,7 +84,7 @@ TEST(SurfaceVoting, FindsMoreSupportsInBinsWithoutFalseDetections) {
 
 TEST(SurfaceVoting, PumpConnectorsSeenFromTheSideReportTheirPipeAxisAsFreeTurn) {
   const RecognitionParams params = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
-                                              "resources/presets/phoxi-bin-pump-connector.json")
+                                              "resources/presets/phoxi-bin-surface.json")
                                        .params;
   std::vector<test::SynthTeach> views;
   std::vector<std::shared_ptr<const TaughtModel>> models;
