@@ -3,6 +3,7 @@
 #include "core/common/Error.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -108,6 +109,9 @@ void findPairs(const RefineModel& model, const SceneIndex& scene, const Eigen::I
                     });
 }
 
+/// Point-to-plane ICP leaves directions whose curvature is below this share of the strongest.
+constexpr double kStableRatio = 0.001;
+
 /// Exponential of a small twist (rotation vector omega, translation): the rigid increment.
 Eigen::Isometry3d increment(const Eigen::Matrix<double, 6, 1>& x) {
   Eigen::Isometry3d dT = Eigen::Isometry3d::Identity();
@@ -154,7 +158,18 @@ RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
     Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
     double sum_sq_distance = 0;
     std::size_t used = 0;
+    // Point-to-plane turns about the pairs' centroid, its rotation scaled by the model radius, so
+    // that the six unknowns are comparable and the weak ones can be told (see below).
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    std::size_t valid = 0;
+    for (const Pair& pair : pairs)
+      if (pair.valid) {
+        centroid += pair.p;
+        ++valid;
+      }
+    if (valid > 0)
+      centroid /= static_cast<double>(valid);
+    const double radius_mm = std::max(1.0, model.radius_mm());
     for (const Pair& pair : pairs) {
       if (!pair.valid)
         continue;
@@ -168,7 +183,7 @@ RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
       const double weight = w * w;
       if (params.point_to_plane) {
         Eigen::Matrix<double, 6, 1> J;
-        J << pair.p.cross(pair.n), pair.n;
+        J << (pair.p - centroid).cross(pair.n) / radius_mm, pair.n;
         A.noalias() += weight * J * J.transpose();
         b.noalias() += weight * J * pair.n.dot(d);
       } else {
@@ -182,24 +197,43 @@ RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
         b.noalias() += weight * J.transpose() * d;
       }
       sum_sq_distance += distance_sq;
-      centroid += pair.p;
       ++used;
     }
     if (used < 6)
       break; // too few pairs to fix six degrees of freedom: keep the last pose
     result.iterations = iteration + 1;
-    // A tiny ridge keeps flat or symmetric models (rank-deficient A) from exploding along the
-    // unconstrained directions; it does not bias constrained ones measurably.
-    A.diagonal().array() += 1e-9 * A.trace() / 6.0;
-    const Eigen::Matrix<double, 6, 1> x = A.ldlt().solve(-b);
+    // The increment: rotation omega and the translation at the origin (point-to-point) or at the
+    // centroid (point-to-plane).
+    Eigen::Matrix<double, 6, 1> x;
+    if (params.point_to_plane) {
+      // Only the directions the surface pins down move (Gelfand et al., "Geometrically stable
+      // sampling for the ICP algorithm", 2003): a plate seen face-on constrains its tilt and
+      // depth but hardly its slide and turn within its plane, where point-to-plane ICP would
+      // drift on sensor noise, and a pipe does not constrain its turn about its axis. Directions
+      // weaker than kStableRatio of the strongest keep the pose they came with.
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(A);
+      const double strongest = eigen.eigenvalues()(5);
+      x.setZero();
+      for (int k = 0; k < 6; ++k)
+        if (eigen.eigenvalues()(k) > kStableRatio * strongest)
+          x += eigen.eigenvectors().col(k) * (eigen.eigenvectors().col(k).dot(-b) /
+                                              eigen.eigenvalues()(k));
+      x.head<3>() /= radius_mm;
+    } else {
+      // A tiny ridge keeps flat or symmetric models (rank-deficient A) from exploding along the
+      // unconstrained directions; it does not bias constrained ones measurably.
+      A.diagonal().array() += 1e-9 * A.trace() / 6.0;
+      x = A.ldlt().solve(-b);
+    }
     if (!x.allFinite())
       break;
-    const Eigen::Isometry3d dT = increment(x);
+    const Eigen::Vector3d pivot = params.point_to_plane ? centroid : Eigen::Vector3d::Zero();
+    Eigen::Isometry3d dT = increment(x);
+    dT.translation() += pivot - dT.linear() * pivot;
     T = dT * T;
 
-    centroid /= static_cast<double>(used);
     const double motion_mm =
-        (x.head<3>().cross(centroid) + x.tail<3>()).norm() + x.head<3>().norm() * model.radius_mm();
+        (x.head<3>().cross(centroid - pivot) + x.tail<3>()).norm() + x.head<3>().norm() * model.radius_mm();
     const double rms_mm = std::sqrt(sum_sq_distance / static_cast<double>(used));
     distance_mm = std::clamp(3.0 * rms_mm, floor_mm, distance_mm);
     if (!fine) {

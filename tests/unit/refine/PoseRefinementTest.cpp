@@ -159,14 +159,16 @@ TEST(PoseRefinement, BasinOfConvergenceCoversTheFeatureMatchingError) {
         EXPECT_LT(r, 0.1) << angle << " deg about " << axis.transpose();
       }
     }
-    // Measured: 5 of 5 from 2 mm / 3.5°, 3 of 5 from 5 mm / 10°, 1 of 5 from 5 mm / 15°. The
-    // others either drift off (inliers < 0.25) or settle with the right rotation but slid 4-6 mm
-    // along the bracket's extrusion axis, which this view sees edge-on so that only the holes
-    // hold it (inliers 0.82-0.87); none claims convergence.
-    if (angle == 3.5) {
+    // Measured: 5 of 5 from each start since the steps turn about the pairs' centroid with the
+    // rotation scaled by the model radius and leave the directions the surface does not pin down
+    // (PoseRefinement.cpp, kStableRatio); turning about the scene origin, 3 of 5 from 5 mm / 10°
+    // and 1 of 5 from 5 mm / 15° converged, the others slid 4-6 mm along the bracket's extrusion
+    // axis, which this view sees edge-on so that only the holes hold it. None claims convergence
+    // wrongly (checked above).
+    if (angle == 15.0) {
+      EXPECT_GE(converged, 4);
+    } else {
       EXPECT_EQ(converged, 5);
-    } else if (angle == 10.0) {
-      EXPECT_GE(converged, 3);
     }
   }
 }
