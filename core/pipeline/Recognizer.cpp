@@ -210,8 +210,9 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     prep->verify = makeVerifyModel(*model, points, radius);
     prep->axis = fitRevolutionAxis(prep->verify->points, prep->verify->normals);
     if (prep->axis)
-      logger()->debug("model '{}' is a surface of revolution ({:.0f} % of its normals), its "
-                      "turn is not seen: axis through ({:.1f}, {:.1f}, {:.1f}) mm along ({:.3f}, {:.3f}, {:.3f})",
+      logger()->debug("model '{}' is a surface of revolution ({:.0f} % of its normals), its turn "
+                      "is not seen: axis through ({:.1f}, {:.1f}, {:.1f}) mm along ({:.3f}, "
+                      "{:.3f}, {:.3f})",
                       model->name, 100.0 * prep->axis->inlier_share, prep->axis->point_mm.x(),
                       prep->axis->point_mm.y(), prep->axis->point_mm.z(),
                       prep->axis->direction.x(), prep->axis->direction.y(),

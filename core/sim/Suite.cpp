@@ -99,7 +99,7 @@ SynthScene isolateNovelView(SynthScene bin, const std::vector<Eigen::Vector3d>& 
   Scene& scene = bin.scene;
   if (scene.instances.empty())
     throw Error("the bin scan holds no part to cut a teach view from");
-  const auto& part_of = [&](const PartInstance& i) -> const Part& { return scene.parts[i.part]; };
+  const auto part_of = [&](const PartInstance& i) -> const Part& { return scene.parts[i.part]; };
   // Angle to the nearest taught view; a symmetry S makes the views d and Sᵀd the same.
   const auto novelty = [&](const PartInstance& instance) {
     const Eigen::Vector3d view = viewDirectionInPart(scene, instance);
@@ -124,10 +124,14 @@ SynthScene isolateNovelView(SynthScene bin, const std::vector<Eigen::Vector3d>& 
       chosen = &instance;
       continue;
     }
-    const bool well = visibility(instance) >= kWellVisible, chosen_well = visibility(*chosen) >= kWellVisible;
-    if (well != chosen_well ? well
-                            : (well ? novelty(instance) > novelty(*chosen)
-                                    : visibility(instance) > visibility(*chosen)))
+    // Well visible beats less visible; among the well visible the most novel view wins, among
+    // the others the most visible.
+    const bool well = visibility(instance) >= kWellVisible;
+    const bool chosen_well = visibility(*chosen) >= kWellVisible;
+    const bool better = well != chosen_well ? well
+                        : well              ? novelty(instance) > novelty(*chosen)
+                                            : visibility(instance) > visibility(*chosen);
+    if (better)
       chosen = &instance;
   }
   if (visibility(*chosen) <= 0.0)
