@@ -137,9 +137,11 @@ TEST(SimSuite, BinViewKeepsTheInstanceSeenMostDifferentlyFromTheTableScans) {
         nearest = std::min(nearest, std::acos(std::clamp(e.dot(t), -1.0, 1.0)));
     return nearest;
   };
-  for (const auto& other : bin.scene.instances)
-    if (bin.render.visible_fraction.at(static_cast<std::size_t>(other.id)) >= 0.9)
+  for (const auto& other : bin.scene.instances) {
+    if (bin.render.visible_fraction.at(static_cast<std::size_t>(other.id)) >= 0.9) {
       EXPECT_LE(novelty(other), novelty(kept) + 1e-12) << "instance " << other.id;
+    }
+  }
   // Seen from a new side: more than 20° from every table scan.
   EXPECT_GT(novelty(kept), 20.0 * 3.14159265358979 / 180.0);
 
