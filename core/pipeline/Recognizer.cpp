@@ -127,8 +127,16 @@ struct EdgeCheck {
 /// parts must not score as a whole part.
 constexpr double kMinExpectedShare = 0.75;
 
-/// A refined pose whose coverage is lower by less than this is still kept (see recognize()).
+/// A refined pose whose coverage is lower by less than this is still kept (keepsRefinedPose).
 constexpr double kIcpCoverageSlack = 0.01;
+
+/// Whether an ICP pose replaces the one it started from, by their verification scores: ICP can
+/// slide a part seen edge-on along its extrusion, which loses much more; a better pose can lose
+/// a point or two of the strided verification sample at the 1 mm edge. One rule for the surface
+/// poses' polish and for refine.enabled.
+bool keepsRefinedPose(double coverage_before, double coverage_after) {
+  return coverage_after >= coverage_before - kIcpCoverageSlack;
+}
 
 /// cos 60°: model and scene normals closer than this agree.
 constexpr float kMinNormalAgreement = 0.5f;
@@ -369,7 +377,7 @@ std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
     if (polish && d.coverage >= 0.5 * params.min_coverage) {
       const Eigen::Isometry3d T = polish(d.T_scene_model);
       const double coverage = verify(T);
-      if (coverage > d.coverage) {
+      if (keepsRefinedPose(d.coverage, coverage)) {
         d.T_scene_model = T;
         d.coverage = coverage;
         d.refined = true;
@@ -562,6 +570,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     const auto t0 = Clock::now();
     tbb::parallel_for(std::size_t{0}, result.detections.size(), [&](std::size_t k) {
       Detection& d = result.detections[k];
+      if (d.refined)
+        return;  // a surface-voting pose ICP has polished already
       const RefinementResult r =
           refinePose(*prep->refine, *cache.scene_index, d.T_scene_model, params.refine);
       if (!verifying) {
@@ -569,9 +579,6 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
         d.refined = true;
         return;
       }
-      // The refined pose is kept only when it verifies about as well (within kIcpCoverageSlack):
-      // ICP can slide a part seen edge-on along its extrusion, which loses much more; a better
-      // pose can lose a point or two of the strided verification sample at the 1 mm edge.
       const double coverage = verifyPose(*prep->verify, *cache.scene_index, scene_mm,
                                          sensor, r.T_scene_model,
                                          params.matching.verify_tolerance_mm, edges);
@@ -580,7 +587,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
                       k, d.coverage, coverage,
                       (r.T_scene_model.translation() - d.T_scene_model.translation()).norm(),
                       r.iterations, r.converged);
-      if (coverage >= d.coverage - kIcpCoverageSlack) {
+      if (keepsRefinedPose(d.coverage, coverage)) {
         d.T_scene_model = r.T_scene_model;
         d.refined = true;
         d.coverage = coverage;
