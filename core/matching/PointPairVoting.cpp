@@ -4,7 +4,6 @@
 #include "core/common/Error.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -159,9 +158,8 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
   const auto n_model = m_model.points.size();
   const auto bins = static_cast<std::size_t>(m_angle_bins);
   const float alpha_step = kTwoPi / float(m_angle_bins);
-  std::atomic<std::size_t> done{0};
+  std::size_t done = 0;
   std::mutex progress_mutex;
-  std::atomic<bool> cancelled{false};
   auto voteFrom = [&](std::size_t r) {
     const std::size_t s = r * stride;
     const Eigen::Vector3f& p = scene.points[s];
@@ -201,22 +199,15 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
     const float alpha = (float(cell % bins) + 0.5f) * alpha_step;
     out.T = to_local.inverse() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) * m_to_local[m];
   };
+  // Cancelled thrown by reportProgress stops the loop and reaches the caller (TBB rethrows it).
   tbb::parallel_for(std::size_t{0}, n_refs, [&](std::size_t r) {
-    if (cancelled.load(std::memory_order_relaxed))
-      return;
     voteFrom(r);
-    const std::size_t finished = ++done;
-    if (progress && finished % 64 == 0) {
-      const std::lock_guard lock(progress_mutex);
-      try {
-        reportProgress(progress, double(finished) / double(n_refs));
-      } catch (const Cancelled&) {
-        cancelled = true;
-      }
-    }
+    if (!progress)
+      return;
+    const std::lock_guard lock(progress_mutex);
+    if (++done % 64 == 0)
+      reportProgress(progress, double(done) / double(n_refs));
   });
-  if (cancelled)
-    throw Cancelled();
 
   // Pose clustering: most votes first; each pose joins the first cluster whose seed pose is close.
   std::stable_sort(raw.begin(), raw.end(),

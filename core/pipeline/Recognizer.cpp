@@ -96,6 +96,12 @@ void forEachObject(std::size_t n, const ProgressFn& progress, double begin, doub
   });
 }
 
+/// Highest score first; equal scores keep their order.
+void sortBestFirst(std::vector<Detection>& detections) {
+  std::stable_sort(detections.begin(), detections.end(),
+                   [](const Detection& a, const Detection& b) { return a.score > b.score; });
+}
+
 /// The model's points for verification (model frame, mm) and their unit normals facing the teach
 /// camera (NaN where none could be estimated).
 struct VerifyModel {
@@ -389,8 +395,7 @@ std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
     logger()->trace("surface pose {}: {} votes, coverage {:.3f}, {} features{}", k, poses[k].votes,
                     out[k].coverage, out[k].matched_features.size(), out[k].refined ? ", ICP" : "");
   std::erase_if(out, [&](const Detection& d) { return d.coverage < params.min_coverage; });
-  std::stable_sort(out.begin(), out.end(),
-                   [](const Detection& a, const Detection& b) { return a.score > b.score; });
+  sortBestFirst(out);
   logger()->debug("surface voting: {} poses verified and polished, {} kept, {:.0f} ms in all",
                   poses.size(), out.size(), msSince(t0));
   return out;
@@ -550,17 +555,17 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       d.cluster = static_cast<int>(i);
       result.detections.push_back(std::move(d));
     }
+  const auto icp = [&](const Eigen::Isometry3d& T) {
+    return refinePose(*prep->refine, *cache.scene_index, T, params.refine);
+  };
   if (surface) {
-    const auto polish = [&](const Eigen::Isometry3d& T) {
-      return refinePose(*prep->refine, *cache.scene_index, T, params.refine).T_scene_model;
-    };
+    const auto polish = [&](const Eigen::Isometry3d& T) { return icp(T).T_scene_model; };
     for (auto& d : surfaceDetections(*prep->pairs, *cache.surface_scene, model->features,
                                      *cache.features, params.matching, 0.1 * model->diameter_mm,
                                      verify, polish, subProgress(progress, 0.95, 0.98)))
       result.detections.push_back(std::move(d));
   }
-  std::stable_sort(result.detections.begin(), result.detections.end(),
-                   [](const Detection& a, const Detection& b) { return a.score > b.score; });
+  sortBestFirst(result.detections);
   result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
   if (params.matching.max_detections > 0 &&
       result.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
@@ -572,16 +577,13 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       Detection& d = result.detections[k];
       if (d.refined)
         return;  // a surface-voting pose ICP has polished already
-      const RefinementResult r =
-          refinePose(*prep->refine, *cache.scene_index, d.T_scene_model, params.refine);
+      const RefinementResult r = icp(d.T_scene_model);
       if (!verifying) {
         d.T_scene_model = r.T_scene_model;
         d.refined = true;
         return;
       }
-      const double coverage = verifyPose(*prep->verify, *cache.scene_index, scene_mm,
-                                         sensor, r.T_scene_model,
-                                         params.matching.verify_tolerance_mm, edges);
+      const double coverage = verify(r.T_scene_model);
       logger()->trace("ICP of detection {}: coverage {:.3f} -> {:.3f}, moved {:.2f} mm, {} "
                       "iterations, converged {}",
                       k, d.coverage, coverage,
@@ -594,8 +596,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
         d.score = coverage;
       }
     });
-    std::stable_sort(result.detections.begin(), result.detections.end(),
-                     [](const Detection& a, const Detection& b) { return a.score > b.score; });
+    sortBestFirst(result.detections);
     result.timings.refine_ms = msSince(t0);
   }
   for (auto& d : result.detections) {
@@ -652,8 +653,7 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
       merged.object_features = r.object_features;
     }
   }
-  std::stable_sort(merged.detections.begin(), merged.detections.end(),
-                   [](const Detection& a, const Detection& b) { return a.score > b.score; });
+  sortBestFirst(merged.detections);
   merged.detections = suppressDuplicates(std::move(merged.detections), 0.3 * diameter_mm);
   if (params.matching.max_detections > 0 &&
       merged.detections.size() > static_cast<std::size_t>(params.matching.max_detections))

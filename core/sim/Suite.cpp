@@ -117,23 +117,16 @@ SynthScene isolateNovelView(SynthScene bin, const std::vector<Eigen::Vector3d>& 
   const auto visibility = [&](const PartInstance& i) {
     return visible.at(static_cast<std::size_t>(i.id));
   };
+  // Well visible beats less visible; among the well visible the most novel view wins, among
+  // the others the most visible.
   constexpr double kWellVisible = 0.9;
-  const PartInstance* chosen = nullptr;
-  for (const auto& instance : scene.instances) {
-    if (!chosen) {
-      chosen = &instance;
-      continue;
-    }
-    // Well visible beats less visible; among the well visible the most novel view wins, among
-    // the others the most visible.
+  const auto rank = [&](const PartInstance& instance) {
     const bool well = visibility(instance) >= kWellVisible;
-    const bool chosen_well = visibility(*chosen) >= kWellVisible;
-    const bool better = well != chosen_well ? well
-                        : well              ? novelty(instance) > novelty(*chosen)
-                                            : visibility(instance) > visibility(*chosen);
-    if (better)
-      chosen = &instance;
-  }
+    return std::pair{well, well ? novelty(instance) : visibility(instance)};
+  };
+  const auto chosen = std::max_element(
+      scene.instances.begin(), scene.instances.end(),
+      [&](const PartInstance& a, const PartInstance& b) { return rank(a) < rank(b); });
   if (visibility(*chosen) <= 0.0)
     throw Error("no part of the bin scan is in view: cannot cut a teach view from it");
   const PartInstance kept = *chosen;
