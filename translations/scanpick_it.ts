@@ -777,5 +777,18 @@
         <source>The view that found this part is round about its axis (direction %1, %2, %3): its turn about that axis is not seen. Grip points on the axis are right.</source>
         <translation>La vista che ha trovato questo pezzo è rotonda attorno al suo asse (direzione %1, %2, %3): la sua rotazione attorno a quell&apos;asse non si vede. I punti di presa sull&apos;asse sono corretti.</translation>
     </message>
+    <message>
+        <location filename="../ui/panels/ResultsTable.cpp" line="52"/>
+        <source>(turn unsure)</source>
+        <translation>(rotazione incerta)</translation>
+    </message>
+    <message numerus="yes">
+        <location filename="../ui/panels/ResultsTable.cpp" line="54"/>
+        <source>This scan cannot tell this pose from %n other pose(s) of the part: the view is nearly symmetric and the detail that tells them apart is hidden. Grip points that move between them must not be trusted.</source>
+        <translation>
+            <numerusform>Questa scansione non distingue questa posa da %n altra posa del pezzo: la vista è quasi simmetrica e il dettaglio che le distingue è nascosto. Non fidarsi dei punti di presa che cambiano tra le due.</numerusform>
+            <numerusform>Questa scansione non distingue questa posa da altre %n pose del pezzo: la vista è quasi simmetrica e il dettaglio che le distingue è nascosto. Non fidarsi dei punti di presa che cambiano tra le pose.</numerusform>
+        </translation>
+    </message>
 </context>
 </TS>

@@ -75,7 +75,9 @@ void registerEvalCommand(CLI::App& app) {
       ->check(CLI::Range(0.0, 1.0));
   sub->add_flag("--accept-free-turns", o->tolerances.accept_free_turns,
                 "Score a detection that reports a free_turn_axis (its view does not show the "
-                "part's turn about that axis) up to a turn about it; default: strictly");
+                "part's turn about that axis) up to a turn about it, and one that reports "
+                "alternative_poses (turns its scan cannot tell apart) by the best of them; "
+                "default: strictly");
   sub->add_flag("--details", o->details,
                 "Also list each detection (one scene) or each scene (suite)");
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <numeric>
@@ -117,12 +118,25 @@ SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& resul
     DetectionOutcome outcome;
     outcome.detection_id = detection.id;
     outcome.score = detection.score;
+    // Reported alternative poses are scored as poses of this detection too (the best one counts).
+    std::vector<Eigen::Isometry3d> estimates{T_scene_part_est};
+    if (tolerances.accept_free_turns)
+      for (const auto& T : detection.alternative_poses)
+        estimates.push_back(T * T_model_part[detection.model]);
     double nearest_cost = 0.0, match_cost = 0.0;
     std::optional<PoseError> match_error;
     for (const std::size_t i : targets) {
-      PoseError e = symmetricPoseError(T_scene_part_est, truth.instances[i].T_scene_part, scored,
-                                       group, tolerances);
-      const double cost = poseCost(e, part.diameter_mm);
+      PoseError e;
+      double cost = std::numeric_limits<double>::infinity();
+      for (const auto& T_est : estimates) {
+        PoseError candidate = symmetricPoseError(T_est, truth.instances[i].T_scene_part, scored,
+                                                 group, tolerances);
+        const double candidate_cost = poseCost(candidate, part.diameter_mm);
+        if (candidate_cost < cost) {
+          cost = candidate_cost;
+          e = std::move(candidate);
+        }
+      }
       if (!outcome.error || cost < nearest_cost) {
         nearest_cost = cost;
         outcome.error = e;

@@ -16,7 +16,8 @@ struct Tolerances {
   double rotation_deg = 10.0;        ///< true positive: rotation error ≤ this
   double min_visible_fraction = 0.5; ///< recall counts instances at least this visible
   /// A detection that reports a free turn axis (its view does not show the turn) is scored up
-  /// to a turn about that axis, as if the part were symmetric about it; off: strictly.
+  /// to a turn about that axis, as if the part were symmetric about it, and one that reports
+  /// alternative poses (turns its scan cannot tell apart) by the best of them; off: strictly.
   bool accept_free_turns = false;
   bool operator==(const Tolerances&) const = default;
 };

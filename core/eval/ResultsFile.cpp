@@ -80,6 +80,14 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
         throw Error(aat + ".direction is zero: it must be a unit vector");
       d.free_turn_axis = ContinuousAxis{point, direction.normalized()};
     }
+    if (value.contains("alternative_poses")) {
+      const auto& alternatives = value["alternative_poses"];
+      if (!alternatives.is_array())
+        throw Error(at + ".alternative_poses must be an array of 4x4 rigid transforms");
+      for (std::size_t k = 0; k < alternatives.size(); ++k)
+        d.alternative_poses.push_back(readRigidTransform(
+            alternatives[k], at + ".alternative_poses[" + std::to_string(k) + "]"));
+    }
     results.detections.push_back(std::move(d));
   }
 

@@ -26,6 +26,8 @@ struct ResultDetection {
   std::size_t model = 0;                     ///< index into ResultsFile::models
   /// The axis (scene frame) about which the detection's turn was not seen, when reported.
   std::optional<ContinuousAxis> free_turn_axis;
+  /// Other poses (model frame → scene frame) the detection reports it cannot tell apart.
+  std::vector<Eigen::Isometry3d> alternative_poses;
 };
 
 /// One taught model (view) the results were produced with.

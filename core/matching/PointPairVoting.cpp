@@ -158,6 +158,7 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
   const auto n_model = m_model.points.size();
   const auto bins = static_cast<std::size_t>(m_angle_bins);
   const float alpha_step = kTwoPi / float(m_angle_bins);
+  const auto exclude_sq = static_cast<float>(options.exclude_self_mm * options.exclude_self_mm);
   std::size_t done = 0;
   std::mutex progress_mutex;
   auto voteFrom = [&](std::size_t r) {
@@ -181,6 +182,8 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
       const float alpha_scene = planeAngle(to_local * scene.points[i]);
       const Entry* end = m_table.data() + m_offsets[k + 1];
       for (const Entry* e = m_table.data() + m_offsets[k]; e != end; ++e) {
+        if (exclude_sq > 0 && (m_model.points[e->model_point] - p).squaredNorm() < exclude_sq)
+          continue;
         float alpha = e->alpha - alpha_scene;
         alpha -= kTwoPi * std::floor(alpha / kTwoPi);
         const auto bin = std::min(bins - 1, static_cast<std::size_t>(alpha / alpha_step));

@@ -49,6 +49,10 @@ struct VotingOptions {
   double cluster_angle_rad = 0.35;
   /// At most this many pose clusters are returned, most votes first.
   int max_poses = 100;
+  /// For voting a model against itself (the scene is the model, in its own frame): model points
+  /// closer than this (mm) to the reference point do not vote, so the peaks are the model's
+  /// symmetries instead of the identity. 0 = every model point votes.
+  double exclude_self_mm = 0.0;
 };
 
 /// The model's point pair table. Immutable after construction; vote() is thread-safe.

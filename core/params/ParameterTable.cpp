@@ -240,6 +240,14 @@ std::vector<ParamInfo> buildTable() {
       make("matching.surface_poses", "Surface poses", "", Stage::Matching, I, 1, 5000, 10,
            "Surface voting: at most this many voted poses (most votes first) are refined and "
            "verified.")));
+  t.push_back(entry(&RP::matching, &MatchingParams::symmetry_overlap,
+      make("matching.symmetry_overlap", "Near-symmetry overlap", "", Stage::Matching, D, 0, 1,
+           0.05,
+           "Beyond the thesis, for nearly symmetric parts (a plate whose hook differs only at its "
+           "lip): a half turn of the view about a principal axis that puts this share of its "
+           "points back on its own surface is a near symmetry; each detection is compared with "
+           "its turned pose on the points that differ, and the better confirmed one is kept. "
+           "Needs verification; 0 = off.")));
   // --- Refinement (beyond the thesis) ---
   t.push_back(entry(&RP::refine, &RefineParams::enabled,
       make("refine.enabled", "ICP refinement", "", Stage::Refine, B, 0, 1, 1,

@@ -109,6 +109,12 @@ struct MatchingParams {
   int surface_reference_stride = 5;
   /// At most this many voted poses (pose clusters, most votes first) are verified.
   int surface_poses = 100;
+  /// Beyond the thesis, for nearly symmetric parts: a half turn of a view about one of its
+  /// principal axes that puts at least this share of its points back on its own surface (after
+  /// ICP) is a near symmetry (NearSymmetry.h). Each detection is compared with its turned pose on
+  /// the points that differ, and the pose those confirm clearly better is kept. Needs
+  /// verification; 0 = off.
+  double symmetry_overlap = 0.0;
   bool operator==(const MatchingParams&) const = default;
 };
 

@@ -41,6 +41,11 @@ struct Detection {
   /// and T_scene_model is one of the poses turned about it that fit equally well. Grip points on
   /// the axis are unaffected; a grip that depends on the turn must not trust it.
   std::optional<FreeTurnAxis> free_turn_axis;
+  /// Other poses of the part (model frame → scene frame, mm) that this scan cannot tell apart
+  /// from T_scene_model: the view has a near symmetry (NearSymmetry.h, such as a hook plate seen
+  /// from below, turned 180° about its normal) whose differing points are hidden here, and the
+  /// turned pose verifies too. Grip points that move between them must not be trusted.
+  std::vector<Eigen::Isometry3d> alternative_poses;
 };
 
 } // namespace scanpick::core

@@ -1,5 +1,8 @@
 #include "core/pipeline/Recognizer.h"
 
+#include "core/pipeline/NearSymmetry.h"
+#include "core/pipeline/PoseVerification.h"
+
 #include "core/common/Error.h"
 #include "core/common/Log.h"
 #include "core/features/FeatureExtraction.h"
@@ -102,13 +105,6 @@ void sortBestFirst(std::vector<Detection>& detections) {
                    [](const Detection& a, const Detection& b) { return a.score > b.score; });
 }
 
-/// The model's points for verification (model frame, mm) and their unit normals facing the teach
-/// camera (NaN where none could be estimated).
-struct VerifyModel {
-  std::vector<Eigen::Vector3f> points, normals;
-  std::vector<Eigen::Vector3f> keypoints;  ///< the model's keypoints (edges), strided
-};
-
 /// A model prepared for verification, refinement and surface voting.
 struct ModelPrep {
   std::shared_ptr<const TaughtModel> model;
@@ -120,18 +116,11 @@ struct ModelPrep {
   std::shared_ptr<const RefineModel> refine;           ///< when ICP or surface voting needs it
   double surface_sampling_mm = 0;                      ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs;         ///< when surface voting is on
+  /// Near symmetries (with `symmetry_key`: the overlap and verification tolerance they were
+  /// found with; unset when not searched).
+  std::optional<std::pair<double, double>> symmetry_key;
+  std::vector<NearSymmetry> symmetries;
 };
-
-/// The scene's keypoints (of every object) indexed, for the edge check of verification.
-struct EdgeCheck {
-  const SceneIndex* scene_keypoints = nullptr;
-  double tolerance_mm = 0.0;
-};
-
-/// Verification never expects fewer than this share of the model's points to be seen, however
-/// many are hidden: a pose confirmed on one leg of a bracket whose other leg falls behind other
-/// parts must not score as a whole part.
-constexpr double kMinExpectedShare = 0.75;
 
 /// A refined pose whose coverage is lower by less than this is still kept (keepsRefinedPose).
 constexpr double kIcpCoverageSlack = 0.01;
@@ -143,9 +132,6 @@ constexpr double kIcpCoverageSlack = 0.01;
 bool keepsRefinedPose(double coverage_before, double coverage_after) {
   return coverage_after >= coverage_before - kIcpCoverageSlack;
 }
-
-/// cos 60°: model and scene normals closer than this agree.
-constexpr float kMinNormalAgreement = 0.5f;
 
 } // namespace
 
@@ -174,29 +160,6 @@ struct Recognizer::Cache {
 };
 
 namespace {
-/// The model's point subsample for verification: every valid point, evenly strided, with its
-/// normal where one can be estimated (wire-like models, such as the thesis's ideal part, have
-/// none and are verified by position alone), and its keypoints.
-std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int points,
-                                                   double normal_radius_mm) {
-  SceneIndexOptions model_options;
-  model_options.normal_radius_mm = normal_radius_mm;
-  model_options.viewpoint_mm = model.T_teach_model.inverse().translation();
-  const SceneIndex model_index(model.cloud_mm, model_options);
-  const auto& valid = model_index.points();
-  const std::size_t stride =
-      std::max<std::size_t>(1, (valid.size() + std::size_t(points) - 1) / std::size_t(points));
-  auto strided = std::make_shared<VerifyModel>();
-  for (std::size_t i = 0; i < valid.size(); i += stride) {
-    strided->points.push_back(valid[i]);
-    strided->normals.push_back(model_index.normals()[i]);
-  }
-  const std::size_t key_stride = std::max<std::size_t>(1, (model.keypoints_mm.size() + 399) / 400);
-  for (std::size_t i = 0; i < model.keypoints_mm.size(); i += key_stride)
-    strided->keypoints.push_back(model.keypoints_mm[i]);
-  return strided;
-}
-
 /// The cached preparation of `model` for these parameters, made (and cached, replacing the
 /// oldest of at most 8) when missing or lacking what the parameters need.
 std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const ModelPrep>>& preps,
@@ -205,13 +168,20 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
   const int points = std::max(10, params.refine.model_points);
   const double radius = params.keypoints.normal_radius_mm;
   const double sampling = params.matching.surface_sampling_mm;
-  // ICP needs the model prepared: for refinement, and to polish surface voting's poses.
-  const bool needs_refine = params.refine.enabled || sampling > 0;
+  const double tolerance = params.matching.verify_tolerance_mm;
+  const std::optional<std::pair<double, double>> symmetry_key =
+      params.matching.symmetry_overlap > 0 && tolerance > 0
+          ? std::optional(std::pair(params.matching.symmetry_overlap, tolerance))
+          : std::nullopt;
+  // ICP needs the model prepared: for refinement, to polish surface voting's poses, and to fit
+  // near symmetries.
+  const bool needs_refine = params.refine.enabled || sampling > 0 || symmetry_key;
   auto found = std::find_if(preps.begin(), preps.end(), [&](const auto& p) {
     return p->model == model && p->points == points && p->normal_radius_mm == radius;
   });
   if (found != preps.end() && (!needs_refine || (*found)->refine) &&
-      (sampling <= 0 || ((*found)->pairs && (*found)->surface_sampling_mm == sampling)))
+      (sampling <= 0 || ((*found)->pairs && (*found)->surface_sampling_mm == sampling)) &&
+      (!symmetry_key || (*found)->symmetry_key == symmetry_key))
     return *found;
   auto prep = std::make_shared<ModelPrep>();
   if (found != preps.end()) {
@@ -240,94 +210,18 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
         sampleOriented(prep->verify->points, prep->verify->normals, sampling), sampling);
     prep->surface_sampling_mm = sampling;
   }
+  if (symmetry_key && prep->symmetry_key != symmetry_key) {
+    // A surface of revolution reports its free turn instead.
+    if (!prep->axis)
+      prep->symmetries = findNearSymmetries(*model, *prep->verify, *prep->refine, params.refine,
+                                          tolerance, params.matching.symmetry_overlap);
+    prep->symmetry_key = symmetry_key;
+  }
   constexpr std::size_t kKeptModels = 8;
   if (preps.size() >= kKeptModels)
     preps.erase(preps.begin());
   preps.push_back(prep);
   return prep;
-}
-
-/// Share of the model's keypoints lying on confirmed scene surface that also have a scene keypoint
-/// within the edge tolerance (1 when off or when fewer than 10 lie on surface): a flat face
-/// matched onto another flat face at a wrong turn confirms its surface but not its outline.
-double edgeAgreement(const VerifyModel& model, const SceneIndex& index, const Eigen::Isometry3f& T,
-                     float surface_tol_sq, const EdgeCheck& edges) {
-  if (!edges.scene_keypoints || edges.tolerance_mm <= 0)
-    return 1.0;
-  const auto edge_tol_sq = static_cast<float>(edges.tolerance_mm * edges.tolerance_mm);
-  std::size_t on_surface = 0, on_edge = 0;
-  for (const auto& k : model.keypoints) {
-    const Eigen::Vector3f p = T * k;
-    if (index.nearest(p, 4.0f * surface_tol_sq) < 0)
-      continue;
-    ++on_surface;
-    if (edges.scene_keypoints->nearest(p, edge_tol_sq) >= 0)
-      ++on_edge;
-  }
-  return on_surface < 10 ? 1.0 : double(on_edge) / double(on_surface);
-}
-
-/// Point-level verification of a pose (beyond the thesis): a model point (of the subsample) is
-/// confirmed when a scene point facing the same way lies within `tolerance_mm`. On an organized
-/// scene whose size is the sensor's, an unconfirmed point is a violation when the camera sees the
-/// scene clearly behind it at its pixel (more than 3 x tolerance farther), i.e. looks through
-/// where the pose puts material (a hole, or the floor beside a part), and hidden when the camera
-/// sees something clearly in front of it (another part); points turned away from the camera are
-/// hidden too. Returns (confirmed − violations) ÷ the points expected to be seen, clamped to
-/// [0, 1], times the edge agreement. The expected count is never taken below kMinExpectedShare of the model,
-/// so a pose that turns the taught side away, such as a flip, cannot score on the few points left.
-double verifyPose(const VerifyModel& model, const SceneIndex& index,
-                  const PointCloud& scene, const SensorModel& sensor,
-                  const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
-                  const EdgeCheck& edges) {
-  const auto& model_points = model.points;
-  if (model_points.empty())
-    return 0.0;
-  const bool organized = scene.height > 1 && static_cast<int>(scene.width) == sensor.width &&
-                         static_cast<int>(scene.height) == sensor.height && sensor.fx > 0;
-  const Eigen::Isometry3f T = T_scene_model.cast<float>();
-  const auto tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
-  const auto margin = static_cast<float>(3.0 * tolerance_mm);
-  std::size_t confirmed = 0, violations = 0, hidden = 0;
-  for (std::size_t k = 0; k < model_points.size(); ++k) {
-    const Eigen::Vector3f p = T * model_points[k];
-    const Eigen::Vector3f& n_model = model.normals[k];
-    // The camera sits at the scene origin.
-    const bool turned_away = n_model.allFinite() && (T.linear() * n_model).dot(-p) <= 0.0f;
-    const std::int64_t near = index.nearest(p, tol_sq);
-    if (near >= 0 && !turned_away) {
-      // A surface confirms a point only when it faces the same way: the far face of a thin plate
-      // lies within tolerance of the near one's points but turned away.
-      const Eigen::Vector3f& n_scene = index.normals()[static_cast<std::size_t>(near)];
-      if (!n_scene.allFinite() || !n_model.allFinite() ||
-          (T.linear() * n_model).dot(n_scene) > kMinNormalAgreement) {
-        ++confirmed;
-        continue;
-      }
-    }
-    if (turned_away) {
-      ++hidden;
-      continue;
-    }
-    if (!organized || p.z() <= 0.0f)
-      continue;
-    const Eigen::Vector2d uv = sensor.project(p.cast<double>());
-    const long u = std::lround(uv.x()), v = std::lround(uv.y());
-    if (u < 0 || v < 0 || u >= sensor.width || v >= sensor.height)
-      continue;
-    const Eigen::Vector3f& s = scene.points_mm[static_cast<std::size_t>(v) * scene.width +
-                                               static_cast<std::size_t>(u)];
-    if (!isValid(s))
-      continue;
-    if (s.z() > p.z() + margin)
-      ++violations;
-    else if (s.z() < p.z() - margin)
-      ++hidden;
-  }
-  const double expected =
-      std::max(double(model_points.size() - hidden), kMinExpectedShare * double(model_points.size()));
-  const double q = (double(confirmed) - double(violations)) / expected;
-  return std::clamp(q, 0.0, 1.0) * edgeAgreement(model, index, T, tol_sq, edges);
 }
 
 /// Moves a pose closer to the scene (ICP).
@@ -399,6 +293,60 @@ std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
   logger()->debug("surface voting: {} poses verified and polished, {} kept, {:.0f} ms in all",
                   poses.size(), out.size(), msSince(t0));
   return out;
+}
+
+/// The differing points of a near symmetry tell two poses apart only when at least this many of
+/// them are not hidden.
+constexpr std::size_t kMinDistinguishingPoints = 8;
+
+/// A detection is turned by a near symmetry when the scan contradicts this much larger a share of
+/// its differing points than of the turned pose's (contradictedShare).
+constexpr double kTurnMargin = 0.1;
+
+/// For each detection and each near symmetry S of the view, tries the turned pose T·S (polished by
+/// ICP). The differing points decide: where one pose puts material and the other does not, the
+/// scan looking through clearly more of one pose's points than of the other's rules it out (the
+/// lip of a hook turned 180° about its plate's normal floats where the scan sees the arm behind
+/// it). Confirmed points tell less: both poses' differing points can lie near other surface of the
+/// part. The detection takes the turned pose when the scan rules its own out; when neither is
+/// ruled out (the differing points are hidden or unseen) and the turned pose verifies too, it is
+/// reported as an alternative.
+void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& prep,
+                           const VerifyScene& scene, const MatchingParams& params,
+                           const PoseVerifier& verify, const PosePolisher& polish) {
+  tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
+    Detection& d = detections[k];
+    for (const NearSymmetry& s : prep.symmetries) {
+      const double as_found = contradictedShare(
+          tallyPoints(*prep.verify, scene, d.T_scene_model, params.verify_tolerance_mm,
+                      &s.differing_inverse),
+          kMinDistinguishingPoints);
+      const Eigen::Isometry3d T_turned = polish(d.T_scene_model * s.S_model);
+      const double turned = contradictedShare(
+          tallyPoints(*prep.verify, scene, T_turned, params.verify_tolerance_mm, &s.differing),
+          kMinDistinguishingPoints);
+      logger()->trace("detection {}: {:.2f} of the differing points contradicted as found, {:.2f} "
+                      "turned", k, as_found, turned);
+      if (turned > as_found + kTurnMargin)
+        continue;  // the turned pose is ruled out
+      const double coverage = verify(T_turned);
+      if (coverage < params.min_coverage)
+        continue;
+      if (as_found > turned + kTurnMargin) {
+        logger()->debug("detection {} turned by a near symmetry: {:.2f} of the differing points "
+                        "contradicted as found, {:.2f} turned; coverage {:.3f} -> {:.3f}",
+                        k, as_found, turned, d.coverage, coverage);
+        d.T_scene_model = T_turned;
+        d.coverage = coverage;
+        d.score = coverage;
+        d.refined = true;
+        d.matched_features.clear();      // they supported the pose it had,
+        d.alternative_poses.clear();     // and so did these
+      } else {
+        d.alternative_poses.push_back(T_turned);
+      }
+    }
+  });
 }
 
 } // namespace
@@ -534,11 +482,11 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
 
   const auto t_match = Clock::now();
+  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor};
   PoseVerifier verify;
   if (verifying && prep)
     verify = [&](const Eigen::Isometry3d& T) {
-      return verifyPose(*prep->verify, *cache.scene_index, scene_mm, sensor, T,
-                        params.matching.verify_tolerance_mm, edges);
+      return verifyPose(*prep->verify, verify_scene, T, params.matching.verify_tolerance_mm, edges);
     };
   std::vector<std::vector<MatchCandidate>> candidates(objects.size());
   forEachObject(objects.size(), progress, 0.8, 0.95, [&](std::size_t i) {
@@ -567,6 +515,13 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   sortBestFirst(result.detections);
   result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
+  if (verify && !prep->symmetries.empty()) {
+    resolveNearSymmetries(result.detections, *prep, verify_scene, params.matching, verify,
+                          [&](const Eigen::Isometry3d& T) { return icp(T).T_scene_model; });
+    sortBestFirst(result.detections);
+    result.detections =
+        suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
+  }
   if (params.matching.max_detections > 0 &&
       result.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
     result.detections.resize(static_cast<std::size_t>(params.matching.max_detections));

@@ -50,6 +50,12 @@ json resultsToJson(const RecognitionResult& result, const std::vector<ModelSourc
     if (d.free_turn_axis)
       detections.back()["free_turn_axis"] = {{"point_mm", vec(d.free_turn_axis->point_mm)},
                                              {"direction", vec(d.free_turn_axis->direction)}};
+    if (!d.alternative_poses.empty()) {
+      json alternatives = json::array();
+      for (const auto& T : d.alternative_poses)
+        alternatives.push_back(matrix(T));
+      detections.back()["alternative_poses"] = alternatives;
+    }
   }
   const StageTimings& t = result.timings;
   return {{"format", "scanpick-results"},

@@ -281,3 +281,30 @@ TEST(ResultsTableFreeTurn, MarksATurnTheScanDoesNotShow) {
   EXPECT_TRUE(table.item(0, 2)->text().endsWith(QStringLiteral("(rotazione libera)")))
       << table.item(0, 2)->text().toStdString();
 }
+
+TEST(ResultsTableFreeTurn, MarksAlternativePosesTheScanCannotTellApart) {
+  // A detection with one alternative pose (a near symmetry whose telling detail is hidden) is
+  // marked, with the count in its tooltip; in Italian too.
+  std::vector<core::Detection> detections(2);
+  detections[0].score = 0.9;
+  detections[0].alternative_poses = {Eigen::Isometry3d(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()))};
+  detections[1].score = 0.8;
+  ui::ResultsTable table;
+  table.setDetections(detections, nullptr);
+  ASSERT_EQ(table.rowCount(), 2);
+  EXPECT_TRUE(table.item(0, 2)->text().endsWith(QStringLiteral("(turn unsure)")))
+      << table.item(0, 2)->text().toStdString();
+  EXPECT_TRUE(table.item(0, 2)->toolTip().contains(QStringLiteral("from 1 other pose")))
+      << table.item(0, 2)->toolTip().toStdString();
+  EXPECT_FALSE(table.item(1, 2)->text().contains(QStringLiteral("unsure")));
+
+  QTranslator italian;
+  ASSERT_TRUE(italian.load(QStringLiteral(":/i18n/scanpick_it.qm")));
+  QCoreApplication::installTranslator(&italian);
+  table.setDetections(detections, nullptr);
+  QCoreApplication::removeTranslator(&italian);
+  EXPECT_TRUE(table.item(0, 2)->text().endsWith(QStringLiteral("(rotazione incerta)")))
+      << table.item(0, 2)->text().toStdString();
+  EXPECT_TRUE(table.item(0, 2)->toolTip().contains(QStringLiteral("da 1 altra posa")))
+      << table.item(0, 2)->toolTip().toStdString();
+}

@@ -50,6 +50,14 @@ void ResultsTable::setDetections(const std::vector<core::Detection>& detections,
                                   .arg(QString::number(a.x(), 'f', 3), QString::number(a.y(), 'f', 3),
                                        QString::number(a.z(), 'f', 3)));
     }
+    if (!d.alternative_poses.empty()) {
+      orientation->setText(orientation->text() + QStringLiteral(" ") + tr("(turn unsure)"));
+      orientation->setToolTip(
+          tr("This scan cannot tell this pose from %n other pose(s) of the part: the view is "
+             "nearly symmetric and the detail that tells them apart is hidden. Grip points that "
+             "move between them must not be trusted.",
+             nullptr, static_cast<int>(d.alternative_poses.size())));
+    }
     setItem(row, 2, orientation);
     setItem(row, 3, new QTableWidgetItem(QString::number(d.cluster)));
     setItem(row, 4, new QTableWidgetItem(grips.join(QStringLiteral("; "))));

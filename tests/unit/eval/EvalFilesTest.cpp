@@ -160,6 +160,12 @@ TEST(EvalFiles, BadInputThrowsClearErrors) {
   json axis_without_point = good;
   axis_without_point["detections"][0]["free_turn_axis"] = {{"direction", {0, 0, 1}}};
   expectError([&] { f.evalResults(axis_without_point); }, "missing field 'point_mm'");
+  json alternatives_not_array = good;
+  alternatives_not_array["detections"][0]["alternative_poses"] = 3;
+  expectError([&] { f.evalResults(alternatives_not_array); }, "alternative_poses must be an array");
+  json alternative_scaled = good;
+  alternative_scaled["detections"][0]["alternative_poses"] = {scaled["detections"][0]["T_scene_model"]};
+  expectError([&] { f.evalResults(alternative_scaled); }, "alternative_poses[0]");
 
   json truth_bad = f.truth;
   truth_bad["parts"]["widget"].erase("diameter_mm");

@@ -175,6 +175,35 @@ TEST(Evaluator, ReportedFreeTurnIsAcceptedOnlyWhenAsked) {
   }
 }
 
+TEST(Evaluator, ReportedAlternativePoseIsAcceptedOnlyWhenAsked) {
+  // A part without symmetry, detected turned 180° about its z axis; the detection reports the
+  // true pose as its alternative (a near symmetry its scan could not decide). Strictly it is
+  // wrong; with accept_free_turns the alternative scores it, with zero error. A detection whose
+  // alternative is wrong too stays wrong either way.
+  const auto part = test::makePart("hook-plate", 80.0);
+  const auto teach = test::makeTeachTruth(part);
+  GroundTruth truth;
+  truth.parts[part.name] = part;
+  const Eigen::Isometry3d T_true = pose({-40, 10, 800}, 25, Eigen::Vector3d(0, 1, 1));
+  truth.instances.push_back({0, part.name, T_true, 1.0, 1000});
+  const Eigen::Isometry3d T_turned = T_true * pose({0, 0, 0}, 180);
+  for (const bool accept : {false, true}) {
+    auto results = test::makeResults();
+    test::addDetection(results, 0.9, T_turned, teach);
+    test::addDetection(results, 0.8, T_turned, teach);
+    results.detections[0].alternative_poses = {test::modelPoseFor(T_true * pose({0, 0, 0}, 90), teach),
+                                               test::modelPoseFor(T_true, teach)};
+    results.detections[1].alternative_poses = {test::modelPoseFor(T_true * pose({0, 0, 0}, 90), teach)};
+    core::eval::Tolerances tolerances;
+    tolerances.accept_free_turns = accept;
+    const auto scene = core::eval::evaluateScene(truth, results, teach, tolerances, "scene");
+    ASSERT_EQ(scene.outcomes.size(), 2u);
+    EXPECT_EQ(scene.outcomes[0].true_positive, accept);
+    EXPECT_NEAR(scene.outcomes[0].error->rotation_deg, accept ? 0.0 : 180.0, 1e-6);
+    EXPECT_FALSE(scene.outcomes[1].true_positive) << "its alternative is wrong too";
+  }
+}
+
 TEST(Evaluator, GreedyOneToOneMatchingAndThresholdSweep) {
   const auto part = test::makePart("widget", 60.0);
   const auto teach = test::makeTeachTruth(part);

@@ -1,0 +1,49 @@
+#pragma once
+/// @file NearSymmetry.h
+/// Near symmetries of a taught view (beyond the thesis, which names symmetric parts as a limit):
+/// turns that put most of the view back onto its own surface, such as a hook plate turned 180°
+/// about its normal, where only the lip and the stem differ. Two poses of the part related by such
+/// a turn verify almost equally well; only the points that differ can tell them apart.
+
+#include "core/model/TaughtModel.h"
+#include "core/params/Parameters.h"
+#include "core/pipeline/PoseVerification.h"
+#include "core/refine/RefineModel.h"
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+namespace scanpick::core {
+
+/// One near symmetry S of a view (model frame → model frame): pose T and pose T·S of the part put
+/// most of the view in the same place.
+struct NearSymmetry {
+  Eigen::Isometry3d S_model = Eigen::Isometry3d::Identity();
+  /// Share of the view's points that S puts back on its surface (within the tolerance, normals
+  /// agreeing within 60°), [0, 1].
+  double overlap = 0.0;
+  /// Points p of the view (indices into VerifyModel::points) that S moves clearly off its surface:
+  /// where pose T·S puts material and pose T does not. Tested at pose T·S.
+  std::vector<std::uint32_t> differing;
+  /// Points p that S⁻¹ moves clearly off the surface: where pose T puts material and pose T·S does
+  /// not. Tested at pose T. (The same as `differing` for a half turn.)
+  std::vector<std::uint32_t> differing_inverse;
+};
+
+/// The view's near symmetries among the half turns about its three principal axes through its
+/// centroid: each turn is polished by ICP (`icp`) onto the view itself and kept when it puts at
+/// least `min_overlap` of the view's points back on its surface (within `tolerance_mm`) and at
+/// least 1 % of them clearly (3 x tolerance) off it. `view` are the verification points of
+/// `model`. Deterministic. Empty when min_overlap <= 0.
+std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const VerifyModel& view,
+                                             const RefineModel& refine_model,
+                                             const RefineParams& icp, double tolerance_mm,
+                                             double min_overlap);
+
+/// The share of the points `tally` looked at that the scan contradicts (sees clearly behind):
+/// violations ÷ the points not hidden, in [0, 1]; NaN when fewer than `min_seen` are not hidden
+/// (nothing to tell).
+double contradictedShare(const PointTally& tally, std::size_t min_seen);
+
+} // namespace scanpick::core

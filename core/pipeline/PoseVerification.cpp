@@ -1,0 +1,129 @@
+#include "core/pipeline/PoseVerification.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace scanpick::core {
+namespace {
+
+/// Verification never expects fewer than this share of the model's points to be seen, however
+/// many are hidden: a pose confirmed on one leg of a bracket whose other leg falls behind other
+/// parts must not score as a whole part.
+constexpr double kMinExpectedShare = 0.75;
+
+/// cos 60°: model and scene normals closer than this agree.
+constexpr float kMinNormalAgreement = 0.5f;
+
+/// Share of the model's keypoints lying on confirmed scene surface that also have a scene keypoint
+/// within the edge tolerance (1 when off or when fewer than 10 lie on surface).
+double edgeAgreement(const VerifyModel& model, const SceneIndex& index, const Eigen::Isometry3f& T,
+                     float surface_tol_sq, const EdgeCheck& edges) {
+  if (!edges.scene_keypoints || edges.tolerance_mm <= 0)
+    return 1.0;
+  const auto edge_tol_sq = static_cast<float>(edges.tolerance_mm * edges.tolerance_mm);
+  std::size_t on_surface = 0, on_edge = 0;
+  for (const auto& k : model.keypoints) {
+    const Eigen::Vector3f p = T * k;
+    if (index.nearest(p, 4.0f * surface_tol_sq) < 0)
+      continue;
+    ++on_surface;
+    if (edges.scene_keypoints->nearest(p, edge_tol_sq) >= 0)
+      ++on_edge;
+  }
+  return on_surface < 10 ? 1.0 : double(on_edge) / double(on_surface);
+}
+
+} // namespace
+
+std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int points,
+                                                   double normal_radius_mm) {
+  SceneIndexOptions model_options;
+  model_options.normal_radius_mm = normal_radius_mm;
+  model_options.viewpoint_mm = model.T_teach_model.inverse().translation();
+  const SceneIndex model_index(model.cloud_mm, model_options);
+  const auto& valid = model_index.points();
+  const std::size_t stride =
+      std::max<std::size_t>(1, (valid.size() + std::size_t(points) - 1) / std::size_t(points));
+  auto strided = std::make_shared<VerifyModel>();
+  for (std::size_t i = 0; i < valid.size(); i += stride) {
+    strided->points.push_back(valid[i]);
+    strided->normals.push_back(model_index.normals()[i]);
+  }
+  const std::size_t key_stride = std::max<std::size_t>(1, (model.keypoints_mm.size() + 399) / 400);
+  for (std::size_t i = 0; i < model.keypoints_mm.size(); i += key_stride)
+    strided->keypoints.push_back(model.keypoints_mm[i]);
+  return strided;
+}
+
+PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
+                       const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
+                       const std::vector<std::uint32_t>* subset) {
+  const SceneIndex& index = *scene.index;
+  const PointCloud& scan = *scene.scan;
+  const SensorModel& sensor = *scene.sensor;
+  const bool organized = scan.height > 1 && static_cast<int>(scan.width) == sensor.width &&
+                         static_cast<int>(scan.height) == sensor.height && sensor.fx > 0;
+  const Eigen::Isometry3f T = T_scene_model.cast<float>();
+  const auto tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
+  const auto margin = static_cast<float>(3.0 * tolerance_mm);
+  PointTally tally;
+  const auto look = [&](std::size_t k) {
+    ++tally.points;
+    const Eigen::Vector3f p = T * model.points[k];
+    const Eigen::Vector3f& n_model = model.normals[k];
+    // The camera sits at the scene origin.
+    const bool turned_away = n_model.allFinite() && (T.linear() * n_model).dot(-p) <= 0.0f;
+    const std::int64_t near = index.nearest(p, tol_sq);
+    if (near >= 0 && !turned_away) {
+      // A surface confirms a point only when it faces the same way: the far face of a thin plate
+      // lies within tolerance of the near one's points but turned away.
+      const Eigen::Vector3f& n_scene = index.normals()[static_cast<std::size_t>(near)];
+      if (!n_scene.allFinite() || !n_model.allFinite() ||
+          (T.linear() * n_model).dot(n_scene) > kMinNormalAgreement) {
+        ++tally.confirmed;
+        return;
+      }
+    }
+    if (turned_away) {
+      ++tally.hidden;
+      return;
+    }
+    if (!organized || p.z() <= 0.0f)
+      return;
+    const Eigen::Vector2d uv = sensor.project(p.cast<double>());
+    const long u = std::lround(uv.x()), v = std::lround(uv.y());
+    if (u < 0 || v < 0 || u >= sensor.width || v >= sensor.height)
+      return;
+    const Eigen::Vector3f& s =
+        scan.points_mm[static_cast<std::size_t>(v) * scan.width + static_cast<std::size_t>(u)];
+    if (!isValid(s))
+      return;
+    if (s.z() > p.z() + margin)
+      ++tally.violations;
+    else if (s.z() < p.z() - margin)
+      ++tally.hidden;
+  };
+  if (subset)
+    for (const std::uint32_t k : *subset)
+      look(k);
+  else
+    for (std::size_t k = 0; k < model.points.size(); ++k)
+      look(k);
+  return tally;
+}
+
+double verifyPose(const VerifyModel& model, const VerifyScene& scene,
+                  const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
+                  const EdgeCheck& edges) {
+  if (model.points.empty())
+    return 0.0;
+  const PointTally t = tallyPoints(model, scene, T_scene_model, tolerance_mm);
+  const double expected =
+      std::max(double(t.points - t.hidden), kMinExpectedShare * double(t.points));
+  const double q = (double(t.confirmed) - double(t.violations)) / expected;
+  const auto tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
+  return std::clamp(q, 0.0, 1.0) *
+         edgeAgreement(model, *scene.index, T_scene_model.cast<float>(), tol_sq, edges);
+}
+
+} // namespace scanpick::core

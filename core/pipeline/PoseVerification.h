@@ -1,0 +1,73 @@
+#pragma once
+/// @file PoseVerification.h
+/// Point-level verification of a pose (beyond the thesis): how much of the model the scan
+/// confirms at that pose, how much it contradicts, and how much it cannot see.
+
+#include "core/cloud/PointCloud.h"
+#include "core/cloud/Sensor.h"
+#include "core/model/TaughtModel.h"
+#include "core/refine/SceneIndex.h"
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace scanpick::core {
+
+/// The model's points for verification (model frame, mm), their unit normals facing the teach
+/// camera (NaN where none could be estimated) and its keypoints (edges), each evenly strided.
+struct VerifyModel {
+  std::vector<Eigen::Vector3f> points, normals;
+  std::vector<Eigen::Vector3f> keypoints;
+};
+
+/// Every valid point of `model`, strided to at most about `points`, with its normal (PCA within
+/// `normal_radius_mm`; wire-like models such as the thesis's ideal part have none and are verified
+/// by position alone), and at most about 400 of its keypoints.
+std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int points,
+                                                   double normal_radius_mm);
+
+/// The scene's keypoints (of every object) indexed, for the edge check of verification.
+struct EdgeCheck {
+  const SceneIndex* scene_keypoints = nullptr; ///< null: no edge check
+  double tolerance_mm = 0.0;
+};
+
+/// What the scan says about a set of model points at one pose.
+struct PointTally {
+  std::size_t points = 0;     ///< model points looked at
+  std::size_t confirmed = 0;  ///< a scene point facing the same way lies within the tolerance
+  std::size_t violations = 0; ///< the camera sees clearly behind the point: nothing is there
+  std::size_t hidden = 0;     ///< turned away from the camera, or behind something else
+};
+
+/// The scene a pose is verified against: its indexed points, the organized scan itself (for the
+/// look-through test) and the camera that took it (at the scene frame's origin).
+struct VerifyScene {
+  const SceneIndex* index = nullptr;
+  const PointCloud* scan = nullptr;
+  const SensorModel* sensor = nullptr;
+};
+
+/// Tallies the model points listed in `subset` (indices into model.points; all when null) at pose
+/// `T_scene_model`. A point is confirmed when a scene point whose normal agrees within 60° lies
+/// within `tolerance_mm`. Otherwise, on an organized scan of the sensor's size, it is a violation
+/// when the camera sees the scene more than 3 x tolerance behind it at its pixel (it looks through
+/// where the pose puts material: a hole, or the floor beside a part), and hidden when the camera
+/// sees something that much in front of it (another part); points turned away are hidden too.
+PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
+                       const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
+                       const std::vector<std::uint32_t>* subset = nullptr);
+
+/// Verification score in [0, 1]: (confirmed − violations) ÷ the points expected to be seen,
+/// times the edge agreement (the share of model keypoints on confirmed surface with a scene
+/// keypoint within edges.tolerance_mm: a flat face matched onto another at a wrong turn confirms
+/// its surface but not its outline). The expected count is never taken below 75 % of the model,
+/// so a pose that turns the taught side away (a flip), or is confirmed on one leg of a bracket
+/// whose other leg falls behind other parts, cannot score on the few points left.
+double verifyPose(const VerifyModel& model, const VerifyScene& scene,
+                  const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
+                  const EdgeCheck& edges);
+
+} // namespace scanpick::core
