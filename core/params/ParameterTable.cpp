@@ -65,6 +65,12 @@ std::vector<ParamInfo> buildTable() {
   t.push_back(entry(&RP::floor, &FloorParams::min_plane_fraction,
       make("floor.min_plane_fraction", "Min plane share", "", Stage::Preprocess, D, 0.0, 1.0, 0.01,
            "A plane is removed only if it holds at least this fraction of the scene's points.")));
+  t.push_back(entry(&RP::floor, &FloorParams::bin_floor_fraction,
+      make("floor.bin_floor_fraction", "Bin floor share", "", Stage::Preprocess, D, 0.0, 1.0,
+           0.005,
+           "Beyond the thesis, for a bin standing on the ground: also remove the plane parallel "
+           "to the first removed one that holds at least this fraction of the scene's points and "
+           "has (almost) nothing behind it, the bin's floor; 0 = off.")));
   t.push_back(entry(&RP::downsample, &DownsampleParams::voxel_mm,
       make("downsample.voxel_mm", "Voxel size", "mm", Stage::Preprocess, D, 0, 20, 0.1,
            "Voxel-grid downsampling of the scene before keypoints; 0 keeps every point.")));

@@ -15,6 +15,11 @@ struct FloorParams {
   double distance_mm = 2.0;          ///< RANSAC plane inlier distance
   int max_planes = 1;                ///< how many dominant planes to remove
   double min_plane_fraction = 0.15;  ///< a plane must hold this fraction of the points to go
+  /// Beyond the thesis, for bins standing on the ground: after the planes above, also remove the
+  /// plane parallel to the first that holds at least this fraction of the points and has
+  /// (almost) nothing behind it: the bin's floor, which the ground around the bin outnumbers. The
+  /// rim of the bin's walls and the parts' flat faces have the floor behind them. 0 = off.
+  double bin_floor_fraction = 0.0;
   bool operator==(const FloorParams&) const = default;
 };
 

@@ -1,16 +1,18 @@
 #include "core/preprocess/FloorRemoval.h"
 
 #include "core/common/Error.h"
+#include "core/common/Log.h"
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <optional>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
-#include <tbb/parallel_for.h>
-
-#include <algorithm>
-#include <cmath>
 #include <string>
+#include <tbb/parallel_for.h>
 
 namespace scanpick::core {
 namespace {
@@ -25,6 +27,82 @@ public:
 /// RANSAC on a sample is as good as on all points for a dominant plane and 10-20x cheaper.
 constexpr std::size_t kMaxSamplePoints = 60000;
 constexpr int kPlaneTrials = 500;
+
+/// A bin floor is looked for in a band of this half-width (mm) around each height above the first
+/// plane, wide enough for a bin floor a little tilted against the ground.
+constexpr double kBinFloorBandMm = 5.0;
+
+/// A bin floor has at most this share of the remaining points behind it (the bin walls' feet).
+constexpr double kMaxShareBehindBinFloor = 0.02;
+
+/// Heights above the first plane searched for a bin floor (mm).
+constexpr double kMaxBinFloorHeightMm = 500.0;
+
+/// The bin floor among `alive` (indices into `points`): the plane parallel to `ground` (unit
+/// normal towards the camera) whose band holds the most points, at least `min_points`, with at
+/// most kMaxShareBehindBinFloor of them behind it; fitted by least squares to its band's points.
+std::optional<Eigen::Vector4f> findBinFloor(const std::vector<Eigen::Vector3f>& points,
+                                            const std::vector<int>& alive,
+                                            const Eigen::Vector4f& ground, double bin_mm,
+                                            std::size_t min_points) {
+  const auto bins = static_cast<std::size_t>(std::ceil(kMaxBinFloorHeightMm / bin_mm));
+  std::vector<std::size_t> histogram(bins, 0);
+  std::size_t below = 0; // at or behind the first plane (its far side)
+  for (const int i : alive) {
+    const double h = ground.head<3>().dot(points[static_cast<std::size_t>(i)]) + ground[3];
+    if (h < 0.0)
+      ++below;
+    else if (h < kMaxBinFloorHeightMm)
+      ++histogram[static_cast<std::size_t>(h / bin_mm)];
+  }
+  const auto band = static_cast<std::size_t>(std::ceil(kBinFloorBandMm / bin_mm));
+  const auto max_behind = static_cast<std::size_t>(kMaxShareBehindBinFloor * double(alive.size()));
+  std::size_t behind = below, best_count = 0, best_bin = 0;
+  for (std::size_t b = 0; b < bins; ++b) {
+    // Points behind the band that starts `band` bins below b.
+    if (b >= band + 1)
+      behind += histogram[b - band - 1];
+    if (behind > max_behind)
+      break;
+    std::size_t count = 0;
+    for (std::size_t k = (b >= band ? b - band : 0); k <= std::min(bins - 1, b + band); ++k)
+      count += histogram[k];
+    if (count > best_count) {
+      best_count = count;
+      best_bin = b;
+    }
+  }
+  if (best_count < std::max<std::size_t>(3, min_points))
+    return std::nullopt;
+  // Least-squares plane (PCA) through the band's points, then again through those within
+  // `bin_mm` of it, so that the feet of the parts in the band do not tilt it.
+  const auto fit = [&](const Eigen::Vector4d& around, double within_mm) {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3d> near;
+    for (const int i : alive) {
+      const Eigen::Vector3d p = points[static_cast<std::size_t>(i)].cast<double>();
+      if (std::abs(around.head<3>().dot(p) + around[3]) <= within_mm) {
+        near.push_back(p);
+        mean += p;
+      }
+    }
+    if (near.size() < 3)
+      return around;
+    mean /= double(near.size());
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+    for (const auto& p : near)
+      scatter += (p - mean) * (p - mean).transpose();
+    Eigen::Vector3d normal =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter).eigenvectors().col(0);
+    if (normal.dot(around.head<3>()) < 0)
+      normal = -normal;
+    return Eigen::Vector4d(normal.x(), normal.y(), normal.z(), -normal.dot(mean));
+  };
+  Eigen::Vector4d band_centre = ground.cast<double>();
+  band_centre[3] -= (double(best_bin) + 0.5) * bin_mm;
+  const Eigen::Vector4d plane = fit(fit(band_centre, kBinFloorBandMm + bin_mm), bin_mm);
+  return plane.cast<float>();
+}
 
 } // namespace
 
@@ -43,6 +121,40 @@ FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& pa
       alive.push_back(static_cast<int>(i));
   const std::size_t total_valid = alive.size();
 
+  // Removes the remaining points within params.distance_mm of `plane` if there are at least
+  // `min_count` of them; returns whether it did.
+  const auto removePlane = [&](const Eigen::Vector4f& plane, std::size_t min_count) {
+    std::vector<char> on_plane(alive.size(), 0);
+    const auto distance = static_cast<float>(params.distance_mm);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, alive.size(), 16384),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                          const auto& p = scene_mm.points_mm[static_cast<std::size_t>(alive[j])];
+                          on_plane[j] = std::abs(plane.head<3>().dot(p) + plane[3]) <= distance;
+                        }
+                      });
+    const auto count = static_cast<std::size_t>(std::count(on_plane.begin(), on_plane.end(), 1));
+    if (count < std::max<std::size_t>(1, min_count))
+      return false;
+    std::vector<int> still_alive;
+    still_alive.reserve(alive.size() - count);
+    for (std::size_t j = 0; j < alive.size(); ++j) {
+      if (on_plane[j])
+        removed[static_cast<std::size_t>(alive[j])] = 1;
+      else
+        still_alive.push_back(alive[j]);
+    }
+    alive.swap(still_alive);
+    logger()->debug("floor plane {}: ({:.3f}, {:.3f}, {:.3f}) at {:.1f} mm from the camera, {} "
+                    "points ({:.1f} % of the scan)",
+                    result.planes.size(), plane[0], plane[1], plane[2], plane[3], count,
+                    100.0 * double(count) / double(total_valid));
+    result.planes.push_back(plane);
+    result.removed_points += count;
+    return true;
+  };
+  const auto min_points =
+      static_cast<std::size_t>(std::ceil(params.min_plane_fraction * double(total_valid)));
   const int planes = params.enabled ? params.max_planes : 0;
   for (int plane = 0; plane < planes && alive.size() >= 3; ++plane) {
     reportProgress(progress, static_cast<double>(plane) / planes);
@@ -71,35 +183,18 @@ FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& pa
     }
     Eigen::Vector4f plane_coefficients = coefficients.head<4>();
     plane_coefficients /= plane_coefficients.head<3>().norm();
-    if (plane_coefficients[3] < 0)  // the camera (origin) on the positive side
+    if (plane_coefficients[3] < 0) // the camera (origin) on the positive side
       plane_coefficients = -plane_coefficients;
 
-    // Classify every remaining point against the refined plane.
-    std::vector<char> on_plane(alive.size(), 0);
-    const float distance = static_cast<float>(params.distance_mm);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, alive.size(), 16384),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t j = r.begin(); j < r.end(); ++j) {
-                          const auto& p = scene_mm.points_mm[static_cast<std::size_t>(alive[j])];
-                          on_plane[j] = std::abs(plane_coefficients.head<3>().dot(p) +
-                                                 plane_coefficients[3]) <= distance;
-                        }
-                      });
-    const auto count = static_cast<std::size_t>(std::count(on_plane.begin(), on_plane.end(), 1));
-    if (static_cast<double>(count) < params.min_plane_fraction * static_cast<double>(total_valid) ||
-        count == 0)
-      break;  // the largest remaining plane is too small: no more floor or walls
-    std::vector<int> still_alive;
-    still_alive.reserve(alive.size() - count);
-    for (std::size_t j = 0; j < alive.size(); ++j) {
-      if (on_plane[j])
-        removed[static_cast<std::size_t>(alive[j])] = 1;
-      else
-        still_alive.push_back(alive[j]);
-    }
-    alive.swap(still_alive);
-    result.planes.push_back(plane_coefficients);
-    result.removed_points += count;
+    if (!removePlane(plane_coefficients, min_points))
+      break; // the largest remaining plane is too small: no more floor or walls
+  }
+  if (params.bin_floor_fraction > 0 && !result.planes.empty()) {
+    const auto min_bin_floor_points =
+        static_cast<std::size_t>(std::ceil(params.bin_floor_fraction * double(total_valid)));
+    if (const auto bin_floor = findBinFloor(scene_mm.points_mm, alive, result.planes.front(),
+                                            params.distance_mm, min_bin_floor_points))
+      removePlane(*bin_floor, min_bin_floor_points);
   }
 
   if (scene_mm.isOrganized()) {

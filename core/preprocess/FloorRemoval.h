@@ -27,7 +27,12 @@ struct FloorRemovalResult {
 /// inlier distance `params.distance_mm`, sampled on at most 60k points for speed and then refined
 /// by least squares and applied to every point) and removes each one that holds at least
 /// `params.min_plane_fraction` of the scene's valid points; the search stops at the first plane
-/// that is too small. `params.enabled == false` or `max_planes == 0` returns a copy.
+/// that is too small. Then, with `params.bin_floor_fraction` > 0, removes the floor of a bin
+/// standing on the first plane (beyond the thesis): the plane parallel to it that holds at least
+/// that fraction of the points and has at most 2 % of the remaining points behind it (which the
+/// rim of the bin's walls and the parts' flat faces have: the floor lies behind them), fitted by
+/// least squares to the points within 5 mm of that height. `params.enabled == false` or
+/// `max_planes == 0` returns a copy.
 /// Deterministic for a given `seed`. Throws Error for an inconsistent cloud, Cancelled when
 /// `progress` asks to stop.
 FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& params,

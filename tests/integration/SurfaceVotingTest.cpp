@@ -83,9 +83,13 @@ TEST(SurfaceVoting, FindsMoreSupportsInBinsWithoutFalseDetections) {
 }
 
 TEST(SurfaceVoting, PumpConnectorsSeenFromTheSideReportTheirPipeAxisAsFreeTurn) {
-  const RecognitionParams params = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
-                                              "resources/presets/phoxi-bin-surface.json")
-                                       .params;
+  RecognitionParams params = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
+                                        "resources/presets/phoxi-bin-surface.json")
+                                 .params;
+  // The bin's floor stays: with it removed, this bin gives one false detection, an upright view's
+  // top flange matched on the lower flange of a leaning pump-connector (the view does not hold the
+  // rest of the part; docs/accuracy.md, "Bin floor"). This test is about the free turn axis.
+  params.floor.bin_floor_fraction = 0.0;
   std::vector<test::SynthTeach> views;
   std::vector<std::shared_ptr<const TaughtModel>> models;
   for (int side = 0; side < kTeachSides; ++side) {

@@ -45,6 +45,63 @@ TEST(FloorRemoval, RemovesTheFloorPlaneAndKeepsTheBox) {
   EXPECT_EQ(result.removed_points, floor_points + (box_points - kept_box));
 }
 
+TEST(FloorRemoval, BinFloorGoesAndTheRimAndPartsStay) {
+  // A bin standing on the ground 1000 mm from the camera: a 10 mm floor slab (its top at 990 mm),
+  // walls up to a rim at 850 mm, two parts lying on its floor. The ground around the bin is the
+  // dominant plane; the bin's floor, parallel to it, has nothing behind it; the rim and the parts'
+  // tops have the bin's floor behind them.
+  test::RaycastScene scene;
+  scene.floor_z_mm = 1000.0;
+  scene.boxes.emplace_back(Eigen::Vector3d(-160, -110, 990), Eigen::Vector3d(160, 110, 1000));
+  scene.boxes.emplace_back(Eigen::Vector3d(-160, -110, 850), Eigen::Vector3d(-150, 110, 990));
+  scene.boxes.emplace_back(Eigen::Vector3d(150, -110, 850), Eigen::Vector3d(160, 110, 990));
+  scene.boxes.emplace_back(Eigen::Vector3d(-150, -110, 850), Eigen::Vector3d(150, -100, 990));
+  scene.boxes.emplace_back(Eigen::Vector3d(-150, 100, 850), Eigen::Vector3d(150, 110, 990));
+  scene.boxes.emplace_back(Eigen::Vector3d(-60, -30, 960), Eigen::Vector3d(0, 30, 990));
+  scene.boxes.emplace_back(Eigen::Vector3d(40, -50, 975), Eigen::Vector3d(100, 10, 990));
+  const core::PointCloud cloud = scene.render(320, 240, 300.0, {300, 0, 0}, 0.1, 3);
+  constexpr int kBinFloor = 0, kFirstPart = 5;
+
+  core::FloorParams params;  // the ground only
+  const auto ground_only = core::removeFloor(cloud, params, 42);
+  ASSERT_EQ(ground_only.planes.size(), 1u);
+  EXPECT_NEAR(ground_only.planes[0].w(), 1000.0f, 0.5);
+
+  params.bin_floor_fraction = 0.02;
+  const auto result = core::removeFloor(cloud, params, 42);
+  ASSERT_EQ(result.planes.size(), 2u);
+  EXPECT_NEAR(result.planes[1].z(), -1.0f, 1e-3);
+  EXPECT_NEAR(result.planes[1].w(), 990.0f, 0.2) << "the bin floor's top, fitted exactly";
+  std::size_t bin_floor_kept = 0, bin_floor_seen = 0, rim = 0, rim_kept = 0, parts = 0,
+              parts_kept = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (!core::isValid(cloud.points_mm[i]))
+      continue;
+    const bool kept = core::isValid(result.remaining.points_mm[i]);
+    const int label = scene.labels[i];
+    if (label == kBinFloor) {
+      ++bin_floor_seen;
+      bin_floor_kept += kept ? 1 : 0;
+    } else if (label > kBinFloor && label < kFirstPart && cloud.points_mm[i].z() < 851.0f) {
+      ++rim;
+      rim_kept += kept ? 1 : 0;
+    } else if (label >= kFirstPart && cloud.points_mm[i].z() < 986.0f) {
+      ++parts;
+      parts_kept += kept ? 1 : 0;
+    }
+  }
+  ASSERT_GT(bin_floor_seen, cloud.validCount() / 50);
+  EXPECT_EQ(bin_floor_kept, 0u);
+  ASSERT_GT(rim, 100u);
+  EXPECT_EQ(rim_kept, rim);
+  ASSERT_GT(parts, 300u);
+  EXPECT_EQ(parts_kept, parts);
+
+  // Too small a bin floor for the share asked: nothing more goes.
+  params.bin_floor_fraction = 0.5;
+  EXPECT_EQ(core::removeFloor(cloud, params, 42).planes.size(), 1u);
+}
+
 TEST(FloorRemoval, SmallPlanesAreKeptAndDisabledIsACopy) {
   auto scene = boxOnFloor();
   const core::PointCloud cloud = scene.render(160, 120, 400.0, {300, 0, 0});
