@@ -24,9 +24,6 @@ constexpr int kCandidates = 12;
 /// The view is sampled for its self-voting with voxels of this share of its diameter.
 constexpr double kSamplingShare = 0.04;
 
-/// Share of the view's points, at least, that must differ for a symmetry to be worth testing.
-constexpr double kMinDifferingShare = 0.01;
-
 /// Whether `S` puts view point k within `distance_sq` of the view's surface, facing the same way.
 bool landsOnSurface(const VerifyModel& view, const SceneIndex& surface, const Eigen::Isometry3f& S,
                     std::size_t k, float distance_sq) {
@@ -43,24 +40,112 @@ double turnAngle(const Eigen::Isometry3d& T) {
   return Eigen::AngleAxisd(T.linear()).angle();
 }
 
-/// The near symmetry `S` would be: its overlap and its differing points.
+/// The teach scan's depth as the view shows it: the nearest view point per viewing direction
+/// (cells of about 1 mm at the view's depth), so that a point can be tested for being hidden
+/// behind the view's own surface.
+class ViewDepth {
+public:
+  ViewDepth(const PointCloud& cloud_model, const Eigen::Isometry3d& T_teach_model)
+      : m_T_teach_model(T_teach_model.cast<float>()) {
+    std::vector<Eigen::Vector3f> teach;
+    double depth_sum = 0;
+    for (const auto& p : cloud_model.points_mm)
+      if (isValid(p) && (m_T_teach_model * p).z() > 0) {
+        teach.push_back(m_T_teach_model * p);
+        depth_sum += teach.back().z();
+      }
+    if (teach.empty())
+      return;
+    m_step = float(1.0 / (depth_sum / double(teach.size()))); // 1 mm at the mean depth
+    Eigen::Vector2f low(1e9f, 1e9f), high(-1e9f, -1e9f);
+    for (const auto& p : teach) {
+      low = low.cwiseMin(direction(p));
+      high = high.cwiseMax(direction(p));
+    }
+    m_origin = low;
+    m_width = static_cast<int>((high.x() - low.x()) / m_step) + 1;
+    m_height = static_cast<int>((high.y() - low.y()) / m_step) + 1;
+    m_depth.assign(std::size_t(m_width) * std::size_t(m_height), kNone);
+    for (const auto& p : teach) {
+      float& d = m_depth[cell(p)];
+      d = std::min(d, p.z());
+    }
+  }
+
+  /// Whether the view's surface lies more than `margin_mm` in front of `p_model` (model frame)
+  /// as the teach camera sees it (the nearest depth in a 3 x 3 cell neighbourhood).
+  [[nodiscard]] bool hides(const Eigen::Vector3f& p_model, float margin_mm) const {
+    const Eigen::Vector3f p = m_T_teach_model * p_model;
+    if (m_depth.empty() || p.z() <= 0)
+      return false;
+    const Eigen::Vector2f uv = (direction(p) - m_origin) / m_step;
+    const int u = static_cast<int>(std::floor(uv.x())), v = static_cast<int>(std::floor(uv.y()));
+    float nearest = kNone;
+    for (int dv = -1; dv <= 1; ++dv)
+      for (int du = -1; du <= 1; ++du)
+        if (u + du >= 0 && v + dv >= 0 && u + du < m_width && v + dv < m_height)
+          nearest = std::min(
+              nearest, m_depth[std::size_t(v + dv) * std::size_t(m_width) + std::size_t(u + du)]);
+    return nearest < p.z() - margin_mm;
+  }
+
+private:
+  static constexpr float kNone = std::numeric_limits<float>::max();
+  static Eigen::Vector2f direction(const Eigen::Vector3f& p) {
+    return {p.x() / p.z(), p.y() / p.z()};
+  }
+  std::size_t cell(const Eigen::Vector3f& p) const {
+    const Eigen::Vector2f uv = (direction(p) - m_origin) / m_step;
+    const int u = std::clamp(static_cast<int>(uv.x()), 0, m_width - 1);
+    const int v = std::clamp(static_cast<int>(uv.y()), 0, m_height - 1);
+    return std::size_t(v) * std::size_t(m_width) + std::size_t(u);
+  }
+  Eigen::Isometry3f m_T_teach_model;
+  float m_step = 1.0f;
+  Eigen::Vector2f m_origin = Eigen::Vector2f::Zero();
+  int m_width = 0, m_height = 0;
+  std::vector<float> m_depth;
+};
+
+/// Whether the teach camera could have seen view point k moved by `S`: a surface turned away
+/// from it, or hidden behind the view's own surface, is not in the view whatever the part looks
+/// like there.
+bool seenFromTeachCamera(const VerifyModel& view, const Eigen::Isometry3f& S, std::size_t k,
+                         const Eigen::Vector3f& camera, const ViewDepth& depth, float margin_mm) {
+  const Eigen::Vector3f q = S * view.points[k];
+  const Eigen::Vector3f& n = view.normals[k];
+  if (n.allFinite() && (S.linear() * n).dot(camera - q) <= 0.0f)
+    return false;
+  return !depth.hides(q, margin_mm);
+}
+
+/// The near symmetry `S` would be: its overlap and its differing points. Points that S turns
+/// away from the teach camera or behind the view's own surface tell nothing (the view could not
+/// have held them) and are left out of both: a tilted plate's near rim turned to the far side is
+/// not a difference.
 NearSymmetry describe(const VerifyModel& view, const SceneIndex& surface,
-                      const Eigen::Isometry3d& S_model, double tolerance_mm) {
+                      const Eigen::Isometry3d& S_model, const Eigen::Vector3f& camera,
+                      const ViewDepth& depth, double tolerance_mm) {
   NearSymmetry s;
   s.S_model = S_model;
   const Eigen::Isometry3f S = S_model.cast<float>();
   const Eigen::Isometry3f S_inverse = S.inverse();
   const auto near_sq = static_cast<float>(tolerance_mm * tolerance_mm);
   const float far_sq = 9.0f * near_sq;
-  std::size_t on = 0;
+  std::size_t on = 0, seen = 0;
   for (std::size_t k = 0; k < view.points.size(); ++k) {
-    on += landsOnSurface(view, surface, S, k, near_sq) ? 1 : 0;
-    if (!landsOnSurface(view, surface, S, k, far_sq))
-      s.differing.push_back(static_cast<std::uint32_t>(k));
-    if (!landsOnSurface(view, surface, S_inverse, k, far_sq))
+    const float margin = 3.0f * static_cast<float>(tolerance_mm);
+    if (seenFromTeachCamera(view, S, k, camera, depth, margin)) {
+      ++seen;
+      on += landsOnSurface(view, surface, S, k, near_sq) ? 1 : 0;
+      if (!landsOnSurface(view, surface, S, k, far_sq))
+        s.differing.push_back(static_cast<std::uint32_t>(k));
+    }
+    if (seenFromTeachCamera(view, S_inverse, k, camera, depth, margin) &&
+        !landsOnSurface(view, surface, S_inverse, k, far_sq))
       s.differing_inverse.push_back(static_cast<std::uint32_t>(k));
   }
-  s.overlap = double(on) / double(view.points.size());
+  s.overlap = seen ? double(on) / double(seen) : 0.0;
   return s;
 }
 
@@ -77,6 +162,8 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
   SceneIndexOptions options;
   options.viewpoint_mm = model.T_teach_model.inverse().translation();
   const SceneIndex surface(model.cloud_mm, options);
+  const Eigen::Vector3f camera = options.viewpoint_mm.cast<float>();
+  const ViewDepth depth(model.cloud_mm, model.T_teach_model);
 
   const double sampling_mm = std::max(kSamplingShare * model.diameter_mm, tolerance_mm);
   const OrientedPoints sampled = sampleOriented(view.points, view.normals, sampling_mm);
@@ -92,15 +179,14 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
     if (turnAngle(voted.T_scene_model) < kMinTurnRad)
       continue;
     // ICP can slide a turn along the view's own surface; the better overlap is kept.
-    NearSymmetry s = describe(view, surface, voted.T_scene_model, tolerance_mm);
+    NearSymmetry s = describe(view, surface, voted.T_scene_model, camera, depth, tolerance_mm);
     const Eigen::Isometry3d polished =
         refinePose(refine_model, surface, s.S_model, icp).T_scene_model;
     if (turnAngle(polished) >= kMinTurnRad) {
-      NearSymmetry t = describe(view, surface, polished, tolerance_mm);
+      NearSymmetry t = describe(view, surface, polished, camera, depth, tolerance_mm);
       if (t.overlap > s.overlap)
         s = std::move(t);
     }
-    const double min_differing = kMinDifferingShare * double(view.points.size());
     const bool repeated = std::any_of(found.begin(), found.end(), [&](const NearSymmetry& f) {
       return turnAngle(f.S_model.inverse() * s.S_model) < kMinTurnRad;
     });
@@ -108,8 +194,7 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
         "view '{}': turn by {:.0f}° ({} votes): overlap {:.3f}, {} / {} points differ{}",
         model.name, turnAngle(s.S_model) * 180.0 / M_PI, voted.votes, s.overlap, s.differing.size(),
         s.differing_inverse.size(), repeated ? ", repeated" : "");
-    if (!repeated && s.overlap >= min_overlap && double(s.differing.size()) >= min_differing &&
-        double(s.differing_inverse.size()) >= min_differing)
+    if (!repeated && s.overlap >= min_overlap)
       found.push_back(std::move(s));
   }
   return found;

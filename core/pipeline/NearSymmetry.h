@@ -21,21 +21,25 @@ namespace scanpick::core {
 struct NearSymmetry {
   Eigen::Isometry3d S_model = Eigen::Isometry3d::Identity();
   /// Share of the view's points that S puts back on its surface (within the tolerance, normals
-  /// agreeing within 60°), [0, 1].
+  /// agreeing within 60°), [0, 1], among those S leaves where the teach camera could see them
+  /// (facing it, not behind the view's own surface): a tilted plate's near rim turned to its far
+  /// side, or a face turned into the shadow of the part's own stem, is no difference.
   double overlap = 0.0;
-  /// Points p of the view (indices into VerifyModel::points) that S moves clearly off its surface:
-  /// where pose T·S puts material and pose T does not. Tested at pose T·S.
+  /// Points p of the view (indices into VerifyModel::points) that S moves clearly (3 x tolerance)
+  /// off its surface where the teach camera would have seen them: where pose T·S puts material and
+  /// pose T does not. Tested at pose T·S. Few or none: the view repeats itself under S.
   std::vector<std::uint32_t> differing;
   /// Points p that S⁻¹ moves clearly off the surface: where pose T puts material and pose T·S does
   /// not. Tested at pose T. (The same as `differing` for a half turn.)
   std::vector<std::uint32_t> differing_inverse;
 };
 
-/// The view's near symmetries among the half turns about its three principal axes through its
-/// centroid: each turn is polished by ICP (`icp`) onto the view itself and kept when it puts at
-/// least `min_overlap` of the view's points back on its surface (within `tolerance_mm`) and at
-/// least 1 % of them clearly (3 x tolerance) off it. `view` are the verification points of
-/// `model`. Deterministic. Empty when min_overlap <= 0.
+/// The view's near symmetries: the most voted poses of the view against itself (surface point
+/// pair voting, PointPairVoting.h, with each point's own neighbourhood left out so that the
+/// identity does not win every vote) that turn it by 30° or more, each kept as voted or polished
+/// by ICP (`icp`) onto the view itself, whichever overlaps more, when it puts at least
+/// `min_overlap` of the view's points back on its surface (within `tolerance_mm`). `view` are the
+/// verification points of `model`. Deterministic. Empty when min_overlap <= 0.
 std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const VerifyModel& view,
                                              const RefineModel& refine_model,
                                              const RefineParams& icp, double tolerance_mm,

@@ -295,9 +295,9 @@ std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
   return out;
 }
 
-/// The differing points of a near symmetry tell two poses apart only when at least this many of
-/// them are not hidden.
-constexpr std::size_t kMinDistinguishingPoints = 8;
+/// The differing points of a near symmetry tell two poses apart only when at least this share of
+/// the view's points (and 8) are among them and not hidden: a handful at the view's edges is noise.
+constexpr double kMinDistinguishingShare = 0.02;
 
 /// A detection is turned by a near symmetry when the scan contradicts this much larger a share of
 /// its differing points than of the turned pose's (contradictedShare).
@@ -310,21 +310,31 @@ constexpr double kTurnMargin = 0.1;
 /// it). Confirmed points tell less: both poses' differing points can lie near other surface of the
 /// part. The detection takes the turned pose when the scan rules its own out; when neither is
 /// ruled out (the differing points are hidden or unseen) and the turned pose verifies too, it is
-/// reported as an alternative.
+/// reported as an alternative. A symmetry under which the view repeats itself (too few differing
+/// points to tell) always gives an alternative: T·S as it is.
 void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& prep,
                            const VerifyScene& scene, const MatchingParams& params,
                            const PoseVerifier& verify, const PosePolisher& polish) {
+  const std::size_t min_seen = std::max<std::size_t>(
+      8, static_cast<std::size_t>(kMinDistinguishingShare * double(prep.verify->points.size())));
   tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
     Detection& d = detections[k];
     for (const NearSymmetry& s : prep.symmetries) {
+      if (s.differing.size() < min_seen && s.differing_inverse.size() < min_seen) {
+        // The view repeats itself under S: nothing in any scan can tell T from T·S. (Verifying
+        // T·S would not tell either: the view's own self-occlusion, seen from the teach camera,
+        // favours the pose that keeps it where the scan's camera sees it.)
+        d.alternative_poses.push_back(d.T_scene_model * s.S_model);
+        continue;
+      }
       const double as_found = contradictedShare(
           tallyPoints(*prep.verify, scene, d.T_scene_model, params.verify_tolerance_mm,
                       &s.differing_inverse),
-          kMinDistinguishingPoints);
+          min_seen);
       const Eigen::Isometry3d T_turned = polish(d.T_scene_model * s.S_model);
       const double turned = contradictedShare(
           tallyPoints(*prep.verify, scene, T_turned, params.verify_tolerance_mm, &s.differing),
-          kMinDistinguishingPoints);
+          min_seen);
       logger()->trace("detection {}: {:.2f} of the differing points contradicted as found, {:.2f} "
                       "turned", k, as_found, turned);
       if (turned > as_found + kTurnMargin)
