@@ -36,19 +36,41 @@ Eigen::Isometry3d partFromModel(const test::SynthTeach& view) {
   return view.T_teach_part.inverse() * view.model->T_teach_model;
 }
 
+/// A taught view's verification points and its near symmetries, as the recognizer finds them.
+struct ViewSymmetries {
+  std::shared_ptr<const VerifyModel> view;
+  std::vector<NearSymmetry> found;
+};
+
+ViewSymmetries symmetriesOf(const TaughtModel& model, const RecognitionParams& params) {
+  ViewSymmetries out;
+  out.view = makeVerifyModel(model, params.refine.model_points, params.keypoints.normal_radius_mm);
+  const RefineModel refine(model.cloud_mm, params.refine.model_points,
+                           Eigen::Vector3d(model.T_teach_model.inverse().translation()));
+  out.found =
+      findNearSymmetries(model, *out.view, refine, params.refine,
+                         params.matching.verify_tolerance_mm, params.matching.symmetry_overlap);
+  return out;
+}
+
+/// A teach-layout scan of one coat-rack resting on `side`.
+SynthScene coatRackScan(std::uint64_t seed, int side) {
+  SynthRequest request;
+  request.parts = {"coat-rack"};
+  request.layout = LayoutKind::Teach;
+  request.count = 1;
+  request.seed = seed;
+  request.teach_side = side;
+  return synthesize(request);
+}
+
 } // namespace
 
 TEST(NearSymmetry, CoatRackFromAboveTurnsHalfwayAboutItsPlateNormal) {
   const RecognitionParams params = phoxiBin();
   ASSERT_GT(params.matching.symmetry_overlap, 0.0) << "phoxi-bin checks near symmetries";
   const test::SynthTeach top = test::teachFromSynth("coat-rack", 5, params, 0);
-  const auto view =
-      makeVerifyModel(*top.model, params.refine.model_points, params.keypoints.normal_radius_mm);
-  const RefineModel refine(top.model->cloud_mm, params.refine.model_points,
-                           Eigen::Vector3d(top.model->T_teach_model.inverse().translation()));
-  const std::vector<NearSymmetry> found =
-      findNearSymmetries(*top.model, *view, refine, params.refine,
-                         params.matching.verify_tolerance_mm, params.matching.symmetry_overlap);
+  const auto [view, found] = symmetriesOf(*top.model, params);
   ASSERT_EQ(found.size(), 1u);
   const NearSymmetry& s = found.front();
   // In the part frame: a half turn about the plate normal (z).
@@ -82,23 +104,12 @@ TEST(NearSymmetry, CoatRackFromAboveTurnsHalfwayAboutItsPlateNormal) {
 TEST(NearSymmetry, DifferingPointsTellTheTrueTurnAndRecognitionReportsIt) {
   const RecognitionParams params = phoxiBin();
   const test::SynthTeach top = test::teachFromSynth("coat-rack", 5, params, 0);
-  const auto view =
-      makeVerifyModel(*top.model, params.refine.model_points, params.keypoints.normal_radius_mm);
-  const RefineModel refine(top.model->cloud_mm, params.refine.model_points,
-                           Eigen::Vector3d(top.model->T_teach_model.inverse().translation()));
-  const std::vector<NearSymmetry> found =
-      findNearSymmetries(*top.model, *view, refine, params.refine,
-                         params.matching.verify_tolerance_mm, params.matching.symmetry_overlap);
+  const auto [view, found] = symmetriesOf(*top.model, params);
   ASSERT_EQ(found.size(), 1u);
   const NearSymmetry& s = found.front();
 
   // Another scan of a coat-rack hook up, at another turn on the table.
-  SynthRequest request;
-  request.parts = {"coat-rack"};
-  request.layout = LayoutKind::Teach;
-  request.count = 1;
-  request.seed = 11;
-  const SynthScene scan = synthesize(request);
+  const SynthScene scan = coatRackScan(11, 0);
   const Eigen::Isometry3d T_true =
       scan.scene.T_scene_part(scan.scene.instances.at(0)) * partFromModel(top);
   const Eigen::Isometry3d T_flipped = T_true * s.S_model;
@@ -137,13 +148,7 @@ TEST(NearSymmetry, CoatRackFromBelowCannotBeToldFromItsHalfTurnAndSaysSo) {
   // alternative, and one of the two is the truth.
   const RecognitionParams params = phoxiBin();
   const test::SynthTeach below = test::teachFromSynth("coat-rack", 5, params, 3);
-  const auto view =
-      makeVerifyModel(*below.model, params.refine.model_points, params.keypoints.normal_radius_mm);
-  const RefineModel refine(below.model->cloud_mm, params.refine.model_points,
-                           Eigen::Vector3d(below.model->T_teach_model.inverse().translation()));
-  const std::vector<NearSymmetry> found =
-      findNearSymmetries(*below.model, *view, refine, params.refine,
-                         params.matching.verify_tolerance_mm, params.matching.symmetry_overlap);
+  const auto [view, found] = symmetriesOf(*below.model, params);
   const Eigen::Isometry3d T_part_model = partFromModel(below);
   const auto half_turn = std::find_if(found.begin(), found.end(), [&](const NearSymmetry& s) {
     const Eigen::AngleAxisd turn((T_part_model * s.S_model * T_part_model.inverse()).linear());
@@ -156,13 +161,8 @@ TEST(NearSymmetry, CoatRackFromBelowCannotBeToldFromItsHalfTurnAndSaysSo) {
               view->points.size());
   EXPECT_LT(half_turn->differing.size(), view->points.size() / 50);
 
-  SynthRequest request;
-  request.parts = {"coat-rack"};
-  request.layout = LayoutKind::Teach;
-  request.count = 1;
-  request.seed = 14; // a scan in which the view finds it (recall: docs/accuracy.md)
-  request.teach_side = 3;
-  const SynthScene scan = synthesize(request);
+  // A scan in which the view finds it (how often it does: docs/accuracy.md).
+  const SynthScene scan = coatRackScan(14, 3);
   const Eigen::Isometry3d T_true =
       scan.scene.T_scene_part(scan.scene.instances.at(0)) * T_part_model;
   Recognizer recognizer;
