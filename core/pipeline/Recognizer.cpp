@@ -105,6 +105,14 @@ void sortBestFirst(std::vector<Detection>& detections) {
                    [](const Detection& a, const Detection& b) { return a.score > b.score; });
 }
 
+/// What a view's near symmetries were found with (findNearSymmetries' parameters).
+struct SymmetryKey {
+  double overlap = 0.0;
+  double tolerance_mm = 0.0;
+  RefineParams icp;
+  bool operator==(const SymmetryKey&) const = default;
+};
+
 /// A model prepared for verification, refinement and surface voting.
 struct ModelPrep {
   std::shared_ptr<const TaughtModel> model;
@@ -116,9 +124,8 @@ struct ModelPrep {
   std::shared_ptr<const RefineModel> refine;           ///< when ICP or surface voting needs it
   double surface_sampling_mm = 0;                      ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs;         ///< when surface voting is on
-  /// Near symmetries (with `symmetry_key`: the overlap and verification tolerance they were
-  /// found with; unset when not searched).
-  std::optional<std::pair<double, double>> symmetry_key;
+  /// Near symmetries, and what they were found with (unset when not searched).
+  std::optional<SymmetryKey> symmetry_key;
   std::vector<NearSymmetry> symmetries;
 };
 
@@ -169,9 +176,9 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
   const double radius = params.keypoints.normal_radius_mm;
   const double sampling = params.matching.surface_sampling_mm;
   const double tolerance = params.matching.verify_tolerance_mm;
-  const std::optional<std::pair<double, double>> symmetry_key =
+  const std::optional<SymmetryKey> symmetry_key =
       params.matching.symmetry_overlap > 0 && tolerance > 0
-          ? std::optional(std::pair(params.matching.symmetry_overlap, tolerance))
+          ? std::optional(SymmetryKey{params.matching.symmetry_overlap, tolerance, params.refine})
           : std::nullopt;
   // ICP needs the model prepared: for refinement, to polish surface voting's poses, and to fit
   // near symmetries.

@@ -2,6 +2,7 @@
 
 #include "core/common/Error.h"
 
+#include <cmath>
 #include <gtest/gtest.h>
 #include <random>
 
@@ -105,6 +106,30 @@ TEST(PointPairVoting, FindsAnInstanceAtItsPose) {
   // Within a few sampling steps and about one angle bin (12°).
   EXPECT_LT(translationError(poses.front().T_scene_model, truth), 2.0 * kSampling);
   EXPECT_LT(rotationError(poses.front().T_scene_model, truth), 0.2);
+}
+
+TEST(PointPairVoting, VotingAgainstItselfWithoutItsOwnNeighbourhoodFindsTheSymmetry) {
+  // A plate with a block at each end, the same when turned 180° about its normal (z) through its
+  // centre. Voted against itself, the identity wins; with each point's own neighbourhood left
+  // out, the half turn does.
+  OrientedPoints raw;
+  addBox(raw, {-40, -15, 0}, {40, 15, 5}, 1.0f, {0, 1, 2, 3, 5});
+  addBox(raw, {-35, -5, 5}, {-25, 5, 15}, 1.0f, {0, 1, 2, 3, 5});
+  addBox(raw, {25, -5, 5}, {35, 5, 15}, 1.0f, {0, 1, 2, 3, 5});
+  const OrientedPoints part = sampleOriented(raw.points, raw.normals, kSampling);
+  const PointPairModel model(part, kSampling);
+  VotingOptions options;
+  options.reference_stride = 1;
+  options.max_poses = 3;
+  const auto with_self = model.vote(part, options);
+  ASSERT_FALSE(with_self.empty());
+  EXPECT_LT(rotationError(with_self.front().T_scene_model, Eigen::Isometry3f::Identity()), 0.2);
+  options.exclude_self_mm = 10.0;
+  const auto without_self = model.vote(part, options);
+  ASSERT_FALSE(without_self.empty());
+  const Eigen::Isometry3f half_turn = pose(float(M_PI), {0, 0, 1}, {0, 0, 0});
+  EXPECT_LT(rotationError(without_self.front().T_scene_model, half_turn), 0.2);
+  EXPECT_LT(translationError(without_self.front().T_scene_model, half_turn), 2.0 * kSampling);
 }
 
 TEST(PointPairVoting, FindsEveryInstanceOfASceneAndIsRepeatable) {
