@@ -1,20 +1,17 @@
 #include "core/pipeline/Recognizer.h"
 
-#include "core/pipeline/NearSymmetry.h"
-#include "core/pipeline/PoseVerification.h"
-
 #include "core/common/Error.h"
 #include "core/common/Log.h"
 #include "core/features/FeatureExtraction.h"
 #include "core/matching/FeatureMatcher.h"
 #include "core/matching/PointPairVoting.h"
 #include "core/matching/RevolutionAxis.h"
+#include "core/pipeline/NearSymmetry.h"
+#include "core/pipeline/PoseVerification.h"
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "core/preprocess/SceneSplit.h"
 #include "core/refine/PoseRefinement.h"
-
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -22,6 +19,7 @@
 #include <cstring>
 #include <functional>
 #include <optional>
+#include <tbb/parallel_for.h>
 
 namespace scanpick::core {
 namespace {
@@ -55,8 +53,9 @@ std::uint64_t sceneHash(const PointCloud& cloud) {
 }
 
 std::uint64_t sensorHash(const SensorModel& s) {
-  const double values[] = {double(s.width), double(s.height), s.fx, s.fy, s.cx, s.cy,
-                           s.min_range_mm, s.max_range_mm, s.nominal_distance_mm};
+  const double values[] = {
+      double(s.width), double(s.height),     s.fx, s.fy, s.cx, s.cy, s.min_range_mm,
+      s.max_range_mm,  s.nominal_distance_mm};
   std::uint64_t h = hashBytes(values, sizeof values, 14695981039346656037ull);
   return hashBytes(s.T_camera_projector.matrix().data(), 16 * sizeof(double), h);
 }
@@ -116,14 +115,14 @@ struct SymmetryKey {
 /// A model prepared for verification, refinement and surface voting.
 struct ModelPrep {
   std::shared_ptr<const TaughtModel> model;
-  int points = 0;                ///< refine.model_points it was prepared with
-  double normal_radius_mm = 0;   ///< keypoints.normal_radius_mm it was prepared with
+  int points = 0;              ///< refine.model_points it was prepared with
+  double normal_radius_mm = 0; ///< keypoints.normal_radius_mm it was prepared with
   std::shared_ptr<const VerifyModel> verify;
   /// The axis about which the model is a surface of revolution, if it is one.
   std::optional<RevolutionAxis> axis;
-  std::shared_ptr<const RefineModel> refine;           ///< when ICP or surface voting needs it
-  double surface_sampling_mm = 0;                      ///< of `pairs`
-  std::shared_ptr<const PointPairModel> pairs;         ///< when surface voting is on
+  std::shared_ptr<const RefineModel> refine;   ///< when ICP or surface voting needs it
+  double surface_sampling_mm = 0;              ///< of `pairs`
+  std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on
   /// Near symmetries, and what they were found with (unset when not searched).
   std::optional<SymmetryKey> symmetry_key;
   std::vector<NearSymmetry> symmetries;
@@ -205,9 +204,8 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
                       "is not seen: axis through ({:.1f}, {:.1f}, {:.1f}) mm along ({:.3f}, "
                       "{:.3f}, {:.3f})",
                       model->name, 100.0 * prep->axis->inlier_share, prep->axis->point_mm.x(),
-                      prep->axis->point_mm.y(), prep->axis->point_mm.z(),
-                      prep->axis->direction.x(), prep->axis->direction.y(),
-                      prep->axis->direction.z());
+                      prep->axis->point_mm.y(), prep->axis->point_mm.z(), prep->axis->direction.x(),
+                      prep->axis->direction.y(), prep->axis->direction.z());
   }
   if (needs_refine && !prep->refine)
     prep->refine = std::make_shared<const RefineModel>(
@@ -221,7 +219,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     // A surface of revolution reports its free turn instead.
     if (!prep->axis)
       prep->symmetries = findNearSymmetries(*model, *prep->verify, *prep->refine, params.refine,
-                                          tolerance, params.matching.symmetry_overlap);
+                                            tolerance, params.matching.symmetry_overlap);
     prep->symmetry_key = symmetry_key;
   }
   constexpr std::size_t kKeptModels = 8;
@@ -242,8 +240,7 @@ std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
                                          const FeatureList& model_features,
                                          const std::vector<FeatureList>& object_features,
                                          const MatchingParams& params, double cluster_mm,
-                                         const PoseVerifier& verify,
-                                         const PosePolisher& polish,
+                                         const PoseVerifier& verify, const PosePolisher& polish,
                                          const ProgressFn& progress) {
   VotingOptions options;
   options.reference_stride = params.surface_reference_stride;
@@ -334,18 +331,19 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
         d.alternative_poses.push_back(d.T_scene_model * s.S_model);
         continue;
       }
-      const double as_found = contradictedShare(
-          tallyPoints(*prep.verify, scene, d.T_scene_model, params.verify_tolerance_mm,
-                      &s.differing_inverse),
-          min_seen);
+      const double as_found =
+          contradictedShare(tallyPoints(*prep.verify, scene, d.T_scene_model,
+                                        params.verify_tolerance_mm, &s.differing_inverse),
+                            min_seen);
       const Eigen::Isometry3d T_turned = polish(d.T_scene_model * s.S_model);
       const double turned = contradictedShare(
           tallyPoints(*prep.verify, scene, T_turned, params.verify_tolerance_mm, &s.differing),
           min_seen);
       logger()->trace("detection {}: {:.2f} of the differing points contradicted as found, {:.2f} "
-                      "turned", k, as_found, turned);
+                      "turned",
+                      k, as_found, turned);
       if (turned > as_found + kTurnMargin)
-        continue;  // the turned pose is ruled out
+        continue; // the turned pose is ruled out
       const double coverage = verify(T_turned);
       if (coverage < params.min_coverage)
         continue;
@@ -357,8 +355,8 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
         d.coverage = coverage;
         d.score = coverage;
         d.refined = true;
-        d.matched_features.clear();      // they supported the pose it had,
-        d.alternative_poses.clear();     // and so did these
+        d.matched_features.clear();  // they supported the pose it had,
+        d.alternative_poses.clear(); // and so did these
       } else {
         d.alternative_poses.push_back(T_turned);
       }
@@ -486,8 +484,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   if (surface) {
     const auto t0 = Clock::now();
     if (cache.surface_scene_key != pre_key || cache.surface_scene_sampling != sampling_mm) {
-      cache.surface_scene = std::make_shared<const OrientedPoints>(sampleOriented(
-          cache.scene_index->points(), cache.scene_index->normals(), sampling_mm));
+      cache.surface_scene = std::make_shared<const OrientedPoints>(
+          sampleOriented(cache.scene_index->points(), cache.scene_index->normals(), sampling_mm));
       cache.surface_scene_key = pre_key;
       cache.surface_scene_sampling = sampling_mm;
     }
@@ -507,7 +505,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     };
   std::vector<std::vector<MatchCandidate>> candidates(objects.size());
   forEachObject(objects.size(), progress, 0.8, 0.95, [&](std::size_t i) {
-    candidates[i] = matchFeatures(model->features, (*cache.features)[i], params.matching, {}, verify);
+    candidates[i] =
+        matchFeatures(model->features, (*cache.features)[i], params.matching, {}, verify);
   });
   for (std::size_t i = 0; i < candidates.size(); ++i)
     for (const auto& c : candidates[i]) {
@@ -536,8 +535,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     resolveNearSymmetries(result.detections, *prep, verify_scene, params.matching, verify,
                           [&](const Eigen::Isometry3d& T) { return icp(T).T_scene_model; });
     sortBestFirst(result.detections);
-    result.detections =
-        suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
+    result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
   }
   if (params.matching.max_detections > 0 &&
       result.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
@@ -548,7 +546,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     tbb::parallel_for(std::size_t{0}, result.detections.size(), [&](std::size_t k) {
       Detection& d = result.detections[k];
       if (d.refined)
-        return;  // a surface-voting pose ICP has polished already
+        return; // a surface-voting pose ICP has polished already
       const RefinementResult r = icp(d.T_scene_model);
       if (!verifying) {
         d.T_scene_model = r.T_scene_model;
@@ -562,6 +560,10 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
                       (r.T_scene_model.translation() - d.T_scene_model.translation()).norm(),
                       r.iterations, r.converged);
       if (keepsRefinedPose(d.coverage, coverage)) {
+        // An alternative T·S becomes T'·S: the same move, taken in the scene frame.
+        const Eigen::Isometry3d move = r.T_scene_model * d.T_scene_model.inverse();
+        for (auto& T_alternative : d.alternative_poses)
+          T_alternative = move * T_alternative;
         d.T_scene_model = r.T_scene_model;
         d.refined = true;
         d.coverage = coverage;
@@ -601,8 +603,9 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
   for (std::size_t m = 0; m < models.size(); ++m) {
     recognizer.setModel(models[m]);
     const double begin = double(m) / double(models.size());
-    RecognitionResult r = recognizer.recognize(
-        scene_mm, sensor, params, subProgress(progress, begin, begin + 1.0 / double(models.size())));
+    RecognitionResult r =
+        recognizer.recognize(scene_mm, sensor, params,
+                             subProgress(progress, begin, begin + 1.0 / double(models.size())));
     diameter_mm = std::max(diameter_mm, models[m]->diameter_mm);
     for (auto& d : r.detections) {
       d.model_index = static_cast<int>(m);

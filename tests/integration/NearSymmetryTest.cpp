@@ -177,4 +177,17 @@ TEST(NearSymmetry, CoatRackFromBelowCannotBeToldFromItsHalfTurnAndSaysSo) {
   std::printf("%zu alternative(s); the nearest of the poses is %.2f° from the truth\n",
               d.alternative_poses.size(), best_deg);
   EXPECT_LT(best_deg, 5.0);
+
+  // With ICP on, the alternative moves with the refined pose: still the pose turned by S.
+  RecognitionParams refined = params;
+  refined.refine.enabled = true;
+  Recognizer refining;
+  refining.setModel(below.model);
+  const RecognitionResult again = refining.recognize(scan.render.cloud, scan.sensor, refined);
+  ASSERT_EQ(again.detections.size(), 1u);
+  const Detection& r = again.detections.front();
+  ASSERT_FALSE(r.alternative_poses.empty());
+  const Eigen::Isometry3d S_reported = r.T_scene_model.inverse() * r.alternative_poses.front();
+  EXPECT_LT(angleDeg(S_reported.linear().transpose() * half_turn->S_model.linear()), 0.01);
+  EXPECT_LT((S_reported.translation() - half_turn->S_model.translation()).norm(), 1e-3);
 }
