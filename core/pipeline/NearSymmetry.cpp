@@ -24,16 +24,20 @@ constexpr int kCandidates = 12;
 /// The view is sampled for its self-voting with voxels of this share of its diameter.
 constexpr double kSamplingShare = 0.04;
 
-/// Whether `S` puts view point k within `distance_sq` of the view's surface, facing the same way.
-bool landsOnSurface(const VerifyModel& view, const SceneIndex& surface, const Eigen::Isometry3f& S,
-                    std::size_t k, float distance_sq) {
-  const std::int64_t near = surface.nearest(S * view.points[k], distance_sq);
+/// Squared distance from view point k moved by `S` to the nearest point of the view's surface
+/// closer than sqrt(max_distance_sq), or infinity when there is none or it faces another way
+/// (more than 60° apart).
+float surfaceDistanceSq(const VerifyModel& view, const SceneIndex& surface,
+                        const Eigen::Isometry3f& S, std::size_t k, float max_distance_sq) {
+  float distance_sq = 0.0f;
+  const std::int64_t near = surface.nearest(S * view.points[k], max_distance_sq, &distance_sq);
   if (near < 0)
-    return false;
+    return std::numeric_limits<float>::infinity();
   const Eigen::Vector3f& n = view.normals[k];
   const Eigen::Vector3f& n_surface = surface.normals()[static_cast<std::size_t>(near)];
-  return !n.allFinite() || !n_surface.allFinite() ||
-         (S.linear() * n).dot(n_surface) > kMinNormalAgreement;
+  const bool agrees = !n.allFinite() || !n_surface.allFinite() ||
+                      (S.linear() * n).dot(n_surface) > kMinNormalAgreement;
+  return agrees ? distance_sq : std::numeric_limits<float>::infinity();
 }
 
 double turnAngle(const Eigen::Isometry3d& T) {
@@ -137,12 +141,13 @@ NearSymmetry describe(const VerifyModel& view, const SceneIndex& surface,
     const float margin = 3.0f * static_cast<float>(tolerance_mm);
     if (seenFromTeachCamera(view, S, k, camera, depth, margin)) {
       ++seen;
-      on += landsOnSurface(view, surface, S, k, near_sq) ? 1 : 0;
-      if (!landsOnSurface(view, surface, S, k, far_sq))
+      const float distance_sq = surfaceDistanceSq(view, surface, S, k, far_sq);
+      on += distance_sq < near_sq ? 1 : 0;
+      if (!(distance_sq < far_sq))
         s.differing.push_back(static_cast<std::uint32_t>(k));
     }
     if (seenFromTeachCamera(view, S_inverse, k, camera, depth, margin) &&
-        !landsOnSurface(view, surface, S_inverse, k, far_sq))
+        !(surfaceDistanceSq(view, surface, S_inverse, k, far_sq) < far_sq))
       s.differing_inverse.push_back(static_cast<std::uint32_t>(k));
   }
   s.overlap = seen ? double(on) / double(seen) : 0.0;
