@@ -6,12 +6,17 @@
 /// the part's turn about the axis: the recognizer reports that axis with each detection made by
 /// such a view (Detection::free_turn_axis), and the turn it reports is only one of many.
 ///
+/// A view that is a surface of revolution but for a detail (a cup whose handle shows) fits an axis
+/// with fewer of its normals; the detail (detailPoints) then tells the turn where a scan sees it.
+///
 /// The fit is the line-geometry one (Pottmann and Wallner, "Computational Line Geometry"): on a
 /// surface of revolution every normal line meets the axis, i.e. ((p − c) × n) · a = 0 for each
 /// point p with normal n, axis point c and direction a. That is linear in (a, c × a); the
-/// direction is the smallest eigenvector of the Schur complement of the 6 × 6 normal matrix.
+/// direction is the smallest eigenvector of the Schur complement of the 6 × 6 normal matrix. It is
+/// repeated twice on the inliers of the previous fit, so a detail does not pull the axis off.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -19,8 +24,8 @@ namespace scanpick::core {
 
 /// An axis in the model frame.
 struct RevolutionAxis {
-  Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();       ///< on the axis, nearest the centroid
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();     ///< unit
+  Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();   ///< on the axis, nearest the centroid
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< unit
   /// Share of the points that can tell (with a normal, off the axis, and not facing along it as
   /// a flat end face does) whose normal lies within the angle tolerance of the plane through the
   /// axis and the point.
@@ -37,5 +42,13 @@ std::optional<RevolutionAxis> fitRevolutionAxis(const std::vector<Eigen::Vector3
                                                 const std::vector<Eigen::Vector3f>& normals,
                                                 double angle_tolerance_rad = 0.17,
                                                 double min_inlier_share = 0.98);
+
+/// The points off the surface of revolution about `axis` (indices into `points_mm`): those in a
+/// cell of height along and distance from the axis (`cell_mm` each) whose points span less than
+/// `max_span_deg` about it. The body of a cup seen from the side spans about 180° at every height
+/// and distance, its handle about 15°.
+std::vector<std::uint32_t> detailPoints(const std::vector<Eigen::Vector3f>& points_mm,
+                                        const RevolutionAxis& axis, double cell_mm,
+                                        double max_span_deg = 45.0);
 
 } // namespace scanpick::core

@@ -120,6 +120,10 @@ struct ModelPrep {
   std::shared_ptr<const VerifyModel> verify;
   /// The axis about which the model is a surface of revolution, if it is one.
   std::optional<RevolutionAxis> axis;
+  /// Otherwise, the axis about which it is one but for a detail (a cup's handle), if it is so,
+  /// and the detail's points (indices into verify->points).
+  std::optional<RevolutionAxis> near_axis;
+  std::vector<std::uint32_t> near_axis_detail;
   std::shared_ptr<const RefineModel> refine;   ///< when ICP or surface voting needs it
   double surface_sampling_mm = 0;              ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on
@@ -127,6 +131,17 @@ struct ModelPrep {
   std::optional<SymmetryKey> symmetry_key;
   std::vector<NearSymmetry> symmetries;
 };
+
+/// fitRevolutionAxis's angle tolerance (10°). A view whose normals fit an axis this share or more
+/// (but fewer than fitRevolutionAxis's default 98 %) is a surface of revolution but for a detail:
+/// the cup's side views fit 93-96 %, the support's and the coat-rack's views far less.
+constexpr double kRevolutionTolerance = 0.17;
+constexpr double kNearRevolutionShare = 0.85;
+/// Cells (height along and distance from the axis) in which detailPoints compares angles: 2-3 mm
+/// cells split a cup's body (its points scatter by the fit's residual), 6 mm ones keep it whole.
+constexpr double kDetailCellMm = 6.0;
+/// A detection sees the detail of its view when the scan confirms at least this share of it.
+constexpr double kMinDetailSeenShare = 0.25;
 
 /// A refined pose whose coverage is lower by less than this is still kept (keepsRefinedPose).
 constexpr double kIcpCoverageSlack = 0.01;
@@ -166,6 +181,14 @@ struct Recognizer::Cache {
 };
 
 namespace {
+/// Whether `S` (model frame) is a turn about `axis`: its rotation axis within 10° of the axis
+/// direction, and the axis point staying within 2 mm.
+bool isTurnAbout(const RevolutionAxis& axis, const Eigen::Isometry3d& S) {
+  const Eigen::AngleAxisd turn(S.linear());
+  return std::abs(turn.axis().dot(axis.direction)) > std::cos(10.0 * M_PI / 180.0) &&
+         (S * axis.point_mm - axis.point_mm).norm() < 2.0;
+}
+
 /// The cached preparation of `model` for these parameters, made (and cached, replacing the
 /// oldest of at most 8) when missing or lacking what the parameters need.
 std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const ModelPrep>>& preps,
@@ -206,6 +229,15 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
                       model->name, 100.0 * prep->axis->inlier_share, prep->axis->point_mm.x(),
                       prep->axis->point_mm.y(), prep->axis->point_mm.z(), prep->axis->direction.x(),
                       prep->axis->direction.y(), prep->axis->direction.z());
+    else if ((prep->near_axis = fitRevolutionAxis(prep->verify->points, prep->verify->normals,
+                                                  kRevolutionTolerance, kNearRevolutionShare))) {
+      prep->near_axis_detail = detailPoints(prep->verify->points, *prep->near_axis, kDetailCellMm);
+      logger()->debug("model '{}' is a surface of revolution but for a detail ({:.0f} % of its "
+                      "normals; {} of its {} points off the surface): its turn is seen only where "
+                      "a scan confirms the detail",
+                      model->name, 100.0 * prep->near_axis->inlier_share,
+                      prep->near_axis_detail.size(), prep->verify->points.size());
+    }
   }
   if (needs_refine && !prep->refine)
     prep->refine = std::make_shared<const RefineModel>(
@@ -216,10 +248,18 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     prep->surface_sampling_mm = sampling;
   }
   if (symmetry_key && prep->symmetry_key != symmetry_key) {
-    // A surface of revolution reports its free turn instead.
-    if (!prep->axis)
-      prep->symmetries = findNearSymmetries(*model, *prep->verify, *prep->refine, params.refine,
-                                            tolerance, params.matching.symmetry_overlap);
+    prep->symmetries = findNearSymmetries(*model, *prep->verify, *prep->refine, params.refine,
+                                          tolerance, params.matching.symmetry_overlap);
+    // A surface of revolution reports its turn about the axis as free instead, and one but for a
+    // detail as seen or free by the detail (seesDetail); their other near symmetries (a cup or a
+    // pipe turned end over end) stay.
+    if (prep->axis || prep->near_axis) {
+      const RevolutionAxis& axis = prep->axis ? *prep->axis : *prep->near_axis;
+      const auto turns = std::erase_if(
+          prep->symmetries, [&](const NearSymmetry& s) { return isTurnAbout(axis, s.S_model); });
+      logger()->debug("model '{}': {} near symmetries are turns about its axis, {} others",
+                      model->name, turns, prep->symmetries.size());
+    }
     prep->symmetry_key = symmetry_key;
   }
   constexpr std::size_t kKeptModels = 8;
@@ -297,6 +337,16 @@ std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
   logger()->debug("surface voting: {} poses verified and polished, {} kept, {:.0f} ms in all",
                   poses.size(), out.size(), msSince(t0));
   return out;
+}
+
+/// Whether the scan confirms enough of the detail of a view that is a surface of revolution but
+/// for it (ModelPrep::near_axis_detail) at `T_scene_model`: if not (the handle of a cup is hidden
+/// or turned away), nothing in the scan tells the turn about the axis.
+bool seesDetail(const ModelPrep& prep, const VerifyScene& scene,
+                const Eigen::Isometry3d& T_scene_model, double tolerance_mm) {
+  const PointTally t =
+      tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm, &prep.near_axis_detail);
+  return double(t.confirmed) >= kMinDetailSeenShare * double(t.points) && t.confirmed > 0;
 }
 
 /// The differing points of a near symmetry tell two poses apart only when at least this share of
@@ -576,9 +626,13 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   for (auto& d : result.detections) {
     for (const auto& g : model->grip_points)
       d.grip_points_scene.push_back({g.name, d.T_scene_model * g.position_mm});
-    if (prep && prep->axis)
-      d.free_turn_axis = FreeTurnAxis{d.T_scene_model * prep->axis->point_mm,
-                                      d.T_scene_model.linear() * prep->axis->direction};
+    if (prep && (prep->axis || (verify && prep->near_axis &&
+                                !seesDetail(*prep, verify_scene, d.T_scene_model,
+                                            params.matching.verify_tolerance_mm)))) {
+      const RevolutionAxis& axis = prep->axis ? *prep->axis : *prep->near_axis;
+      d.free_turn_axis =
+          FreeTurnAxis{d.T_scene_model * axis.point_mm, d.T_scene_model.linear() * axis.direction};
+    }
   }
   reportProgress(progress, 1.0);
 
