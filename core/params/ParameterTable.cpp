@@ -250,10 +250,11 @@ std::vector<ParamInfo> buildTable() {
       make("matching.symmetry_overlap", "Near-symmetry overlap", "", Stage::Matching, D, 0, 1,
            0.05,
            "Beyond the thesis, for nearly symmetric parts (a plate whose hook differs only at its "
-           "lip): a half turn of the view about a principal axis that puts this share of its "
-           "points back on its own surface is a near symmetry; each detection is compared with "
-           "its turned pose on the points that differ, and the better confirmed one is kept. "
-           "Needs verification; 0 = off.")));
+           "lip): a turn of the view, found by voting the view against itself, that puts this "
+           "share of its points back on its own surface is a near symmetry; each detection is "
+           "compared with its turned pose on the points that differ, and the pose the scan "
+           "contradicts clearly less is kept, or both are reported when it cannot tell. Needs "
+           "verification; 0 = off.")));
   // --- Refinement (beyond the thesis) ---
   t.push_back(entry(&RP::refine, &RefineParams::enabled,
       make("refine.enabled", "ICP refinement", "", Stage::Refine, B, 0, 1, 1,

@@ -114,11 +114,11 @@ struct MatchingParams {
   int surface_reference_stride = 5;
   /// At most this many voted poses (pose clusters, most votes first) are verified.
   int surface_poses = 100;
-  /// Beyond the thesis, for nearly symmetric parts: a half turn of a view about one of its
-  /// principal axes that puts at least this share of its points back on its own surface (after
+  /// Beyond the thesis, for nearly symmetric parts: a turn of a view (found by voting the view
+  /// against itself) that puts at least this share of its points back on its own surface (after
   /// ICP) is a near symmetry (NearSymmetry.h). Each detection is compared with its turned pose on
-  /// the points that differ, and the pose those confirm clearly better is kept. Needs
-  /// verification; 0 = off.
+  /// the points that differ, and the pose the scan contradicts clearly less is kept; when the scan
+  /// cannot tell, the turned pose is reported as an alternative. Needs verification; 0 = off.
   double symmetry_overlap = 0.0;
   bool operator==(const MatchingParams&) const = default;
 };

@@ -37,8 +37,9 @@ struct Detection {
   /// Which model found it, when several views of a part are searched (recognizeViews); else 0.
   int model_index = 0;
   /// Set when the view that found it is a surface of revolution about this axis (RevolutionAxis.h,
-  /// such as a flanged pipe taught from the side): the part's turn about the axis is not seen,
-  /// and T_scene_model is one of the poses turned about it that fit equally well. Grip points on
+  /// such as a flanged pipe taught from the side), or one but for a detail that the scan does not
+  /// confirm at this pose (a cup whose handle is hidden): the part's turn about the axis is not
+  /// seen, and T_scene_model is one of the poses turned about it that fit equally well. Grip points on
   /// the axis are unaffected; a grip that depends on the turn must not trust it.
   std::optional<FreeTurnAxis> free_turn_axis;
   /// Other poses of the part (model frame → scene frame, mm) that this scan cannot tell apart
