@@ -25,17 +25,6 @@ RecognitionParams cupPreset() {
       .params;
 }
 
-/// A teach-layout scan of one cup resting on `side`.
-SynthScene cupScan(std::uint64_t seed, int side) {
-  SynthRequest request;
-  request.parts = {"cup"};
-  request.layout = LayoutKind::Teach;
-  request.count = 1;
-  request.seed = seed;
-  request.teach_side = side;
-  return synthesize(request);
-}
-
 /// The detection's part pose against the truth: rotation (degrees) and origin distance (mm).
 struct PoseOff {
   double rotation_deg = 0.0, translation_mm = 0.0;
@@ -51,7 +40,7 @@ PoseOff offBy(const Eigen::Isometry3d& T_true, const Eigen::Isometry3d& T_found)
 TEST(NearRevolution, ACupWhoseHandleShowsIsFoundAtItsTurn) {
   const RecognitionParams params = cupPreset();
   const test::SynthTeach side = test::teachFromSynth("cup", 5, params, 2);
-  const SynthScene scan = cupScan(21, 2);
+  const SynthScene scan = test::teachScan("cup", 21, 2);
   const Eigen::Isometry3d T_true = scan.scene.T_scene_part(scan.scene.instances.at(0)) *
                                    side.T_teach_part.inverse() * side.model->T_teach_model;
   Recognizer recognizer;
@@ -73,7 +62,7 @@ TEST(NearRevolution, ACupWhoseHandleIsNotConfirmedReportsItsTurnAsFree) {
   int seen = 0, free = 0;
   for (const int scan_side : {2, 3})
     for (std::uint64_t seed = 31; seed < 35; ++seed) {
-      const SynthScene scan = cupScan(seed, scan_side);
+      const SynthScene scan = test::teachScan("cup", seed, scan_side);
       const Eigen::Isometry3d T_scene_part = scan.scene.T_scene_part(scan.scene.instances.at(0));
       const Eigen::Isometry3d T_true =
           T_scene_part * side.T_teach_part.inverse() * side.model->T_teach_model;

@@ -53,17 +53,6 @@ ViewSymmetries symmetriesOf(const TaughtModel& model, const RecognitionParams& p
   return out;
 }
 
-/// A teach-layout scan of one coat-rack resting on `side`.
-SynthScene coatRackScan(std::uint64_t seed, int side) {
-  SynthRequest request;
-  request.parts = {"coat-rack"};
-  request.layout = LayoutKind::Teach;
-  request.count = 1;
-  request.seed = seed;
-  request.teach_side = side;
-  return synthesize(request);
-}
-
 } // namespace
 
 TEST(NearSymmetry, CoatRackFromAboveTurnsHalfwayAboutItsPlateNormal) {
@@ -109,7 +98,7 @@ TEST(NearSymmetry, DifferingPointsTellTheTrueTurnAndRecognitionReportsIt) {
   const NearSymmetry& s = found.front();
 
   // Another scan of a coat-rack hook up, at another turn on the table.
-  const SynthScene scan = coatRackScan(11, 0);
+  const SynthScene scan = test::teachScan("coat-rack", 11, 0);
   const Eigen::Isometry3d T_true =
       scan.scene.T_scene_part(scan.scene.instances.at(0)) * partFromModel(top);
   const Eigen::Isometry3d T_flipped = T_true * s.S_model;
@@ -162,7 +151,7 @@ TEST(NearSymmetry, CoatRackFromBelowCannotBeToldFromItsHalfTurnAndSaysSo) {
   EXPECT_LT(half_turn->differing.size(), view->points.size() / 50);
 
   // A scan in which the view finds it (how often it does: docs/accuracy.md).
-  const SynthScene scan = coatRackScan(14, 3);
+  const SynthScene scan = test::teachScan("coat-rack", 14, 3);
   const Eigen::Isometry3d T_true =
       scan.scene.T_scene_part(scan.scene.instances.at(0)) * T_part_model;
   Recognizer recognizer;

@@ -19,15 +19,20 @@ struct SynthTeach {
   Eigen::Isometry3d T_teach_part = Eigen::Isometry3d::Identity();
 };
 
-inline SynthTeach teachFromSynth(const std::string& part, std::uint64_t seed,
-                                 const core::RecognitionParams& params, int teach_side = 0) {
+/// A virtual teach scan: one `part` alone on a table, resting on side `teach_side`.
+inline core::SynthScene teachScan(const std::string& part, std::uint64_t seed, int teach_side) {
   core::SynthRequest request;
   request.parts = {part};
   request.layout = core::LayoutKind::Teach;
   request.count = 1;
   request.seed = seed;
   request.teach_side = teach_side;
-  const core::SynthScene scan = core::synthesize(request);
+  return core::synthesize(request);
+}
+
+inline SynthTeach teachFromSynth(const std::string& part, std::uint64_t seed,
+                                 const core::RecognitionParams& params, int teach_side = 0) {
+  const core::SynthScene scan = teachScan(part, seed, teach_side);
   core::TeachOptions options;
   options.name = part;
   options.sensor = scan.sensor;
