@@ -373,6 +373,10 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
       8, static_cast<std::size_t>(kMinDistinguishingShare * double(prep.verify->points.size())));
   tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
     Detection& d = detections[k];
+    // With the turn about a near axis not seen (seesDetail), the differing points of both poses
+    // lie at unknown turns: they rule neither out.
+    const bool turn_unseen =
+        prep.near_axis && !seesDetail(prep, scene, d.T_scene_model, params.verify_tolerance_mm);
     for (const NearSymmetry& s : prep.symmetries) {
       if (s.differing.size() < min_seen && s.differing_inverse.size() < min_seen) {
         // The view repeats itself under S: nothing in any scan can tell T from T·S. (Verifying
@@ -392,12 +396,12 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
       logger()->trace("detection {}: {:.2f} of the differing points contradicted as found, {:.2f} "
                       "turned",
                       k, as_found, turned);
-      if (turned > as_found + kTurnMargin)
+      if (!turn_unseen && turned > as_found + kTurnMargin)
         continue; // the turned pose is ruled out
       const double coverage = verify(T_turned);
       if (coverage < params.min_coverage)
         continue;
-      if (as_found > turned + kTurnMargin) {
+      if (!turn_unseen && as_found > turned + kTurnMargin) {
         logger()->debug("detection {} turned by a near symmetry: {:.2f} of the differing points "
                         "contradicted as found, {:.2f} turned; coverage {:.3f} -> {:.3f}",
                         k, as_found, turned, d.coverage, coverage);

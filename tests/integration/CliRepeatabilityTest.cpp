@@ -2,12 +2,12 @@
 // same model and preset write the same results file, timings aside.
 #include "tests/support/TempDir.h"
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <gtest/gtest.h>
+#include <iterator>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -26,15 +26,23 @@ std::string quoted(const fs::path& path) {
   return out;
 }
 
-/// Runs scanpick-cli with `args` (already quoted), output discarded; returns the exit status.
-int runCli(const std::vector<std::string>& args) {
+/// Runs scanpick-cli with `args` (already quoted), its output written to `output` (discarded
+/// when empty); returns the exit status.
+int runCli(const std::vector<std::string>& args, const fs::path& output = {}) {
   std::string command = quoted(kCli);
   for (const auto& a : args) {
     command.push_back(' ');
     command.append(a);
   }
-  command.append(" > /dev/null 2>&1");
+  command.append(" > ");
+  command.append(output.empty() ? std::string("/dev/null") : quoted(output));
+  command.append(" 2>&1");
   return std::system(command.c_str());
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 nlohmann::json withoutTimings(const fs::path& path) {
@@ -56,18 +64,43 @@ TEST(CliRepeatability, TwoRecognizeRunsWriteTheSameResults) {
   ASSERT_EQ(runCli({"demo", "--out", quoted(d)}), 0);
   // Two views (the table side and the side most supports rest on in the bin), searched together.
   for (const char* view : {"support-teach", "support-teach-side1"})
-    ASSERT_EQ(runCli({"teach", "--scan", quoted(d / (std::string(view) + ".pcd")), "--crop-from-truth",
-                      quoted(d / (std::string(view) + ".gt.json")), "--remove-floor", "--preset",
-                      preset, "--name", "support", "--out", quoted(d / (std::string(view) + ".spmodel"))}),
-              0);
+    ASSERT_EQ(
+        runCli({"teach", "--scan", quoted(d / (std::string(view) + ".pcd")), "--crop-from-truth",
+                quoted(d / (std::string(view) + ".gt.json")), "--remove-floor", "--preset", preset,
+                "--name", "support", "--out", quoted(d / (std::string(view) + ".spmodel"))}),
+        0);
   for (const char* out : {"a.json", "b.json"})
     ASSERT_EQ(runCli({"recognize", "--model", quoted(d / "support-teach.spmodel"), "--model",
-                      quoted(d / "support-teach-side1.spmodel"), "--scene", quoted(d / "demo-bin.pcd"),
-                      "--preset", preset, "--out", quoted(d / out)}),
+                      quoted(d / "support-teach-side1.spmodel"), "--scene",
+                      quoted(d / "demo-bin.pcd"), "--preset", preset, "--out", quoted(d / out)}),
               0);
   const auto a = withoutTimings(d / "a.json"), b = withoutTimings(d / "b.json");
   EXPECT_FALSE(a.at("detections").empty()) << "the demo bin should give detections";
   EXPECT_EQ(a.dump(), b.dump());
+
+  // The benchmark, after a warm-up scene (the views prepared as in a running cell), finds as many.
+  const std::vector<std::string> bench{"bench",
+                                       "--model",
+                                       quoted(d / "support-teach.spmodel"),
+                                       "--model",
+                                       quoted(d / "support-teach-side1.spmodel"),
+                                       "--scene",
+                                       quoted(d / "demo-bin.pcd"),
+                                       "--preset",
+                                       preset,
+                                       "--runs",
+                                       "1"};
+  std::vector<std::string> warm = bench;
+  warm.insert(warm.end(), {"--warm-up", quoted(d / "support-teach.pcd")});
+  ASSERT_EQ(runCli(warm, d / "bench.txt"), 0) << readText(d / "bench.txt");
+  const std::string report = readText(d / "bench.txt");
+  EXPECT_NE(report.find("1 warm runs"), std::string::npos) << report;
+  EXPECT_NE(report.find(std::to_string(a.at("detections").size()) + " detection(s)"),
+            std::string::npos)
+      << report;
+  warm.back() = quoted(d / "no-such-scan.pcd");
+  EXPECT_NE(runCli(warm, d / "bench-missing.txt"), 0) << "a missing warm-up scan is an error";
+  EXPECT_NE(readText(d / "bench-missing.txt").find("no-such-scan.pcd"), std::string::npos);
 }
 
 // The README's main job headless: `scanpick-cli demo` simulates the scenes, teaches the support,
