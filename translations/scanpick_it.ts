@@ -774,8 +774,8 @@
     </message>
     <message>
         <location filename="../ui/panels/ResultsTable.cpp" line="43"/>
-        <source>The view that found this part is round about its axis (direction %1, %2, %3): its turn about that axis is not seen. Grip points on the axis are right.</source>
-        <translation>La vista che ha trovato questo pezzo è rotonda attorno al suo asse (direzione %1, %2, %3): la sua rotazione attorno a quell&apos;asse non si vede. I punti di presa sull&apos;asse sono corretti.</translation>
+        <source>The view that found this part is round about its axis (direction %1, %2, %3), or round but for a detail this scan does not show (a cup&apos;s handle): its turn about that axis is not seen. Grip points on the axis are right.</source>
+        <translation>La vista che ha trovato questo pezzo è rotonda attorno al suo asse (direzione %1, %2, %3), o rotonda tranne un dettaglio che questa scansione non mostra (il manico di una tazza): la sua rotazione attorno a quell&apos;asse non si vede. I punti di presa sull&apos;asse sono corretti.</translation>
     </message>
     <message>
         <location filename="../ui/panels/ResultsTable.cpp" line="52"/>

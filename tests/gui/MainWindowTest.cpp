@@ -280,6 +280,8 @@ TEST(ResultsTableFreeTurn, MarksATurnTheScanDoesNotShow) {
   QCoreApplication::removeTranslator(&italian);
   EXPECT_TRUE(table.item(0, 2)->text().endsWith(QStringLiteral("(rotazione libera)")))
       << table.item(0, 2)->text().toStdString();
+  EXPECT_TRUE(table.item(0, 2)->toolTip().contains(QStringLiteral("il manico di una tazza")))
+      << table.item(0, 2)->toolTip().toStdString();
 }
 
 TEST(ResultsTableFreeTurn, MarksAlternativePosesTheScanCannotTellApart) {

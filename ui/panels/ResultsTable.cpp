@@ -45,8 +45,9 @@ void ResultsTable::setDetections(const std::vector<core::Detection>& detections,
       const Eigen::Vector3d& a = d.free_turn_axis->direction;
       orientation->setText(orientation->text() + QStringLiteral(" ") + tr("(turn free)"));
       orientation->setToolTip(tr("The view that found this part is round about its axis "
-                                 "(direction %1, %2, %3): its turn about that axis is not seen. "
-                                 "Grip points on the axis are right.")
+                                 "(direction %1, %2, %3), or round but for a detail this scan "
+                                 "does not show (a cup's handle): its turn about that axis is not "
+                                 "seen. Grip points on the axis are right.")
                                   .arg(QString::number(a.x(), 'f', 3), QString::number(a.y(), 'f', 3),
                                        QString::number(a.z(), 'f', 3)));
     }
