@@ -42,8 +42,8 @@ TEST(NearRevolution, ACupWhoseHandleShowsIsFoundAtItsTurn) {
   const RecognitionParams params = cupPreset();
   const test::SynthTeach side = test::teachFromSynth("cup", 5, params, 2);
   const SynthScene scan = test::teachScan("cup", 21, 2);
-  const Eigen::Isometry3d T_true = scan.scene.T_scene_part(scan.scene.instances.at(0)) *
-                                   side.T_teach_part.inverse() * side.model->T_teach_model;
+  const Eigen::Isometry3d T_true =
+      scan.scene.T_scene_part(scan.scene.instances.at(0)) * side.T_part_model();
   Recognizer recognizer;
   recognizer.setModel(side.model);
   const RecognitionResult result = recognizer.recognize(scan.render.cloud, scan.sensor, params);
@@ -65,8 +65,7 @@ TEST(NearRevolution, ACupWhoseHandleIsNotConfirmedReportsItsTurnAsFree) {
     for (std::uint64_t seed = 31; seed < 35; ++seed) {
       const SynthScene scan = test::teachScan("cup", seed, scan_side);
       const Eigen::Isometry3d T_scene_part = scan.scene.T_scene_part(scan.scene.instances.at(0));
-      const Eigen::Isometry3d T_true =
-          T_scene_part * side.T_teach_part.inverse() * side.model->T_teach_model;
+      const Eigen::Isometry3d T_true = T_scene_part * side.T_part_model();
       // The cup's axis: the part's z axis through its origin.
       const Eigen::Vector3d axis_point = T_scene_part.translation();
       const Eigen::Vector3d axis_direction = T_scene_part.linear().col(2);

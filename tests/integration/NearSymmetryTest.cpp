@@ -31,11 +31,6 @@ double angleDeg(const Eigen::Matrix3d& R) {
   return Eigen::AngleAxisd(R).angle() * 180.0 / kPi;
 }
 
-/// The model frame → part frame of a taught view.
-Eigen::Isometry3d partFromModel(const test::SynthTeach& view) {
-  return view.T_teach_part.inverse() * view.model->T_teach_model;
-}
-
 /// A taught view's verification points and its near symmetries, as the recognizer finds them.
 struct ViewSymmetries {
   std::shared_ptr<const VerifyModel> view;
@@ -63,7 +58,7 @@ TEST(NearSymmetry, CoatRackFromAboveTurnsHalfwayAboutItsPlateNormal) {
   ASSERT_EQ(found.size(), 1u);
   const NearSymmetry& s = found.front();
   // In the part frame: a half turn about the plate normal (z).
-  const Eigen::Isometry3d T_part_model = partFromModel(top);
+  const Eigen::Isometry3d T_part_model = top.T_part_model();
   const Eigen::Isometry3d S_part = T_part_model * s.S_model * T_part_model.inverse();
   const Eigen::AngleAxisd turn(S_part.linear());
   std::printf("overlap %.3f, turn %.1f° about (%.3f, %.3f, %.3f), %zu of %zu points differ\n",
@@ -100,7 +95,7 @@ TEST(NearSymmetry, DifferingPointsTellTheTrueTurnAndRecognitionReportsIt) {
   // Another scan of a coat-rack hook up, at another turn on the table.
   const SynthScene scan = test::teachScan("coat-rack", 11, 0);
   const Eigen::Isometry3d T_true =
-      scan.scene.T_scene_part(scan.scene.instances.at(0)) * partFromModel(top);
+      scan.scene.T_scene_part(scan.scene.instances.at(0)) * top.T_part_model();
   const Eigen::Isometry3d T_flipped = T_true * s.S_model;
   const SceneIndex index(scan.render.cloud);
   const VerifyScene scene{&index, &scan.render.cloud, &scan.sensor};
@@ -138,7 +133,7 @@ TEST(NearSymmetry, CoatRackFromBelowCannotBeToldFromItsHalfTurnAndSaysSo) {
   const RecognitionParams params = phoxiBin();
   const test::SynthTeach below = test::teachFromSynth("coat-rack", 5, params, 3);
   const auto [view, found] = symmetriesOf(*below.model, params);
-  const Eigen::Isometry3d T_part_model = partFromModel(below);
+  const Eigen::Isometry3d T_part_model = below.T_part_model();
   const auto half_turn = std::find_if(found.begin(), found.end(), [&](const NearSymmetry& s) {
     const Eigen::AngleAxisd turn((T_part_model * s.S_model * T_part_model.inverse()).linear());
     return std::abs(turn.angle() * 180.0 / kPi - 180.0) < 5.0 &&

@@ -112,7 +112,7 @@ TEST(SurfaceVoting, PumpConnectorsSeenFromTheSideReportTheirPipeAxisAsFreeTurn) 
   for (const auto& d : result.detections) {
     const auto& view = views.at(static_cast<std::size_t>(d.model_index));
     const Eigen::Vector3d centre_est =
-        d.T_scene_model * view.model->T_teach_model.inverse() * view.T_teach_part * pipe_centre;
+        d.T_scene_model * view.T_part_model().inverse() * pipe_centre;
     const PartInstance* nearest = nullptr;
     for (const auto& instance : bin.scene.instances)
       if (!nearest || (bin.scene.T_scene_part(instance) * pipe_centre - centre_est).norm() <

@@ -17,6 +17,8 @@ namespace scanpick::test {
 struct SynthTeach {
   std::shared_ptr<core::TaughtModel> model;
   Eigen::Isometry3d T_teach_part = Eigen::Isometry3d::Identity();
+  /// The model frame → the part frame.
+  Eigen::Isometry3d T_part_model() const { return T_teach_part.inverse() * model->T_teach_model; }
 };
 
 /// A virtual teach scan: one `part` alone on a table, resting on side `teach_side`.
@@ -57,8 +59,7 @@ struct NearestInstance {
 
 inline NearestInstance nearestInstance(const core::Detection& d, const SynthTeach& taught,
                                        const core::Scene& scene) {
-  const Eigen::Isometry3d T_scene_part =
-      d.T_scene_model * taught.model->T_teach_model.inverse() * taught.T_teach_part;
+  const Eigen::Isometry3d T_scene_part = d.T_scene_model * taught.T_part_model().inverse();
   NearestInstance out;
   for (const auto& instance : scene.instances) {
     const double dist =
