@@ -67,11 +67,14 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
       extractKeypoints(part, params.keypoints, subProgress(progress, 0.25, 0.6));
   const FeatureExtraction extraction = extractFeatures(
       keypoints.points_mm, params.features, params.seed, subProgress(progress, 0.6, 0.95));
+  // Feature matching needs two features; surface voting finds the part by its surface alone
+  // (a cup's rim, split into arcs, gives it nothing), so a surface-voting model may have none.
   const std::size_t n = extraction.features.size();
-  if (n < 2)
+  if (n < 2 && params.matching.surface_sampling_mm <= 0)
     throw Error("found " + std::to_string(n) + (n == 1 ? " feature" : " features") +
                 " in the crop (" + std::to_string(keypoints.points_mm.size()) +
-                " keypoints; matching needs at least 2): lower ransac size or widen the crop");
+                " keypoints; matching needs at least 2): lower ransac size or widen the crop, "
+                "or find the part by its surface (matching.surface_sampling_mm)");
 
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& p : part.points_mm)

@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+
+#include <tbb/parallel_for.h>
 
 namespace scanpick::core {
 namespace {
@@ -180,11 +183,16 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
   voting.cluster_distance_mm = 0.1 * model.diameter_mm;
   voting.max_poses = kCandidates;
   voting.exclude_self_mm = 0.1 * model.diameter_mm;
-  for (const VotedPose& voted : pairs.vote(sampled, voting)) {
-    if (turnAngle(voted.T_scene_model) < kMinTurnRad)
-      continue;
+  const std::vector<VotedPose> candidates = pairs.vote(sampled, voting);
+  // Each candidate is described and polished on its own (in parallel); they are then taken in
+  // vote order, so the result does not depend on the threads.
+  std::vector<std::optional<NearSymmetry>> described(candidates.size());
+  tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t c) {
+    if (turnAngle(candidates[c].T_scene_model) < kMinTurnRad)
+      return;
     // ICP can slide a turn along the view's own surface; the better overlap is kept.
-    NearSymmetry s = describe(view, surface, voted.T_scene_model, camera, depth, tolerance_mm);
+    NearSymmetry s =
+        describe(view, surface, candidates[c].T_scene_model, camera, depth, tolerance_mm);
     const Eigen::Isometry3d polished =
         refinePose(refine_model, surface, s.S_model, icp).T_scene_model;
     if (turnAngle(polished) >= kMinTurnRad) {
@@ -192,13 +200,19 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
       if (t.overlap > s.overlap)
         s = std::move(t);
     }
+    described[c] = std::move(s);
+  });
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    if (!described[c])
+      continue;
+    NearSymmetry& s = *described[c];
     const bool repeated = std::any_of(found.begin(), found.end(), [&](const NearSymmetry& f) {
       return turnAngle(f.S_model.inverse() * s.S_model) < kMinTurnRad;
     });
     logger()->debug(
         "view '{}': turn by {:.0f}° ({} votes): overlap {:.3f}, {} / {} points differ{}",
-        model.name, turnAngle(s.S_model) * 180.0 / M_PI, voted.votes, s.overlap, s.differing.size(),
-        s.differing_inverse.size(), repeated ? ", repeated" : "");
+        model.name, turnAngle(s.S_model) * 180.0 / M_PI, candidates[c].votes, s.overlap,
+        s.differing.size(), s.differing_inverse.size(), repeated ? ", repeated" : "");
     if (!repeated && s.overlap >= min_overlap)
       found.push_back(std::move(s));
   }

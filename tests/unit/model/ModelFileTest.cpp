@@ -58,6 +58,20 @@ TEST(Teach, TooSmallCropAndTooFewFeaturesAreExplained) {
               HasSubstr("found 1 feature"));
 }
 
+TEST(Teach, SurfaceVotingModelNeedsNoFeatures) {
+  // The same one-feature crop is a valid model when the part is found by its surface.
+  TeachOptions one = cropAll();
+  one.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-11, -11, 690), Eigen::Vector3f(11, 11, 710));
+  RecognitionParams params = test::idealParams(0.001);
+  params.matching.surface_sampling_mm = 2.0;
+  EXPECT_EQ(teach(teachScan(), one, params).features.size(), 1u);
+  params.features.circles = false;
+  params.features.lines = false;
+  const TaughtModel none = teach(teachScan(), one, params);
+  EXPECT_TRUE(none.features.empty());
+  EXPECT_GT(none.cloud_mm.size(), 0u);
+}
+
 TEST(ModelFile, RoundTripKeepsEverything) {
   const TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
   test::TempDir dir;
