@@ -7,6 +7,7 @@
 #include "core/model/ModelFile.h"
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 namespace scanpick::cli {
@@ -75,6 +76,7 @@ void registerTeachCommand(CLI::App& app) {
     std::string scan, crop_box, crop_truth, out, name = "part";
     bool remove_floor = false;
     std::vector<std::string> grips;
+    std::optional<double> min_coverage;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = addCommand(app, "teach", "Teach a part from a scan: crop, features, .spmodel", [o] {
@@ -104,10 +106,14 @@ void registerTeachCommand(CLI::App& app) {
     const core::PointCloud scan = loadWithUnitsCheck(o->scan, o->recipe.units);
     core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));
     model.teach_scan = std::filesystem::path(o->scan).filename().string();
+    model.min_coverage = o->min_coverage;
     core::saveModel(o->out, model);
     std::cout << "taught '" << model.name << "': " << model.cloud_mm.size() << " points, "
               << model.keypoints_mm.size() << " keypoints, " << model.features.size()
-              << " features, diameter " << model.diameter_mm << " mm -> " << o->out << "\n";
+              << " features, diameter " << model.diameter_mm << " mm";
+    if (model.min_coverage)
+      std::cout << ", own minimum coverage " << *model.min_coverage;
+    std::cout << " -> " << o->out << "\n";
     return kOk;
   });
   sub->add_option("--scan", o->scan, "Scan holding the part (.pcd or .ply)")->required();
@@ -117,6 +123,11 @@ void registerTeachCommand(CLI::App& app) {
   sub->add_option("--grip", o->grips, "Grip point NAME=x,y,z in the scan frame (repeatable)");
   sub->add_option("--name", o->name, "Part name stored in the model")->capture_default_str();
   sub->add_option("--out", o->out, "Model file to write (.spmodel)")->required();
+  sub->add_option("--min-coverage", o->min_coverage,
+                  "This view's own minimum verification score, 0-1, instead of "
+                  "matching.min_coverage (for a view that verifies poorly even in its own scan: "
+                  "a thin plate seen edge-on)")
+      ->check(CLI::Range(0.0, 1.0));
   o->recipe.add(sub);
 }
 

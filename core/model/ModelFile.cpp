@@ -140,7 +140,7 @@ std::string encodeModel(const TaughtModel& model) {
   json grips = json::array();
   for (const auto& g : model.grip_points)
     grips.push_back({{"name", g.name}, {"position_mm", vec(g.position_mm)}});
-  const json header = {
+  json header = {
       {"format", "scanpick-model"},
       {"version", kModelFormatVersion},
       {"units", "mm"},
@@ -159,6 +159,8 @@ std::string encodeModel(const TaughtModel& model) {
                  {"keypoints", model.keypoints_mm.size()},
                  {"bytes", block.size()},
                  {"crc32", crc32(block.data(), block.size())}}}};
+  if (model.min_coverage)
+    header["min_coverage"] = *model.min_coverage;
   return header.dump() + "\n" + block;
 }
 
@@ -211,6 +213,12 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   model.source_units = parseLengthUnit(header.value("source_units", std::string("mm")));
   model.diameter_mm = header.value("diameter_mm", 0.0);
   model.T_teach_model = r.isometry(r.at(header, "T_teach_model"), "T_teach_model");
+  if (header.contains("min_coverage")) {
+    const double min_coverage = r.number(header["min_coverage"], "min_coverage");
+    if (!(min_coverage >= 0.0 && min_coverage <= 1.0))
+      r.fail("min_coverage " + std::to_string(min_coverage) + " is outside [0, 1]");
+    model.min_coverage = min_coverage;
+  }
   if (header.contains("sensor"))
     model.sensor = sensorFromJson(header["sensor"], r);
   try {

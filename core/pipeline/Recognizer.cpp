@@ -436,7 +436,7 @@ void Recognizer::clearCache() {
 }
 
 RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const SensorModel& sensor,
-                                        const RecognitionParams& params,
+                                        const RecognitionParams& requested,
                                         const ProgressFn& progress) {
   const auto t_start = Clock::now();
   std::shared_ptr<const TaughtModel> model;
@@ -449,6 +449,9 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   if (!model)
     throw Error("no model to recognize: teach a part or open a .spmodel file first");
+  RecognitionParams params = requested;
+  if (model->min_coverage)
+    params.matching.min_coverage = *model->min_coverage;
   scene_mm.validate();
   if (scene_mm.validCount() == 0)
     throw Error("the scene has no valid point (empty or all NaN): check the scan file or the "

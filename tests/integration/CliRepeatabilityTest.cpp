@@ -1,5 +1,6 @@
 // Repeatability at the command line: two `scanpick-cli recognize` runs on the same scene with the
 // same model and preset write the same results file, timings aside.
+#include "core/model/ModelFile.h"
 #include "tests/support/TempDir.h"
 
 #include <cstdlib>
@@ -69,6 +70,20 @@ TEST(CliRepeatability, TwoRecognizeRunsWriteTheSameResults) {
                 quoted(d / (std::string(view) + ".gt.json")), "--remove-floor", "--preset", preset,
                 "--name", "support", "--out", quoted(d / (std::string(view) + ".spmodel"))}),
         0);
+  // A view's own minimum coverage is stored in its model; one outside [0, 1] writes nothing.
+  const std::vector<std::string> teach_own{"teach", "--scan", quoted(d / "support-teach.pcd"),
+                                           "--crop-from-truth", quoted(d / "support-teach.gt.json"),
+                                           "--preset", preset, "--out", quoted(d / "own.spmodel"),
+                                           "--min-coverage"};
+  std::vector<std::string> outside = teach_own;
+  outside.push_back("1.5");
+  EXPECT_NE(runCli(outside), 0);
+  EXPECT_FALSE(fs::exists(d / "own.spmodel"));
+  std::vector<std::string> own = teach_own;
+  own.push_back("0.6");
+  ASSERT_EQ(runCli(own), 0);
+  EXPECT_EQ(scanpick::core::loadModel(d / "own.spmodel").min_coverage, 0.6);
+
   for (const char* out : {"a.json", "b.json"})
     ASSERT_EQ(runCli({"recognize", "--model", quoted(d / "support-teach.spmodel"), "--model",
                       quoted(d / "support-teach-side1.spmodel"), "--scene",

@@ -85,6 +85,20 @@ TEST(ModelFile, RoundTripKeepsEverything) {
   EXPECT_EQ(r.keypoints_mm, m.keypoints_mm);
   EXPECT_TRUE(r.T_teach_model.isApprox(m.T_teach_model, 0.0));
   EXPECT_EQ(r.diameter_mm, m.diameter_mm);
+  EXPECT_FALSE(r.min_coverage);
+}
+
+TEST(ModelFile, AViewsOwnMinimumCoverageIsKeptAndChecked) {
+  TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
+  m.min_coverage = 0.5;
+  const std::string bytes = encodeModel(m);
+  EXPECT_EQ(decodeModel(bytes, "p.spmodel").min_coverage, 0.5);
+  std::string outside = bytes;
+  const auto at = outside.find("\"min_coverage\":0.5");
+  ASSERT_NE(at, std::string::npos);
+  outside.replace(at, 18, "\"min_coverage\":1.5");
+  EXPECT_THAT(messageOf([&] { decodeModel(outside, "p.spmodel"); }),
+              HasSubstr("min_coverage 1.500000 is outside [0, 1]"));
 }
 
 TEST(ModelFile, DamagedFilesAreRejectedClearly) {
