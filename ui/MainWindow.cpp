@@ -373,16 +373,11 @@ bool MainWindow::openModel(const QString& path) {
     auto model = std::make_shared<const core::TaughtModel>(core::loadModel(path.toStdString()));
     m_model = model;
     m_model_path = path;
-    // A view's own minimum coverage becomes the Min coverage control's value, so that the control
-    // tunes it (the recognizer's copy drops it; the file keeps it when saved again).
+    // The view's own matching parameters become the panel's values, so that the panel tunes them
+    // (the recognizer's copy drops them; the file keeps them when saved again).
     core::RecognitionParams params = model->params;
-    std::shared_ptr<const core::TaughtModel> searched = model;
-    if (model->min_coverage) {
-      params.matching.min_coverage = *model->min_coverage;
-      auto copy = std::make_shared<core::TaughtModel>(*model);
-      copy->min_coverage.reset();
-      searched = std::move(copy);
-    }
+    auto searched = std::make_shared<core::TaughtModel>(*model);
+    core::foldViewParams(params, searched->view_params);
     m_recognizer->setModel(searched);
     m_params->setParams(params);
     addRecentFile(path);

@@ -56,6 +56,19 @@ inline std::filesystem::path findPreset(const std::string& name) {
                     "': give a preset file or a name from resources/presets");
 }
 
+/// KEY=VALUE of --set or --view-set as a one-key JSON object: numbers and booleans as JSON,
+/// anything else (an enum name) as a string.
+inline nlohmann::json parseSetting(const std::string& kv, const std::string& option) {
+  const auto eq = kv.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
+    throw core::Error(option + " '" + kv + "': expected KEY=VALUE, e.g. matching.min_coverage=0.6");
+  const std::string value = kv.substr(eq + 1);
+  nlohmann::json parsed = nlohmann::json::parse(value, nullptr, false);
+  if (parsed.is_discarded() || parsed.is_object() || parsed.is_array())
+    parsed = value;
+  return {{kv.substr(0, eq), parsed}};
+}
+
 /// The parameters chosen on the command line (defaults when neither option is given).
 inline core::RecognitionParams resolveParams(const RecipeOptions& o,
                                              const core::RecognitionParams& fallback = {}) {
@@ -66,17 +79,8 @@ inline core::RecognitionParams resolveParams(const RecipeOptions& o,
     params = core::loadPreset(o.params).params;
   else if (!o.preset.empty())
     params = core::loadPreset(findPreset(o.preset)).params;
-  for (const auto& kv : o.overrides) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == kv.size())
-      throw core::Error("--set '" + kv + "': expected KEY=VALUE, e.g. matching.min_coverage=0.6");
-    const std::string value = kv.substr(eq + 1);
-    // Numbers and booleans as JSON; anything else (an enum name) as a string.
-    nlohmann::json parsed = nlohmann::json::parse(value, nullptr, false);
-    if (parsed.is_discarded() || parsed.is_object() || parsed.is_array())
-      parsed = value;
-    params = core::paramsFromJson({{kv.substr(0, eq), parsed}}, params);
-  }
+  for (const auto& kv : o.overrides)
+    params = core::paramsFromJson(parseSetting(kv, "--set"), params);
   return params;
 }
 

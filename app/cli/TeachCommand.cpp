@@ -5,9 +5,9 @@
 
 #include "core/common/AtomicFile.h"
 #include "core/model/ModelFile.h"
+#include "core/params/ParameterTable.h"
 
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <sstream>
 
 namespace scanpick::cli {
@@ -76,7 +76,7 @@ void registerTeachCommand(CLI::App& app) {
     std::string scan, crop_box, crop_truth, out, name = "part";
     bool remove_floor = false;
     std::vector<std::string> grips;
-    std::optional<double> min_coverage;
+    std::vector<std::string> view_settings;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub = addCommand(app, "teach", "Teach a part from a scan: crop, features, .spmodel", [o] {
@@ -106,13 +106,23 @@ void registerTeachCommand(CLI::App& app) {
     const core::PointCloud scan = loadWithUnitsCheck(o->scan, o->recipe.units);
     core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));
     model.teach_scan = std::filesystem::path(o->scan).filename().string();
-    model.min_coverage = o->min_coverage;
+    for (const auto& kv : o->view_settings) {
+      // Parsed and range-checked as --set is, then kept as the table's number.
+      const nlohmann::json setting = parseSetting(kv, "--view-set");
+      const std::string key = setting.begin().key();
+      const core::ParamInfo* info = core::findParameter(key);
+      if (!info)
+        throw core::Error("--view-set: unknown parameter '" + key + "' (keys: scanpick-cli params)");
+      const double value = info->get(core::paramsFromJson(setting));
+      core::checkViewParam(key, value);
+      model.view_params[key] = value;
+    }
     core::saveModel(o->out, model);
     std::cout << "taught '" << model.name << "': " << model.cloud_mm.size() << " points, "
               << model.keypoints_mm.size() << " keypoints, " << model.features.size()
               << " features, diameter " << model.diameter_mm << " mm";
-    if (model.min_coverage)
-      std::cout << ", own minimum coverage " << *model.min_coverage;
+    for (const auto& [key, value] : model.view_params)
+      std::cout << ", " << key << " = " << value << " for this view";
     std::cout << " -> " << o->out << "\n";
     return kOk;
   });
@@ -123,11 +133,10 @@ void registerTeachCommand(CLI::App& app) {
   sub->add_option("--grip", o->grips, "Grip point NAME=x,y,z in the scan frame (repeatable)");
   sub->add_option("--name", o->name, "Part name stored in the model")->capture_default_str();
   sub->add_option("--out", o->out, "Model file to write (.spmodel)")->required();
-  sub->add_option("--min-coverage", o->min_coverage,
-                  "This view's own minimum verification score, 0-1, instead of "
-                  "matching.min_coverage (for a view that verifies poorly even in its own scan: "
-                  "a thin plate seen edge-on)")
-      ->check(CLI::Range(0.0, 1.0));
+  sub->add_option("--view-set", o->view_settings,
+                  "A matching parameter this view sets for itself, KEY=VALUE (e.g. "
+                  "matching.min_coverage=0.5 for a thin plate seen edge-on); stored in the model "
+                  "and used in place of the recognition parameters' value; repeatable");
   o->recipe.add(sub);
 }
 

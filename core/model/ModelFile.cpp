@@ -2,10 +2,12 @@
 
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
+#include "core/params/ParameterTable.h"
 #include "core/params/ParamsJson.h"
 
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
 
@@ -159,8 +161,13 @@ std::string encodeModel(const TaughtModel& model) {
                  {"keypoints", model.keypoints_mm.size()},
                  {"bytes", block.size()},
                  {"crc32", crc32(block.data(), block.size())}}}};
-  if (model.min_coverage)
-    header["min_coverage"] = *model.min_coverage;
+  for (const auto& [key, value] : model.view_params) {
+    // Whole-number parameters (integers, booleans, enum indices) are written as integers.
+    const ParamInfo* info = findParameter(key);
+    header["view_params"][key] = info && info->type != ParamType::Double
+                                     ? json(static_cast<long long>(std::llround(value)))
+                                     : json(value);
+  }
   return header.dump() + "\n" + block;
 }
 
@@ -213,11 +220,19 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   model.source_units = parseLengthUnit(header.value("source_units", std::string("mm")));
   model.diameter_mm = header.value("diameter_mm", 0.0);
   model.T_teach_model = r.isometry(r.at(header, "T_teach_model"), "T_teach_model");
-  if (header.contains("min_coverage")) {
-    const double min_coverage = r.number(header["min_coverage"], "min_coverage");
-    if (!(min_coverage >= 0.0 && min_coverage <= 1.0))
-      r.fail("min_coverage " + std::to_string(min_coverage) + " is outside [0, 1]");
-    model.min_coverage = min_coverage;
+  if (header.contains("view_params")) {
+    const json& view = header["view_params"];
+    if (!view.is_object())
+      r.fail("view_params is not an object");
+    for (const auto& [key, value] : view.items()) {
+      const double number = r.number(value, "view_params." + key);
+      try {
+        checkViewParam(key, number);
+      } catch (const Error& e) {
+        r.fail(std::string("view_params: ") + e.what());
+      }
+      model.view_params[key] = number;
+    }
   }
   if (header.contains("sensor"))
     model.sensor = sensorFromJson(header["sensor"], r);

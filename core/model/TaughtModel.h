@@ -9,6 +9,7 @@
 #include "core/common/Progress.h"
 #include "core/features/Feature.h"
 #include "core/params/Parameters.h"
+#include "core/params/ViewParams.h"
 #include "core/pipeline/Detection.h"
 
 #include <Eigen/Geometry>
@@ -35,11 +36,10 @@ struct TaughtModel {
   /// File name of the scan it was taught from ("" when unknown): tells views of one part apart
   /// and lets the evaluator find the teach scene's ground truth.
   std::string teach_scan;
-  /// This view's own minimum verification score, in [0, 1]: its detections are kept from this
-  /// score instead of matching.min_coverage (unset: the recognition parameters decide). For a
-  /// view whose surface verifies poorly by nature, even in its own scan: a thin plate seen
-  /// edge-on, whose edge normals agree with a scan's only in part (docs/accuracy.md).
-  std::optional<double> min_coverage;
+  /// Matching parameters this view sets for itself, in place of the recognition parameters'
+  /// (empty: none). E.g. a lower matching.min_coverage for a thin plate seen edge-on, whose edge
+  /// normals agree with a scan's only in part (docs/accuracy.md).
+  ViewParams view_params;
 };
 
 /// A box in the scan frame given by its pose and half extents (an operator's rotated crop box).

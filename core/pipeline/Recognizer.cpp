@@ -449,9 +449,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   if (!model)
     throw Error("no model to recognize: teach a part or open a .spmodel file first");
-  RecognitionParams params = requested;
-  if (model->min_coverage)
-    params.matching.min_coverage = *model->min_coverage;
+  const RecognitionParams params = withViewParams(requested, model->view_params);
   scene_mm.validate();
   if (scene_mm.validCount() == 0)
     throw Error("the scene has no valid point (empty or all NaN): check the scan file or the "

@@ -52,8 +52,8 @@ public:
   void setModel(std::shared_ptr<const TaughtModel> model);
   [[nodiscard]] std::shared_ptr<const TaughtModel> model() const;
 
-  /// Finds the model in `scene_mm` (camera frame, mm), with `params` except for a minimum
-  /// coverage the model sets for itself (TaughtModel::min_coverage). Throws Error without a model, for a scene
+  /// Finds the model in `scene_mm` (camera frame, mm), with `params` except for the matching
+  /// parameters the model sets for itself (TaughtModel::view_params). Throws Error without a model, for a scene
   /// with no valid point or an inconsistent cloud; Cancelled when `progress` asks to stop.
   /// Same scene + parameters (seed included) = identical result, cached or not.
   RecognitionResult recognize(const PointCloud& scene_mm, const SensorModel& sensor,

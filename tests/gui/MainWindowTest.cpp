@@ -221,14 +221,14 @@ TEST_F(WindowFixture, CancelRecognition) {
   EXPECT_EQ(window.resultsTable()->rowCount(), 0);
 }
 
-// A view's own minimum coverage is what the Min coverage control shows and tunes; saving the
-// model again keeps it.
-TEST_F(WindowFixture, AViewsOwnMinimumCoverageIsTheControlsValue) {
+// A view's own matching parameters are what the parameter panel shows and tunes; saving the model
+// again keeps them.
+TEST_F(WindowFixture, AViewsOwnParametersAreThePanelsValues) {
   core::TeachOptions options;
   options.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
   core::TaughtModel taught = core::teach(
       test::idealScene(test::idealPartPoints(), {teachPose()}, 0.0, 1), options, test::idealParams(0.5));
-  taught.min_coverage = 0.42;
+  taught.view_params = {{"matching.min_coverage", 0.42}};
   ASSERT_NE(taught.params.matching.min_coverage, 0.42);
   const QString path = test::screenshotDir() + "/own-coverage.spmodel";
   core::saveModel(path.toStdString(), taught);
@@ -236,7 +236,7 @@ TEST_F(WindowFixture, AViewsOwnMinimumCoverageIsTheControlsValue) {
   EXPECT_EQ(window.parameterPanel()->params().matching.min_coverage, 0.42);
   const QString again = test::screenshotDir() + "/own-coverage-again.spmodel";
   ASSERT_TRUE(window.saveModel(again));
-  EXPECT_EQ(core::loadModel(again.toStdString()).min_coverage, 0.42);
+  EXPECT_EQ(core::loadModel(again.toStdString()).view_params, taught.view_params);
 }
 
 TEST_F(WindowFixture, LogDockReceivesCoreLogFromAnyThread) {

@@ -70,19 +70,22 @@ TEST(CliRepeatability, TwoRecognizeRunsWriteTheSameResults) {
                 quoted(d / (std::string(view) + ".gt.json")), "--remove-floor", "--preset", preset,
                 "--name", "support", "--out", quoted(d / (std::string(view) + ".spmodel"))}),
         0);
-  // A view's own minimum coverage is stored in its model; one outside [0, 1] writes nothing.
+  // A view's own matching parameters are stored in its model; one out of range writes nothing.
   const std::vector<std::string> teach_own{"teach", "--scan", quoted(d / "support-teach.pcd"),
                                            "--crop-from-truth", quoted(d / "support-teach.gt.json"),
                                            "--preset", preset, "--out", quoted(d / "own.spmodel"),
-                                           "--min-coverage"};
+                                           "--view-set"};
   std::vector<std::string> outside = teach_own;
-  outside.push_back("1.5");
+  outside.push_back("matching.min_coverage=1.5");
   EXPECT_NE(runCli(outside), 0);
   EXPECT_FALSE(fs::exists(d / "own.spmodel"));
   std::vector<std::string> own = teach_own;
-  own.push_back("0.6");
+  own.insert(own.end(), {"matching.min_coverage=0.6", "--view-set", "matching.refine_all=false"});
+  EXPECT_NE(runCli(own), 0) << "an unknown key is an error";
+  own.resize(own.size() - 2);
   ASSERT_EQ(runCli(own), 0);
-  EXPECT_EQ(scanpick::core::loadModel(d / "own.spmodel").min_coverage, 0.6);
+  const scanpick::core::ViewParams stored{{"matching.min_coverage", 0.6}};
+  EXPECT_EQ(scanpick::core::loadModel(d / "own.spmodel").view_params, stored);
 
   for (const char* out : {"a.json", "b.json"})
     ASSERT_EQ(runCli({"recognize", "--model", quoted(d / "support-teach.spmodel"), "--model",

@@ -85,20 +85,42 @@ TEST(ModelFile, RoundTripKeepsEverything) {
   EXPECT_EQ(r.keypoints_mm, m.keypoints_mm);
   EXPECT_TRUE(r.T_teach_model.isApprox(m.T_teach_model, 0.0));
   EXPECT_EQ(r.diameter_mm, m.diameter_mm);
-  EXPECT_FALSE(r.min_coverage);
+  EXPECT_TRUE(r.view_params.empty());
 }
 
-TEST(ModelFile, AViewsOwnMinimumCoverageIsKeptAndChecked) {
+TEST(ModelFile, AViewsOwnParametersAreKeptAndChecked) {
   TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
-  m.min_coverage = 0.5;
+  m.view_params = {{"matching.min_coverage", 0.5}, {"matching.surface_reference_stride", 2}};
   const std::string bytes = encodeModel(m);
-  EXPECT_EQ(decodeModel(bytes, "p.spmodel").min_coverage, 0.5);
-  std::string outside = bytes;
-  const auto at = outside.find("\"min_coverage\":0.5");
-  ASSERT_NE(at, std::string::npos);
-  outside.replace(at, 18, "\"min_coverage\":1.5");
-  EXPECT_THAT(messageOf([&] { decodeModel(outside, "p.spmodel"); }),
-              HasSubstr("min_coverage 1.500000 is outside [0, 1]"));
+  EXPECT_EQ(decodeModel(bytes, "p.spmodel").view_params, m.view_params);
+  const auto edited = [&](const std::string& from, const std::string& to) {
+    std::string text = bytes;
+    const auto at = text.find(from, text.find("\"view_params\""));
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+  };
+  EXPECT_THAT(messageOf([&] {
+                decodeModel(edited("\"matching.min_coverage\":0.5", "\"matching.min_coverage\":1.5"),
+                            "p.spmodel");
+              }),
+              HasSubstr("'matching.min_coverage' = 1.500000 is outside its range"));
+  EXPECT_THAT(messageOf([&] {
+                decodeModel(edited("\"matching.surface_reference_stride\":2",
+                                   "\"matching.surface_reference_stride\":2.5"),
+                            "p.spmodel");
+              }),
+              HasSubstr("a whole number"));
+  // Scene stages run once for all views: their parameters cannot differ per view.
+  EXPECT_THAT(messageOf([&] {
+                decodeModel(edited("\"matching.min_coverage\"", "\"keypoints.normal_radius_mm\""),
+                            "p.spmodel");
+              }),
+              HasSubstr("cannot differ per view"));
+  EXPECT_THAT(messageOf([&] {
+                decodeModel(edited("\"matching.min_coverage\"", "\"matching.no_such_key\""),
+                            "p.spmodel");
+              }),
+              HasSubstr("unknown parameter 'matching.no_such_key'"));
 }
 
 TEST(ModelFile, DamagedFilesAreRejectedClearly) {

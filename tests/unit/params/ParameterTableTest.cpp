@@ -2,9 +2,11 @@
 #include "core/common/Error.h"
 #include "core/params/ParameterTable.h"
 #include "core/params/ParamsJson.h"
+#include "core/params/ViewParams.h"
 #include "tests/support/TempDir.h"
 
 #include <gtest/gtest.h>
+#include <cmath>
 #include <set>
 
 using namespace scanpick;
@@ -61,4 +63,22 @@ TEST(ParamsJson, PresetRoundTripAndErrors) {
   } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("update scanpick"), std::string::npos);
   }
+}
+
+TEST(ViewParams, OnlyMatchingValuesInRangeAndFoldedIntoTheParameters) {
+  core::RecognitionParams params;
+  core::ViewParams view{{"matching.min_coverage", 0.5}, {"matching.surface_reference_stride", 2},
+                        {"refine.enabled", 1}};
+  EXPECT_THROW(core::withViewParams(params, view), core::Error);  // refinement: not per view
+  view.erase("refine.enabled");
+  const core::RecognitionParams own = core::withViewParams(params, view);
+  EXPECT_EQ(own.matching.min_coverage, 0.5);
+  EXPECT_EQ(own.matching.surface_reference_stride, 2);
+  EXPECT_EQ(own.keypoints, params.keypoints);
+  core::foldViewParams(params, view);
+  EXPECT_EQ(params, own);
+  EXPECT_TRUE(view.empty());
+  EXPECT_THROW(core::checkViewParam("matching.surface_reference_stride", 0.0), core::Error);
+  EXPECT_THROW(core::checkViewParam("matching.min_coverage", std::nan("")), core::Error);
+  EXPECT_NO_THROW(core::checkViewParam("matching.min_coverage", 1.0));
 }

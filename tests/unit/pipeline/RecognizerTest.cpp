@@ -152,7 +152,7 @@ TEST(Recognizer, ViewsAreMergedWithoutDuplicatesAndNamedInTheResults) {
   EXPECT_THROW(recognizeViews(recognizer, {}, scene, sensorPreset("phoxi-m-1032"), params), Error);
 }
 
-TEST(Recognizer, AViewsOwnMinimumCoverageReplacesTheParameter) {
+TEST(Recognizer, AViewsOwnParametersReplaceTheRecognitionParameters) {
   const auto taught = idealModel();
   const PointCloud scene = threeCopies(0.3);
   auto params = test::idealParams(0.5);
@@ -162,20 +162,20 @@ TEST(Recognizer, AViewsOwnMinimumCoverageReplacesTheParameter) {
   ASSERT_EQ(all.detections.size(), 3u);
   const double best = all.detections.front().score, worst = all.detections.back().score;
   ASSERT_LT(worst, best);
-  // The view's own bar, between the worst and the best score, drops the worst detection although
-  // the parameters would keep every one...
+  // The view's own minimum coverage, between the worst and the best score, drops the worst
+  // detection although the parameters would keep every one...
   auto strict = std::make_shared<TaughtModel>(*taught);
-  strict->min_coverage = 0.5 * (worst + best);
+  strict->view_params["matching.min_coverage"] = 0.5 * (worst + best);
   const auto fewer = Recognizer(strict).recognize(scene, sensorPreset("phoxi-m-1032"), params);
   EXPECT_GE(fewer.detections.size(), 1u);
   EXPECT_LT(fewer.detections.size(), 3u);
   for (const auto& d : fewer.detections)
-    EXPECT_GE(d.score, *strict->min_coverage);
+    EXPECT_GE(d.score, strict->view_params["matching.min_coverage"]);
   // ...and a lower one keeps all three where the parameters alone would not.
-  params.matching.min_coverage = *strict->min_coverage;
+  params.matching.min_coverage = strict->view_params["matching.min_coverage"];
   EXPECT_EQ(Recognizer(taught).recognize(scene, sensorPreset("phoxi-m-1032"), params).detections.size(),
             fewer.detections.size());
   auto lenient = std::make_shared<TaughtModel>(*taught);
-  lenient->min_coverage = 0.0;
+  lenient->view_params["matching.min_coverage"] = 0.0;
   EXPECT_EQ(Recognizer(lenient).recognize(scene, sensorPreset("phoxi-m-1032"), params).detections.size(), 3u);
 }
