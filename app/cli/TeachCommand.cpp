@@ -107,13 +107,11 @@ void registerTeachCommand(CLI::App& app) {
     core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));
     model.teach_scan = std::filesystem::path(o->scan).filename().string();
     for (const auto& kv : o->view_settings) {
-      // Parsed and range-checked as --set is, then kept as the table's number.
+      // Parsed and checked as --set is (an unknown key or a value out of range is an Error),
+      // then kept as the table's number.
       const nlohmann::json setting = parseSetting(kv, "--view-set");
       const std::string key = setting.begin().key();
-      const core::ParamInfo* info = core::findParameter(key);
-      if (!info)
-        throw core::Error("--view-set: unknown parameter '" + key + "' (keys: scanpick-cli params)");
-      const double value = info->get(core::paramsFromJson(setting));
+      const double value = core::findParameter(key)->get(core::paramsFromJson(setting));
       core::checkViewParam(key, value);
       model.view_params[key] = value;
     }
