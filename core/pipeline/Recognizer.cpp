@@ -430,6 +430,45 @@ std::shared_ptr<const TaughtModel> Recognizer::model() const {
   return m_model;
 }
 
+void Recognizer::prepare(const RecognitionParams& requested) {
+  std::shared_ptr<const TaughtModel> model;
+  Cache cache;
+  {
+    const std::lock_guard lock(m_mutex);
+    model = m_model;
+    if (m_cache)
+      cache = *m_cache;
+  }
+  if (!model)
+    throw Error("no model to prepare: teach a part or open a .spmodel file first");
+  const RecognitionParams params = withViewParams(requested, model->view_params);
+  if (params.matching.verify_tolerance_mm <= 0 && !params.refine.enabled)
+    return;
+  prepareModel(cache.model_preps, model, params);
+  const std::lock_guard lock(m_mutex);
+  if (!m_cache)
+    m_cache = std::make_shared<Cache>();
+  else
+    m_cache = std::make_shared<Cache>(*m_cache);
+  m_cache->model_preps = cache.model_preps;
+}
+
+std::size_t Recognizer::preparedModels() const {
+  const std::lock_guard lock(m_mutex);
+  return m_cache ? m_cache->model_preps.size() : 0;
+}
+
+double prepareViews(Recognizer& recognizer,
+                    const std::vector<std::shared_ptr<const TaughtModel>>& models,
+                    const RecognitionParams& params) {
+  const auto t0 = Clock::now();
+  for (const auto& model : models) {
+    recognizer.setModel(model);
+    recognizer.prepare(params);
+  }
+  return msSince(t0);
+}
+
 void Recognizer::clearCache() {
   const std::lock_guard lock(m_mutex);
   m_cache.reset();

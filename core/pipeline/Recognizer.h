@@ -59,6 +59,16 @@ public:
   RecognitionResult recognize(const PointCloud& scene_mm, const SensorModel& sensor,
                               const RecognitionParams& params, const ProgressFn& progress = {});
 
+  /// Prepares the model for matching as recognize() would with these parameters (verification
+  /// points, ICP model, surface pair table, axis fit, near symmetries), so that the first scene
+  /// does not pay for it: a cell prepares a model once, when it loads it. Nothing is done when
+  /// the parameters need no preparation (no verification, refinement or surface voting). Throws
+  /// Error without a model.
+  void prepare(const RecognitionParams& params);
+
+  /// How many model preparations the cache holds (at most 8: views alternate scene after scene).
+  [[nodiscard]] std::size_t preparedModels() const;
+
   /// Forgets every cached stage.
   void clearCache();
 
@@ -68,6 +78,12 @@ private:
   std::shared_ptr<const TaughtModel> m_model;
   std::shared_ptr<Cache> m_cache;
 };
+
+/// Recognizer::prepare for each of `models` (views of one part), in turn. Returns the wall time
+/// it took, milliseconds.
+double prepareViews(Recognizer& recognizer,
+                    const std::vector<std::shared_ptr<const TaughtModel>>& models,
+                    const RecognitionParams& params);
 
 /// Finds any of several models in one scene: views of one part, each taught from a scan of
 /// another side it can rest on (one model sees one side only). The scene stages run once (the

@@ -116,6 +116,15 @@ TEST(CliRepeatability, TwoRecognizeRunsWriteTheSameResults) {
   EXPECT_NE(report.find(std::to_string(a.at("detections").size()) + " detection(s)"),
             std::string::npos)
       << report;
+  // Prepared views: the preparation on its own line, the same detections.
+  std::vector<std::string> prepared = bench;
+  prepared.push_back("--prepare");
+  ASSERT_EQ(runCli(prepared, d / "bench-prepared.txt"), 0) << readText(d / "bench-prepared.txt");
+  const std::string prepared_report = readText(d / "bench-prepared.txt");
+  EXPECT_NE(prepared_report.find("| view preparation"), std::string::npos) << prepared_report;
+  EXPECT_NE(prepared_report.find(std::to_string(a.at("detections").size()) + " detection(s)"),
+            std::string::npos)
+      << prepared_report;
   warm.back() = quoted(d / "no-such-scan.pcd");
   EXPECT_NE(runCli(warm, d / "bench-missing.txt"), 0) << "a missing warm-up scan is an error";
   EXPECT_NE(readText(d / "bench-missing.txt").find("no-such-scan.pcd"), std::string::npos);

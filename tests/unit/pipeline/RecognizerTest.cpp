@@ -179,3 +179,32 @@ TEST(Recognizer, AViewsOwnParametersReplaceTheRecognitionParameters) {
   lenient->view_params["matching.min_coverage"] = 0.0;
   EXPECT_EQ(Recognizer(lenient).recognize(scene, sensorPreset("phoxi-m-1032"), params).detections.size(), 3u);
 }
+
+TEST(Recognizer, PreparedViewsGiveTheSameDetectionsAndAreKept) {
+  const auto view0 = idealModel();
+  auto view1 = std::make_shared<TaughtModel>(*view0);
+  view1->teach_scan = "side.pcd";
+  view1->view_params = {{"matching.min_coverage", 0.2}};
+  const PointCloud scene = threeCopies(0.3);
+  auto params = test::idealParams(0.5);
+  params.matching.verify_tolerance_mm = 0.5;
+  params.matching.min_coverage = 0.5;
+  Recognizer fresh;
+  const auto expected = recognizeViews(fresh, {view0, view1}, scene, sensorPreset("phoxi-m-1032"), params);
+  Recognizer prepared;
+  EXPECT_THROW(prepared.prepare(params), Error);  // no model yet
+  EXPECT_GE(prepareViews(prepared, {view0, view1}, params), 0.0);
+  EXPECT_EQ(prepared.preparedModels(), 2u);
+  const auto got = recognizeViews(prepared, {view0, view1}, scene, sensorPreset("phoxi-m-1032"), params);
+  EXPECT_EQ(prepared.preparedModels(), 2u);  // used, not prepared again
+  ASSERT_EQ(got.detections.size(), expected.detections.size());
+  ASSERT_FALSE(got.detections.empty());
+  for (std::size_t i = 0; i < got.detections.size(); ++i) {
+    EXPECT_EQ(got.detections[i].T_scene_model.matrix(), expected.detections[i].T_scene_model.matrix());
+    EXPECT_EQ(got.detections[i].score, expected.detections[i].score);
+  }
+  // Without verification or refinement there is nothing to prepare.
+  Recognizer plain(view0);
+  plain.prepare(test::idealParams(0.5));
+  EXPECT_EQ(plain.preparedModels(), 0u);
+}
