@@ -114,6 +114,8 @@ int runDemo(const DemoOptions& o) {
   const core::PointCloud scene =
       core::loadCloud(scene_path.string(), core::LengthUnit::Millimetres).cloud;
   core::Recognizer recognizer;
+  std::printf("    %zu view(s) prepared in %.0f ms\n", models.size(),
+              core::prepareViews(recognizer, models, params));
   const core::RecognitionResult result =
       core::recognizeViews(recognizer, models, scene, sensor, params);
   const fs::path results_path = dir / "demo-results.json";
