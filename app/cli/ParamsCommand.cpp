@@ -3,6 +3,7 @@
 // values.
 #include "app/cli/CliCommon.h"
 #include "app/cli/Commands.h"
+#include "app/cli/RecipeOptions.h"
 #include "core/params/ParameterDocs.h"
 #include "core/params/ParamsJson.h"
 
@@ -26,7 +27,7 @@ void registerParamsCommand(CLI::App& app) {
         std::optional<core::RecognitionParams> values;
         std::string name;
         if (!options->preset.empty()) {
-          const core::Preset preset = core::loadPreset(options->preset);
+          const core::Preset preset = core::loadPreset(findPreset(options->preset));
           values = preset.params;
           name = preset.name;
         }
@@ -36,7 +37,7 @@ void registerParamsCommand(CLI::App& app) {
       });
   sub->add_flag("--markdown", options->markdown, "Markdown tables (as in docs/parameters.md)");
   sub->add_option("--preset", options->preset,
-                  "Also show this preset's values (resources/presets/*.json)");
+                  "Also show this preset's values: a name in resources/presets or a file");
 }
 
 } // namespace scanpick::cli

@@ -10,7 +10,9 @@
 namespace scanpick::core {
 
 namespace {
-constexpr int kPresetVersion = 1;
+constexpr int kPresetVersion = 2;
+/// How deep presets may build on one another (a loop of bases stops here).
+constexpr int kMaxBaseDepth = 8;
 }
 
 nlohmann::json paramsToJson(const RecognitionParams& params) {
@@ -55,7 +57,8 @@ RecognitionParams paramsFromJson(const nlohmann::json& object, RecognitionParams
   return params;
 }
 
-Preset loadPreset(const std::filesystem::path& path) {
+namespace {
+Preset loadPresetAt(const std::filesystem::path& path, int depth) {
   const std::string text = readFile(path);
   nlohmann::json doc;
   try {
@@ -74,12 +77,29 @@ Preset loadPreset(const std::filesystem::path& path) {
   Preset preset;
   preset.name = doc.value("name", path.stem().string());
   preset.description = doc.value("description", "");
+  // Version 2: a preset may name the preset it builds on (a file next to it); its own params
+  // then change only what differs.
+  RecognitionParams base;
+  if (doc.contains("base")) {
+    if (!doc["base"].is_string() || doc["base"].get<std::string>().empty())
+      throw Error("preset '" + path.string() + "': \"base\" must name a preset file next to it");
+    if (depth >= kMaxBaseDepth)
+      throw Error("preset '" + path.string() + "': its bases go deeper than " +
+                  std::to_string(kMaxBaseDepth) + " presets (do two presets name each other?)");
+    const auto base_path = path.parent_path() / (doc["base"].get<std::string>() + ".json");
+    base = loadPresetAt(base_path, depth + 1).params;
+  }
   try {
-    preset.params = paramsFromJson(doc.value("params", nlohmann::json::object()));
+    preset.params = paramsFromJson(doc.value("params", nlohmann::json::object()), base);
   } catch (const Error& e) {
     throw Error("preset '" + path.string() + "': " + e.what());
   }
   return preset;
+}
+} // namespace
+
+Preset loadPreset(const std::filesystem::path& path) {
+  return loadPresetAt(path, 0);
 }
 
 void savePreset(const std::filesystem::path& path, const Preset& preset) {

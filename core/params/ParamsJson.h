@@ -2,9 +2,11 @@
 /// @file ParamsJson.h
 /// Presets: RecognitionParams as JSON keyed by the metadata table's keys.
 ///
-/// Format (version 1): `{"format": "scanpick-preset", "version": 1, "name": "...",
-/// "description": "...", "params": {"keypoints.position_range_mm": 0.6, ...}}`.
-/// Enum values may be given by name ("ransac") or index. Missing keys keep their defaults.
+/// Format (version 2): `{"format": "scanpick-preset", "version": 2, "name": "...",
+/// "description": "...", "base": "phoxi-bin", "params": {"keypoints.position_range_mm": 0.6, ...}}`.
+/// Enum values may be given by name ("ransac") or index. Missing keys keep the base preset's
+/// values (`base`, optional: a preset file of that name next to this one), or the defaults.
+/// Version 1 (no base) is read as before.
 
 #include "core/params/Parameters.h"
 
@@ -28,7 +30,8 @@ struct Preset {
   RecognitionParams params;
 };
 
-/// Reads a preset; throws Error for a missing or malformed file or a future version.
+/// Reads a preset and the presets it builds on; throws Error for a missing or malformed file
+/// (its own or a base's), a future version, or bases that name each other.
 Preset loadPreset(const std::filesystem::path& path);
 /// Writes a preset atomically.
 void savePreset(const std::filesystem::path& path, const Preset& preset);

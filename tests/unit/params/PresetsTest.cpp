@@ -1,6 +1,9 @@
 // The presets in resources/presets load, and the thesis presets hold the values of the thesis's
 // tables 5.1-5.8 (shared/spec/thesis.txt, chapter 5).
+#include "core/common/AtomicFile.h"
+#include "core/common/Error.h"
 #include "core/params/ParamsJson.h"
+#include "tests/support/TempDir.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -87,4 +90,48 @@ TEST(Presets, CoatRackConfigurationsDifferOnlyInMatchingPosition) {
   EXPECT_NE(a, b);
   a.matching.position_tolerance_mm = b.matching.position_tolerance_mm;
   EXPECT_EQ(a, b);
+}
+
+// A preset builds on the one it names as its base (a file next to it): its own params change only
+// what differs. A missing base or two presets naming each other are errors, not a crash.
+TEST(Presets, BasePresetsAreResolved) {
+  const test::TempDir dir;
+  const auto write = [&](const std::string& name, const std::string& text) {
+    core::writeFileAtomic(dir / (name + ".json"), text);
+  };
+  write("base", R"({"format":"scanpick-preset","version":1,"name":"base","params":
+                   {"matching.min_coverage":0.7,"features.ransac_size":15}})");
+  write("child", R"({"format":"scanpick-preset","version":2,"name":"child","base":"base",
+                    "params":{"matching.min_coverage":0.5}})");
+  write("grandchild", R"({"format":"scanpick-preset","version":2,"name":"grandchild",
+                         "base":"child","params":{"features.lines":false}})");
+  const core::Preset grandchild = core::loadPreset(dir / "grandchild.json");
+  EXPECT_EQ(grandchild.params.matching.min_coverage, 0.5);
+  EXPECT_EQ(grandchild.params.features.ransac_size, 15);
+  EXPECT_FALSE(grandchild.params.features.lines);
+  EXPECT_EQ(grandchild.params.keypoints, core::RecognitionParams{}.keypoints);
+
+  write("orphan", R"({"format":"scanpick-preset","version":2,"base":"missing","params":{}})");
+  EXPECT_THROW(core::loadPreset(dir / "orphan.json"), core::Error);
+  write("a", R"({"format":"scanpick-preset","version":2,"base":"b","params":{}})");
+  write("b", R"({"format":"scanpick-preset","version":2,"base":"a","params":{}})");
+  try {
+    core::loadPreset(dir / "a.json");
+    FAIL() << "a loop of bases must be an error";
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("name each other"), std::string::npos) << e.what();
+  }
+}
+
+// The bundled bin presets are built on one another; each resolves to its full parameter set.
+TEST(Presets, BinPresetsBuildOnEachOther) {
+  const auto load = [](const char* name) { return core::loadPreset(kPresetDir / (std::string(name) + ".json")).params; };
+  const auto cup = load("phoxi-bin-cup");
+  const auto coat_rack = load("phoxi-bin-coat-rack");
+  EXPECT_EQ(cup.keypoints, coat_rack.keypoints);
+  EXPECT_EQ(cup.matching.min_coverage, coat_rack.matching.min_coverage);
+  EXPECT_EQ(cup.matching.surface_sampling_mm, 6.0);
+  EXPECT_FALSE(cup.features.lines);
+  EXPECT_EQ(load("phoxi-bin-surface").matching.symmetry_overlap, 0.0);  // phoxi-bin's 0.75 undone
+  EXPECT_EQ(load("phoxi-bin").matching.symmetry_overlap, 0.75);
 }
