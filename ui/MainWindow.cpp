@@ -46,6 +46,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   m_jobs = new JobRunner(this);
   m_preview_jobs = new JobRunner(this);
   m_recognize_jobs = new JobRunner(this);
+  m_prepare_jobs = new JobRunner(this);
   m_undo = new QUndoStack(this);
   m_recognizer = std::make_shared<core::Recognizer>();
   m_preview_timer = new QTimer(this);
@@ -380,6 +381,7 @@ bool MainWindow::openModel(const QString& path) {
     core::foldViewParams(params, searched->view_params);
     m_recognizer->setModel(searched);
     m_params->setParams(params);
+    prepareModelInBackground();
     addRecentFile(path);
     core::logger()->info("model '{}' from {}: {} features, {} grip points", model->name,
                          path.toStdString(), model->features.size(), model->grip_points.size());
@@ -389,6 +391,17 @@ bool MainWindow::openModel(const QString& path) {
     showError(tr("Open model"), QString::fromUtf8(e.what()));
     return false;
   }
+}
+
+void MainWindow::prepareModelInBackground() {
+  const auto recognizer = m_recognizer;
+  const core::RecognitionParams params = m_params->params();
+  m_prepare_jobs->run<bool>(
+      [recognizer, params](const core::ProgressFn&) {
+        recognizer->prepare(params);
+        return true;
+      },
+      [](std::shared_ptr<const bool>) { core::logger()->info("model prepared for matching"); });
 }
 
 bool MainWindow::saveScan(const QString& path) {

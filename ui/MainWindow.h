@@ -134,6 +134,9 @@ public:
   [[nodiscard]] bool liveRunning() const { return m_live; }
   [[nodiscard]] JobRunner* previewJobs() const { return m_preview_jobs; }
   [[nodiscard]] JobRunner* recognizeJobs() const { return m_recognize_jobs; }
+  [[nodiscard]] JobRunner* prepareJobs() const { return m_prepare_jobs; }
+  /// How many model preparations the recognizer holds (see prepareModelInBackground).
+  [[nodiscard]] std::size_t preparedModels() const { return m_recognizer->preparedModels(); }
   [[nodiscard]] QUndoStack* undoStack() const { return m_undo; }
   [[nodiscard]] std::shared_ptr<const core::PointCloud> scan() const { return m_scan; }
   [[nodiscard]] std::shared_ptr<const core::PointCloud> part() const { return m_part; }
@@ -196,6 +199,9 @@ private:
   void buildToolButtons(QVBoxLayout* layout);
   // MainWindowRecognize.cpp
   void showResult(int selected);
+  /// Prepares the model for matching in the background (Recognizer::prepare), so that the first
+  /// recognition, or live cycle, does not pay for it.
+  void prepareModelInBackground();
   void onResultSelected(int row);
   void runLiveCycle();
   /// Points the camera as the sensor looks (scans are in the camera frame) and fits the view.
@@ -209,6 +215,7 @@ private:
   JobRunner* m_jobs = nullptr;            // loading, floor removal, teach
   JobRunner* m_preview_jobs = nullptr;    // keypoint/feature preview
   JobRunner* m_recognize_jobs = nullptr;  // recognition (single and live)
+  JobRunner* m_prepare_jobs = nullptr;    // preparing a new model for matching
   QTimer* m_preview_timer = nullptr;
   QUndoStack* m_undo = nullptr;
   QMenu* m_recent_menu = nullptr;

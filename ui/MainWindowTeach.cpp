@@ -376,6 +376,7 @@ void MainWindow::teach() {
       [this](std::shared_ptr<const core::TaughtModel> model) {
         m_model = model;
         m_recognizer->setModel(model);
+        prepareModelInBackground();
         core::logger()->info("taught '{}': {} points, {} keypoints, {} features, {} grip points",
                              model->name, model->cloud_mm.size(), model->keypoints_mm.size(),
                              model->features.size(), model->grip_points.size());

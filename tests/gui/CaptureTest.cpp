@@ -121,7 +121,9 @@ TEST_F(Capture, LiveLoopRunsCyclesUntilStopped) {
   // Live without a camera is refused with a dialog, and the window keeps running.
   window.setLiveRunning(true);
   EXPECT_FALSE(window.liveRunning());
-  QTRY_VERIFY_WITH_TIMEOUT(window.findChild<QMessageBox*>(QStringLiteral("errorDialog")), 5000);
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return window.findChild<QMessageBox*>(QStringLiteral("errorDialog")) != nullptr; },
+      5000));
 
   QSignalSpy opened(panel, &ui::DevicePanel::cameraOpened);
   openThroughUi(QStringLiteral("file:%1").arg(QString::fromStdString(replayFolder(scenes, 4).string())));
@@ -130,10 +132,10 @@ TEST_F(Capture, LiveLoopRunsCyclesUntilStopped) {
   QSignalSpy cycles(&window, &MainWindow::liveCycleFinished);
   window.setLiveRunning(true);
   ASSERT_TRUE(window.liveRunning());
-  QTRY_VERIFY_WITH_TIMEOUT(cycles.count() >= 2, 50000);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return cycles.count() >= 2; }, 50000));
   window.setLiveRunning(false);
   EXPECT_FALSE(window.liveRunning());
-  QTRY_VERIFY_WITH_TIMEOUT(!window.recognizeJobs()->busy(), 30000);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !window.recognizeJobs()->busy(); }, 30000));
   const int after_stop = static_cast<int>(cycles.count());
   QTest::qWait(500);
   EXPECT_EQ(cycles.count(), after_stop) << "cycles went on after Live was stopped";
@@ -170,11 +172,13 @@ TEST_F(Capture, InvalidOrUnpluggedDeviceShowsAnErrorAndTheWindowKeepsRunning) {
                             QStringLiteral("bogus:1"), QStringLiteral("kinect:abc")}) {
     const int before = static_cast<int>(errors.count());
     openThroughUi(id);
-    QTRY_VERIFY_WITH_TIMEOUT(errors.count() > before, 30000);
+    ASSERT_TRUE(QTest::qWaitFor([&] { return errors.count() > before; }, 30000));
     EXPECT_EQ(panel->camera(), nullptr) << id.toStdString();
     EXPECT_FALSE(errors.last().at(0).toString().isEmpty());
   }
-  QTRY_VERIFY_WITH_TIMEOUT(window.findChild<QMessageBox*>(QStringLiteral("errorDialog")), 5000);
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return window.findChild<QMessageBox*>(QStringLiteral("errorDialog")) != nullptr; },
+      5000));
   EXPECT_TRUE(window.logDock()->text().contains(QStringLiteral("Camera")));
 
   // A camera whose frames run out mid-use: the capture error is reported, nothing crashes.
@@ -186,7 +190,7 @@ TEST_F(Capture, InvalidOrUnpluggedDeviceShowsAnErrorAndTheWindowKeepsRunning) {
   ASSERT_TRUE(frames.wait(30000));
   const int before = static_cast<int>(errors.count());
   panel->captureOne();
-  QTRY_VERIFY_WITH_TIMEOUT(errors.count() > before, 30000);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return errors.count() > before; }, 30000));
   EXPECT_NE(window.scan(), nullptr) << "the last good frame stays shown";
   EXPECT_TRUE(window.isVisible());
 }

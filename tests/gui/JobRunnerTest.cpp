@@ -44,7 +44,7 @@ TEST(JobRunner, StaleResultIsDropped) {
   const quint64 second = runner.run<int>([](const core::ProgressFn&) { return 2; },
                                          [&](std::shared_ptr<const int> v) { delivered.push_back(*v); });
   release = true;
-  QTRY_COMPARE_WITH_TIMEOUT(spy.count(), 2, 5000);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return spy.count() == 2; }, 5000));
   ASSERT_EQ(delivered.size(), 1u);
   EXPECT_EQ(delivered.front(), 2);
   EXPECT_EQ(runner.droppedCount(), 1);
@@ -67,7 +67,7 @@ TEST(JobRunner, CancelStopsTheWorkThroughProgress) {
       },
       [&](std::shared_ptr<const int>) { done_called = true; });
   QSignalSpy spy(&runner, &JobRunner::jobFinished);
-  QTRY_VERIFY_WITH_TIMEOUT(steps.load() > 5, 5000);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return steps.load() > 5; }, 5000));
   runner.cancel();
   ASSERT_TRUE(spy.wait(5000));
   EXPECT_FALSE(spy.first().at(1).toBool()) << "a cancelled job is not accepted";

@@ -139,9 +139,9 @@ TEST_F(WindowFixture, RapidChangesDropStalePreviews) {
   window.parameterPanel()->setValue("keypoints.neighbourhood_radius_mm", 5.0);
   window.refreshPreview();
   ASSERT_TRUE(previews.wait(30000));
-  QTRY_VERIFY_WITH_TIMEOUT(!window.previewJobs()->busy(), 30000);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !window.previewJobs()->busy(); }, 30000));
   QTest::qWait(300);  // let the debounce timer started by setValue fire and settle, too
-  QTRY_VERIFY_WITH_TIMEOUT(!window.previewJobs()->busy(), 30000);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !window.previewJobs()->busy(); }, 30000));
   EXPECT_GE(window.previewJobs()->droppedCount() - dropped_before, 1) << "stale job not dropped";
   ASSERT_NE(window.preview(), nullptr);
   EXPECT_EQ(window.preview()->keypoint_params.neighbourhood_radius_mm, 5.0)
@@ -229,11 +229,15 @@ TEST_F(WindowFixture, AViewsOwnParametersAreThePanelsValues) {
   core::TaughtModel taught = core::teach(
       test::idealScene(test::idealPartPoints(), {teachPose()}, 0.0, 1), options, test::idealParams(0.5));
   taught.view_params = {{"matching.min_coverage", 0.42}};
+  // Verification on: there is something to prepare.
+  taught.params.matching.verify_tolerance_mm = 0.5;
   ASSERT_NE(taught.params.matching.min_coverage, 0.42);
   const QString path = test::screenshotDir() + "/own-coverage.spmodel";
   core::saveModel(path.toStdString(), taught);
   ASSERT_TRUE(window.openModel(path));
   EXPECT_EQ(window.parameterPanel()->params().matching.min_coverage, 0.42);
+  // The model is prepared for matching in the background right after it is opened.
+  ASSERT_TRUE(QTest::qWaitFor([&] { return window.preparedModels() == std::size_t{1}; }, 30000));
   const QString again = test::screenshotDir() + "/own-coverage-again.spmodel";
   ASSERT_TRUE(window.saveModel(again));
   EXPECT_EQ(core::loadModel(again.toStdString()).view_params, taught.view_params);
@@ -243,7 +247,8 @@ TEST_F(WindowFixture, LogDockReceivesCoreLogFromAnyThread) {
   const int before = window.logDock()->lineCount();
   std::thread worker([] { core::logger()->info("message from a worker thread"); });
   worker.join();
-  QTRY_VERIFY_WITH_TIMEOUT(window.logDock()->text().contains("message from a worker thread"), 5000);
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return window.logDock()->text().contains("message from a worker thread"); }, 5000));
   EXPECT_GT(window.logDock()->lineCount(), before);
 }
 

@@ -211,7 +211,8 @@ TEST_F(Workflow, LassoKeepsThePointsDrawnAroundAndIsUndoable) {
 
   // A polygon beside every point keeps nothing: refused with a dialog, the part stays.
   window.applyLasso(QPolygonF({QPointF(w - 30, 2), QPointF(w - 2, 2), QPointF(w - 2, 30)}));
-  QTRY_VERIFY_WITH_TIMEOUT(window.findChild<QWidget*>(QStringLiteral("errorDialog")) != nullptr, 10000);
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return window.findChild<QWidget*>(QStringLiteral("errorDialog")) != nullptr; }, 10000));
   EXPECT_EQ(window.part()->validCount(), one_copy);
   // A click (no area) is ignored.
   window.applyLasso(QPolygonF({QPointF(10, 10), QPointF(11, 10)}));
