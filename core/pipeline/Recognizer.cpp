@@ -189,6 +189,11 @@ bool isTurnAbout(const RevolutionAxis& axis, const Eigen::Isometry3d& S) {
          (S * axis.point_mm - axis.point_mm).norm() < 2.0;
 }
 
+/// Whether matching with these parameters uses a prepared model (verification or refinement).
+bool needsModelPrep(const RecognitionParams& params) {
+  return params.matching.verify_tolerance_mm > 0 || params.refine.enabled;
+}
+
 /// The cached preparation of `model` for these parameters, made (and cached, replacing the
 /// oldest of at most 8) when missing or lacking what the parameters need.
 std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const ModelPrep>>& preps,
@@ -430,9 +435,8 @@ std::shared_ptr<const TaughtModel> Recognizer::model() const {
   return m_model;
 }
 
-void Recognizer::prepare(const RecognitionParams& requested) {
+std::shared_ptr<const TaughtModel> Recognizer::snapshot(Cache& cache, const char* action) const {
   std::shared_ptr<const TaughtModel> model;
-  Cache cache;
   {
     const std::lock_guard lock(m_mutex);
     model = m_model;
@@ -440,16 +444,21 @@ void Recognizer::prepare(const RecognitionParams& requested) {
       cache = *m_cache;
   }
   if (!model)
-    throw Error("no model to prepare: teach a part or open a .spmodel file first");
+    throw Error(std::string("no model to ") + action +
+                ": teach a part or open a .spmodel file first");
+  return model;
+}
+
+void Recognizer::prepare(const RecognitionParams& requested) {
+  Cache cache;
+  const auto model = snapshot(cache, "prepare");
   const RecognitionParams params = withViewParams(requested, model->view_params);
-  if (params.matching.verify_tolerance_mm <= 0 && !params.refine.enabled)
+  if (!needsModelPrep(params))
     return;
   prepareModel(cache.model_preps, model, params);
+  // Only the preparations go back: a recognition running meanwhile may have cached scene stages.
   const std::lock_guard lock(m_mutex);
-  if (!m_cache)
-    m_cache = std::make_shared<Cache>();
-  else
-    m_cache = std::make_shared<Cache>(*m_cache);
+  m_cache = std::make_shared<Cache>(m_cache ? *m_cache : Cache{});
   m_cache->model_preps = cache.model_preps;
 }
 
@@ -478,16 +487,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
                                         const RecognitionParams& requested,
                                         const ProgressFn& progress) {
   const auto t_start = Clock::now();
-  std::shared_ptr<const TaughtModel> model;
   Cache cache;
-  {
-    const std::lock_guard lock(m_mutex);
-    model = m_model;
-    if (m_cache)
-      cache = *m_cache;
-  }
-  if (!model)
-    throw Error("no model to recognize: teach a part or open a .spmodel file first");
+  const auto model = snapshot(cache, "recognize");
   const RecognitionParams params = withViewParams(requested, model->view_params);
   scene_mm.validate();
   if (scene_mm.validCount() == 0)
@@ -550,7 +551,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   const bool verifying = params.matching.verify_tolerance_mm > 0;
   std::shared_ptr<const ModelPrep> prep;
-  if ((verifying || params.refine.enabled) && cache.pre && cache.pre->validCount() > 0) {
+  if (needsModelPrep(params) && cache.pre && cache.pre->validCount() > 0) {
     const auto t0 = Clock::now();
     if (cache.index_key != pre_key || !cache.scene_index) {
       SceneIndexOptions options;

@@ -74,6 +74,9 @@ public:
 
 private:
   struct Cache;
+  /// The model and a copy of the cache, taken under the lock. Throws Error without a model,
+  /// naming `action` ("recognize", "prepare").
+  std::shared_ptr<const TaughtModel> snapshot(Cache& cache, const char* action) const;
   mutable std::mutex m_mutex;
   std::shared_ptr<const TaughtModel> m_model;
   std::shared_ptr<Cache> m_cache;
