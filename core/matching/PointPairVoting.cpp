@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <string>
 #include <tbb/parallel_for.h>
 #include <tuple>
 
@@ -23,13 +24,12 @@ Eigen::Isometry3f localFrame(const Eigen::Vector3f& p, const Eigen::Vector3f& n)
   return T;
 }
 
-/// Rotation about x that brings a point given in a local frame into the half plane z = 0, y > 0.
-float planeAngle(const Eigen::Vector3f& local) {
-  return std::atan2(-local.z(), local.y());
-}
-
-float angleBetween(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
-  return std::acos(std::clamp(a.dot(b), -1.0f, 1.0f));
+/// Rotation about x that brings a point given in a local frame into the half plane z = 0, y > 0,
+/// in turns of 2π / 65536: the difference of two such angles, taken as a uint16, is their
+/// difference modulo 2π.
+std::uint16_t planeAngle(const Eigen::Vector3f& local) {
+  const float radians = std::atan2(-local.z(), local.y());
+  return static_cast<std::uint16_t>(std::lround(radians * (65536.0f / kTwoPi)) & 0xFFFF);
 }
 
 /// A voted pose before clustering (kept in reference order, so ties sort deterministically).
@@ -86,15 +86,22 @@ PointPairModel::PointPairModel(OrientedPoints model, double distance_step_mm, in
   if (n < 3 || m_model.normals.size() != n)
     throw Error("point pair model: fewer than 3 oriented model points (widen the crop or lower "
                 "the surface sampling)");
+  if (n > 0xFFFF)
+    throw Error("point pair model: " + std::to_string(n) +
+                " oriented model points, at most 65535 (raise the surface sampling)");
   if (!(distance_step_mm > 0.0) || angle_bins < 4 || angle_bins > 360)
     throw Error("point pair model: distance step must be > 0 and angle bins in [4, 360]");
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
       m_diameter_mm =
           std::max(m_diameter_mm, double((m_model.points[i] - m_model.points[j]).norm()));
+  const int half = m_angle_bins / 2;
+  for (int k = 1; k < half; ++k)
+    m_bin_cosines.push_back(std::cos(float(k) * float(M_PI) / float(half)));
   m_to_local.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
     m_to_local.push_back(localFrame(m_model.points[i], m_model.normals[i]));
+  std::vector<std::pair<std::uint32_t, Entry>> keyed;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j) {
       if (i == j)
@@ -102,18 +109,20 @@ PointPairModel::PointPairModel(OrientedPoints model, double distance_step_mm, in
       bool valid = false;
       const std::uint32_t k =
           key(m_model.points[i], m_model.normals[i], m_model.points[j], m_model.normals[j], &valid);
-      if (!valid)
-        continue;
-      m_table.push_back(
-          {k, static_cast<std::uint32_t>(i), planeAngle(m_to_local[i] * m_model.points[j])});
+      if (valid)
+        keyed.push_back({k, Entry{static_cast<std::uint16_t>(i),
+                                  planeAngle(m_to_local[i] * m_model.points[j])}});
     }
-  std::stable_sort(m_table.begin(), m_table.end(),
-                   [](const Entry& a, const Entry& b) { return a.key < b.key; });
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
   // Dense offsets: the entries of key k are m_table[m_offsets[k], m_offsets[k + 1]).
-  const std::uint32_t keys = m_table.empty() ? 0 : m_table.back().key + 1;
+  const std::uint32_t keys = keyed.empty() ? 0 : keyed.back().first + 1;
   m_offsets.assign(keys + 1, 0);
-  for (const auto& e : m_table)
-    ++m_offsets[e.key + 1];
+  m_table.reserve(keyed.size());
+  for (const auto& [k, e] : keyed) {
+    ++m_offsets[k + 1];
+    m_table.push_back(e);
+  }
   for (std::uint32_t k = 0; k < keys; ++k)
     m_offsets[k + 1] += m_offsets[k];
 }
@@ -128,10 +137,13 @@ std::uint32_t PointPairModel::key(const Eigen::Vector3f& p1, const Eigen::Vector
     return 0;
   const Eigen::Vector3f u = d / distance;
   const int half = m_angle_bins / 2;
-  const float step = float(M_PI) / float(half);
-  auto bin = [&](float angle) { return std::min(half - 1, static_cast<int>(angle / step)); };
-  const int a1 = bin(angleBetween(n1, u)), a2 = bin(angleBetween(n2, u)),
-            a3 = bin(angleBetween(n1, n2));
+  auto bin = [&](float cosine) {
+    int b = 0;
+    for (const float bound : m_bin_cosines)
+      b += cosine <= bound;
+    return b;
+  };
+  const int a1 = bin(n1.dot(u)), a2 = bin(n2.dot(u)), a3 = bin(n1.dot(n2));
   // Two points of one plane (normals parallel, both across the joining line) tell nothing but
   // their distance, and flat parts have very many of them: such pairs are not used.
   const int across = half / 2;
@@ -167,8 +179,8 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
     const Eigen::Vector3f& n = scene.normals[s];
     const Eigen::Isometry3f to_local = localFrame(p, n);
     std::vector<std::pair<std::uint32_t, float>> neighbours;
+    // The votes are counts: the order in which the neighbours are visited does not matter.
     tree.radiusSearch(p.data(), radius_sq, neighbours, nanoflann::SearchParams(32, 0.0f, false));
-    std::sort(neighbours.begin(), neighbours.end()); // visiting order must not matter
     std::vector<std::uint16_t> accumulator(n_model * bins, 0);
     for (const auto& [i, distance_sq] : neighbours) {
       if (i == s)
@@ -179,14 +191,13 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
         continue;
       if (k + 1 >= m_offsets.size() || m_offsets[k] == m_offsets[k + 1])
         continue;
-      const float alpha_scene = planeAngle(to_local * scene.points[i]);
+      const std::uint16_t alpha_scene = planeAngle(to_local * scene.points[i]);
       const Entry* end = m_table.data() + m_offsets[k + 1];
       for (const Entry* e = m_table.data() + m_offsets[k]; e != end; ++e) {
         if (exclude_sq > 0 && (m_model.points[e->model_point] - p).squaredNorm() < exclude_sq)
           continue;
-        float alpha = e->alpha - alpha_scene;
-        alpha -= kTwoPi * std::floor(alpha / kTwoPi);
-        const auto bin = std::min(bins - 1, static_cast<std::size_t>(alpha / alpha_step));
+        const auto alpha = static_cast<std::uint16_t>(e->alpha - alpha_scene); // modulo 2π
+        const std::size_t bin = (std::size_t{alpha} * bins) >> 16;
         auto& cell = accumulator[e->model_point * bins + bin];
         if (cell < 0xFFFF)
           ++cell;

@@ -60,7 +60,8 @@ class PointPairModel {
 public:
   /// Builds the table from the sampled model (model frame, mm). `distance_step_mm` quantizes the
   /// pair distance (usually the sampling voxel), `angle_bins` the angles (bins per 2π; the normal
-  /// angles in [0, π] use half as many). Throws Error for fewer than 3 points or bad steps.
+  /// angles in [0, π] use half as many). Throws Error for fewer than 3 or more than 65535 points
+  /// or bad steps.
   PointPairModel(OrientedPoints model, double distance_step_mm, int angle_bins = 30);
 
   /// Votes with the sampled scene (scene frame, mm) and returns the pose clusters, most votes
@@ -76,10 +77,12 @@ public:
   [[nodiscard]] double diameter() const { return m_diameter_mm; }
 
 private:
+  /// One model pair, 4 bytes so that the table streams through the cache while voting.
   struct Entry {
-    std::uint32_t key;
-    std::uint32_t model_point;
-    float alpha; ///< rotation about the reference normal bringing the pair into the local plane
+    std::uint16_t model_point;
+    /// Rotation about the reference normal bringing the pair into the local plane, in turns of
+    /// 2π / 65536 (fixedAngle): differences wrap by themselves.
+    std::uint16_t alpha;
   };
   [[nodiscard]] std::uint32_t key(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1,
                                   const Eigen::Vector3f& p2, const Eigen::Vector3f& n2,
@@ -89,7 +92,10 @@ private:
   double m_distance_step_mm;
   int m_angle_bins;
   double m_diameter_mm = 0.0;
-  std::vector<Entry> m_table;           ///< sorted by key
+  /// cos(k π / half) for k = 1 .. half - 1 (half = m_angle_bins / 2): an angle's bin is the number
+  /// of these its cosine does not exceed, without an arccosine per pair.
+  std::vector<float> m_bin_cosines;
+  std::vector<Entry> m_table;           ///< grouped by key
   std::vector<std::uint32_t> m_offsets; ///< per key, where its entries start in m_table
   /// For each model point: the transform into its local frame (point at the origin, normal on +x).
   std::vector<Eigen::Isometry3f> m_to_local;
