@@ -182,6 +182,13 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
     // The votes are counts: the order in which the neighbours are visited does not matter.
     tree.radiusSearch(p.data(), radius_sq, neighbours, nanoflann::SearchParams(32, 0.0f, false));
     std::vector<std::uint16_t> accumulator(n_model * bins, 0);
+    // Self-voting: the model points near the reference, found once instead of per table entry.
+    std::vector<std::uint8_t> excluded;
+    if (exclude_sq > 0) {
+      excluded.resize(n_model);
+      for (std::size_t m = 0; m < n_model; ++m)
+        excluded[m] = (m_model.points[m] - p).squaredNorm() < exclude_sq;
+    }
     for (const auto& [i, distance_sq] : neighbours) {
       if (i == s)
         continue;
@@ -194,7 +201,7 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
       const std::uint16_t alpha_scene = planeAngle(to_local * scene.points[i]);
       const Entry* end = m_table.data() + m_offsets[k + 1];
       for (const Entry* e = m_table.data() + m_offsets[k]; e != end; ++e) {
-        if (exclude_sq > 0 && (m_model.points[e->model_point] - p).squaredNorm() < exclude_sq)
+        if (!excluded.empty() && excluded[e->model_point])
           continue;
         const auto alpha = static_cast<std::uint16_t>(e->alpha - alpha_scene); // modulo 2π
         const std::size_t bin = (std::size_t{alpha} * bins) >> 16;
