@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <unordered_set>
 
 namespace scanpick::core {
 
@@ -33,12 +34,20 @@ sortedVoxels(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& 
   return keyed;
 }
 
-std::size_t occupiedVoxels(const std::vector<std::pair<VoxelKey, std::uint32_t>>& keyed) {
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < keyed.size(); ++i)
-    if (i == 0 || keyed[i].first != keyed[i - 1].first)
-      ++count;
-  return count;
+struct VoxelHash {
+  std::size_t operator()(const VoxelKey& k) const {
+    return std::hash<std::int64_t>()(k[0] * 73856093 ^ k[1] * 19349663 ^ k[2] * 83492791);
+  }
+};
+
+/// How many voxels of edge `voxel_mm` the points occupy (hashed: the bisection asks 30 times).
+std::size_t occupiedVoxels(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& origin,
+                           double voxel_mm) {
+  std::unordered_set<VoxelKey, VoxelHash> occupied;
+  occupied.reserve(points.size());
+  for (const auto& p : points)
+    occupied.insert(voxelOf(p, origin, voxel_mm));
+  return occupied.size();
 }
 
 } // namespace
@@ -85,7 +94,7 @@ RefineModel::RefineModel(const PointCloud& model_mm, int max_points,
     double lo = 1e-4, hi = std::max(1e-3, static_cast<double>(box.diagonal().norm()) * 2.0);
     for (int step = 0; step < 30; ++step) {
       const double mid = std::sqrt(lo * hi);
-      if (occupiedVoxels(sortedVoxels(points, origin, mid)) <= static_cast<std::size_t>(max_points))
+      if (occupiedVoxels(points, origin, mid) <= static_cast<std::size_t>(max_points))
         hi = mid;
       else
         lo = mid;
