@@ -1,7 +1,11 @@
 #include "core/params/ParameterTable.h"
 
+#include "core/common/Error.h"
+
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 namespace scanpick::core {
 namespace {
@@ -308,6 +312,17 @@ const ParamInfo* findParameter(std::string_view key) {
     if (info.key == key)
       return &info;
   return nullptr;
+}
+
+void checkParamValue(const ParamInfo& info, double value) {
+  const bool whole = info.type != ParamType::Double;
+  if (std::isfinite(value) && value >= info.min_value && value <= info.max_value &&
+      (!whole || value == std::round(value)))
+    return;
+  std::ostringstream range;
+  range << info.min_value << " – " << info.max_value;
+  throw Error("'" + info.key + "' = " + std::to_string(value) + " is outside its range " +
+              range.str() + (whole ? " (a whole number)" : ""));
 }
 
 std::string stageName(Stage stage) {

@@ -42,6 +42,10 @@ std::span<const ParamInfo> parameterTable();
 /// The entry for `key`, or nullptr.
 const ParamInfo* findParameter(std::string_view key);
 
+/// Throws Error unless `value` is a valid value of `info`: finite, within [min, max], and a whole
+/// number unless the parameter is a Double ("'KEY' = V is outside its range MIN – MAX").
+void checkParamValue(const ParamInfo& info, double value);
+
 /// Human-readable stage name ("First-level keypoints", ...).
 std::string stageName(Stage stage);
 

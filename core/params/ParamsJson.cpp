@@ -49,9 +49,7 @@ RecognitionParams paramsFromJson(const nlohmann::json& object, RecognitionParams
     } else {
       throw Error("parameter '" + key + "': expected a number, got " + value.dump());
     }
-    if (!std::isfinite(v) || v < info->min_value || v > info->max_value)
-      throw Error("parameter '" + key + "' = " + value.dump() + " is outside [" +
-                  std::to_string(info->min_value) + ", " + std::to_string(info->max_value) + "]");
+    checkParamValue(*info, v);
     info->set(params, v);
   }
   return params;

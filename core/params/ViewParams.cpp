@@ -3,9 +3,6 @@
 #include "core/common/Error.h"
 #include "core/params/ParameterTable.h"
 
-#include <cmath>
-#include <sstream>
-
 namespace scanpick::core {
 
 void checkViewParam(const std::string& key, double value) {
@@ -15,14 +12,7 @@ void checkViewParam(const std::string& key, double value) {
   if (info->stage != Stage::Matching)
     throw Error("'" + key + "' cannot differ per view: only matching parameters can (the " +
                 stageName(info->stage) + " stage runs once for all views)");
-  const bool whole = info->type != ParamType::Double;
-  if (!std::isfinite(value) || value < info->min_value || value > info->max_value ||
-      (whole && value != std::round(value))) {
-    std::ostringstream range;
-    range << info->min_value << " – " << info->max_value;
-    throw Error("'" + key + "' = " + std::to_string(value) + " is outside its range " +
-                range.str() + (whole ? " (a whole number)" : ""));
-  }
+  checkParamValue(*info, value);
 }
 
 RecognitionParams withViewParams(RecognitionParams params, const ViewParams& view) {

@@ -54,6 +54,18 @@ TEST(ParamsJson, PresetRoundTripAndErrors) {
   EXPECT_THROW(core::paramsFromJson(nlohmann::json{{"no.such.key", 1}}), core::Error);
   EXPECT_THROW(core::paramsFromJson(nlohmann::json{{"features.ransac_size", -5}}), core::Error);
   EXPECT_THROW(core::paramsFromJson(nlohmann::json{{"features.estimator", "magic"}}), core::Error);
+  // A whole-number parameter given a fraction is refused, not rounded in silence.
+  try {
+    core::paramsFromJson(nlohmann::json{{"matching.surface_poses", 60.5}});
+    FAIL() << "a fractional count was accepted";
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'matching.surface_poses' = 60.500000 is outside its range"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("(a whole number)"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(core::paramsFromJson(nlohmann::json{{"matching.surface_poses", 60}}).matching.surface_poses,
+            60);
 
   core::writeFileAtomic(dir / "future.json",
                         R"({"format":"scanpick-preset","version":99,"params":{}})");
