@@ -1,6 +1,7 @@
 #include "core/matching/FeatureMatcher.h"
 
 #include "core/common/Error.h"
+#include "core/common/ParallelProgress.h"
 #include "core/matching/FeatureIndex.h"
 #include "core/matching/RigidFit.h"
 
@@ -11,7 +12,6 @@
 #include <climits>
 #include <cmath>
 #include <map>
-#include <mutex>
 
 namespace scanpick::core {
 namespace {
@@ -385,17 +385,9 @@ std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
     return std::nullopt;
   const Prepared prep(model, scene, params, scene_available, true);
   Search search(prep);
-  const auto n_model = static_cast<int>(model.size());
   std::vector<TaskBest> results(model.size());
-  std::mutex progress_mutex;
-  std::atomic<int> done{0};
-  tbb::parallel_for(0, n_model, [&](int i) {
-    results[static_cast<std::size_t>(i)] = search.runM1(i);
-    const int finished = ++done;
-    if (progress) {
-      const std::lock_guard lock(progress_mutex);
-      reportProgress(progress, static_cast<double>(finished) / n_model);
-    }
+  parallelForWithProgress(model.size(), progress, [&](std::size_t i) {
+    results[i] = search.runM1(static_cast<int>(i));
   });
   // Deterministic reduction: the highest count wins, ties go to the lowest M1.
   const TaskBest* winner = nullptr;

@@ -2,13 +2,12 @@
 
 #include "core/cloud/PointKdTree.h"
 #include "core/common/Error.h"
+#include "core/common/ParallelProgress.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <string>
-#include <tbb/parallel_for.h>
 #include <tuple>
 
 namespace scanpick::core {
@@ -171,8 +170,6 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
   const auto bins = static_cast<std::size_t>(m_angle_bins);
   const float alpha_step = kTwoPi / float(m_angle_bins);
   const auto exclude_sq = static_cast<float>(options.exclude_self_mm * options.exclude_self_mm);
-  std::size_t done = 0;
-  std::mutex progress_mutex;
   auto voteFrom = [&](std::size_t r) {
     const std::size_t s = r * stride;
     const Eigen::Vector3f& p = scene.points[s];
@@ -220,15 +217,7 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
     const float alpha = (float(cell % bins) + 0.5f) * alpha_step;
     out.T = to_local.inverse() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) * m_to_local[m];
   };
-  // Cancelled thrown by reportProgress stops the loop and reaches the caller (TBB rethrows it).
-  tbb::parallel_for(std::size_t{0}, n_refs, [&](std::size_t r) {
-    voteFrom(r);
-    if (!progress)
-      return;
-    const std::lock_guard lock(progress_mutex);
-    if (++done % 64 == 0)
-      reportProgress(progress, double(done) / double(n_refs));
-  });
+  parallelForWithProgress(n_refs, progress, voteFrom, 64);
 
   // Pose clustering: most votes first; each pose joins the first cluster whose seed pose is close.
   std::stable_sort(raw.begin(), raw.end(),

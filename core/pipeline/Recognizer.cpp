@@ -2,6 +2,7 @@
 
 #include "core/common/Error.h"
 #include "core/common/Log.h"
+#include "core/common/ParallelProgress.h"
 #include "core/features/FeatureExtraction.h"
 #include "core/matching/FeatureMatcher.h"
 #include "core/matching/PointPairVoting.h"
@@ -83,20 +84,6 @@ struct FeatureKey {
   FeatureParams features;
   bool operator==(const FeatureKey&) const = default;
 };
-
-/// Runs `work(i)` for each object in parallel and reports progress in [begin, end] from the
-/// calling thread's mutex-protected callback; cancellation is checked per object.
-template <typename Work>
-void forEachObject(std::size_t n, const ProgressFn& progress, double begin, double end, Work work) {
-  std::mutex mutex;
-  std::size_t done = 0;
-  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-    work(i);
-    const std::lock_guard lock(mutex);
-    ++done;
-    reportProgress(progress, begin + (end - begin) * double(done) / double(n));
-  });
-}
 
 /// Highest score first; equal scores keep their order.
 void sortBestFirst(std::vector<Detection>& detections) {
@@ -527,7 +514,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   if (cache.keypoint_key != keypoint_key) {
     const auto t0 = Clock::now();
     std::vector<Keypoints> keypoints(objects.size());
-    forEachObject(objects.size(), progress, 0.3, 0.55, [&](std::size_t i) {
+    parallelForWithProgress(objects.size(), subProgress(progress, 0.3, 0.55), [&](std::size_t i) {
       keypoints[i] = extractKeypoints(objects[i], params.keypoints);
     });
     cache.keypoints = std::make_shared<const std::vector<Keypoints>>(std::move(keypoints));
@@ -539,7 +526,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   if (cache.feature_key != feature_key) {
     const auto t0 = Clock::now();
     std::vector<FeatureList> features(objects.size());
-    forEachObject(objects.size(), progress, 0.55, 0.8, [&](std::size_t i) {
+    parallelForWithProgress(objects.size(), subProgress(progress, 0.55, 0.8), [&](std::size_t i) {
       // Each object draws from its own stream, so results do not depend on scheduling.
       features[i] = extractFeatures((*cache.keypoints)[i].points_mm, params.features,
                                     params.seed + 0x9E3779B97F4A7C15ull * (i + 1))
@@ -599,7 +586,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       return verifyPose(*prep->verify, verify_scene, T, params.matching.verify_tolerance_mm, edges);
     };
   std::vector<std::vector<MatchCandidate>> candidates(objects.size());
-  forEachObject(objects.size(), progress, 0.8, 0.95, [&](std::size_t i) {
+  parallelForWithProgress(objects.size(), subProgress(progress, 0.8, 0.95), [&](std::size_t i) {
     candidates[i] =
         matchFeatures(model->features, (*cache.features)[i], params.matching, {}, verify);
   });
