@@ -25,6 +25,7 @@ struct SynthOptions {
   std::uint64_t seed = 0;
   double noise_sigma_mm = -1;
   double camera_height_mm = 0;
+  double deformation = 0;
   bool noiseless = false;
   bool export_mesh = false;
 };
@@ -79,6 +80,7 @@ int runSynth(const SynthOptions& o) {
   r.seed = o.seed;
   r.noiseless = o.noiseless;
   r.camera_height_mm = o.camera_height_mm;
+  r.deformation = o.deformation;
   if (o.noise_sigma_mm >= 0)
     r.noise_sigma_mm = o.noise_sigma_mm;
   core::validateRequest(r);
@@ -118,6 +120,11 @@ void registerSynthCommands(CLI::App& app) {
   synth->add_option("--sensor", o->sensor, "phoxi-m-1032, phoxi-m-2064 or kinect-v1")->capture_default_str();
   synth->add_option("--seed", o->seed, "random seed: same seed, same files")->capture_default_str();
   synth->add_option("--noise-sigma", o->noise_sigma_mm, "depth noise sigma in mm (default: the sensor's)");
+  synth->add_option("--deform", o->deformation,
+                    "each instance's shape varies by up to this fraction of its size (stretched, "
+                    "sheared and bent, like pears of one kind); the ground truth keeps the pose of "
+                    "the part as designed. 0 to 0.3")
+      ->capture_default_str();
   synth->add_flag("--noiseless", o->noiseless, "exact geometry: no noise, dropouts or flying pixels");
   synth->add_option("--camera-height", o->camera_height_mm, "camera height above the floor, mm (default: sensor's)");
   synth->add_option("--out", o->out, "output prefix (PREFIX.pcd/.png/.gt.json), or FILE.ply with --export-mesh");

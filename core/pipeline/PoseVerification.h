@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace scanpick::core {
@@ -43,11 +44,15 @@ struct PointTally {
 };
 
 /// The scene a pose is verified against: its indexed points, the organized scan itself (for the
-/// look-through test) and the camera that took it (at the scene frame's origin).
+/// look-through test), the camera that took it (at the scene frame's origin) and, when known, the
+/// floor the parts rest on.
 struct VerifyScene {
   const SceneIndex* index = nullptr;
   const PointCloud* scan = nullptr;
   const SensorModel* sensor = nullptr;
+  /// The floor (or table) plane, (a, b, c, d) with a unit normal towards the camera
+  /// (FloorRemovalResult::planes[0]); none: no floor test.
+  std::optional<Eigen::Vector4f> floor_plane;
 };
 
 /// Tallies the model points listed in `subset` (indices into model.points; all when null) at pose
@@ -56,6 +61,8 @@ struct VerifyScene {
 /// when the camera sees the scene more than 3 x tolerance behind it at its pixel (it looks through
 /// where the pose puts material: a hole, or the floor beside a part), and hidden when the camera
 /// sees something that much in front of it (another part); points turned away are hidden too.
+/// A point more than 3 x tolerance below the scene's floor plane is a violation wherever the scan
+/// is: no part reaches into the floor it rests on.
 PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                        const std::vector<std::uint32_t>* subset = nullptr);

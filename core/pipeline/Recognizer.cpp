@@ -147,6 +147,7 @@ struct Recognizer::Cache {
   std::optional<PreKey> pre_key;
   std::shared_ptr<const PointCloud> pre;
   std::size_t floor_removed = 0;
+  std::optional<Eigen::Vector4f> floor_plane; ///< the largest plane removed (key: pre_key)
   std::optional<SplitKey> split_key;
   std::shared_ptr<const std::vector<PointCloud>> objects;
   std::optional<KeypointKey> keypoint_key;
@@ -489,6 +490,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     FloorRemovalResult floor =
         removeFloor(scene_mm, params.floor, params.seed, subProgress(progress, 0.0, 0.1));
     cache.floor_removed = floor.removed_points;
+    cache.floor_plane = floor.planes.empty() ? std::nullopt : std::optional(floor.planes.front());
     cache.pre = std::make_shared<const PointCloud>(
         voxelDownsample(floor.remaining, params.downsample.voxel_mm));
     cache.pre_key = pre_key;
@@ -579,7 +581,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
 
   const auto t_match = Clock::now();
-  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor};
+  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane};
   PoseVerifier verify;
   if (verifying && prep)
     verify = [&](const Eigen::Isometry3d& T) {

@@ -5,6 +5,7 @@
 #include "core/common/Error.h"
 #include "core/sim/DepthPng.h"
 #include "core/sim/PartCatalog.h"
+#include "core/sim/PartDeformation.h"
 
 #include <nlohmann/json.hpp>
 
@@ -44,6 +45,9 @@ void validateRequest(const SynthRequest& r) {
     throw Error("a teach scene holds exactly one part: use --count 1");
   if (r.teach_side < 0 || r.teach_side >= kTeachSides)
     throw Error("--teach-side must be between 0 and " + std::to_string(kTeachSides - 1));
+  if (!(r.deformation >= 0 && r.deformation <= kMaxDeformation))
+    throw Error("--deform must be between 0 and 0.3 (a fraction of the part's size), got " +
+                std::to_string(r.deformation));
   if (r.noise_sigma_mm && !(*r.noise_sigma_mm >= 0 && *r.noise_sigma_mm <= 50))
     throw Error("--noise-sigma must be between 0 and 50 mm");
   for (const auto& name : r.parts)
@@ -61,7 +65,16 @@ SynthScene synthesize(const SynthRequest& request, const ProgressFn& progress) {
                                  : SensorNoise::typical(out.sensor);
   SceneSpec spec;
   spec.layout = request.layout;
-  spec.parts = requestedParts(request);
+  out.parts = requestedParts(request);
+  spec.parts = out.parts;
+  if (request.deformation > 0) {
+    // One deformed copy per instance (instance k uses spec.parts[k % size]).
+    spec.parts.clear();
+    for (int k = 0; k < request.count; ++k)
+      spec.parts.push_back(deformedPart(out.parts[static_cast<std::size_t>(k) % out.parts.size()],
+                                        request.deformation,
+                                        hashMix(request.seed, static_cast<std::uint64_t>(k), 102)));
+  }
   spec.count = request.count;
   spec.seed = hashMix(request.seed, 0, 100);  // physics and rendering draw from separate streams
   spec.camera_height_mm = request.camera_height_mm;
@@ -93,7 +106,7 @@ std::string groundTruthJson(const SynthScene& s, const std::string& cloud_file, 
                  {"dropout_probability", s.noise.dropout_probability},
                  {"flying_probability", s.noise.flying_probability}};
   json parts = json::object();
-  for (const auto& p : scene.parts) {
+  for (const auto& p : s.parts) {
     json grips = json::array();
     for (const auto& g : p.grip_points)
       grips.push_back({{"name", g.name}, {"position_mm", vectorJson(g.position_mm)}});

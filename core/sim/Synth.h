@@ -27,10 +27,15 @@ struct SynthRequest {
   bool noiseless = false;               ///< exact geometry (SensorNoise::none), for checks
   double camera_height_mm = 0;          ///< 0 = default for the sensor and layout
   int teach_side = 0;                   ///< teach layout: the side it rests on (SceneSpec)
+  /// Each instance's shape varies by up to this fraction (deformedPart: stretched, sheared and
+  /// bent, like pears of one kind); 0 = every instance exactly as designed.
+  double deformation = 0.0;
 };
 
 /// A simulated scan and everything needed for its ground truth.
 struct SynthScene {
+  /// The parts as designed (the ground truth's), whatever the deformation of their instances.
+  std::vector<Part> parts;
   Scene scene;
   SensorModel sensor;
   SensorNoise noise;

@@ -98,7 +98,7 @@ TEST(NearSymmetry, DifferingPointsTellTheTrueTurnAndRecognitionReportsIt) {
       scan.scene.T_scene_part(scan.scene.instances.at(0)) * top.T_part_model();
   const Eigen::Isometry3d T_flipped = T_true * s.S_model;
   const SceneIndex index(scan.render.cloud);
-  const VerifyScene scene{&index, &scan.render.cloud, &scan.sensor};
+  const VerifyScene scene{&index, &scan.render.cloud, &scan.sensor, std::nullopt};
   const double tolerance = params.matching.verify_tolerance_mm;
   const auto contradicted = [&](const Eigen::Isometry3d& T, const std::vector<std::uint32_t>& set) {
     return contradictedShare(tallyPoints(*view, scene, T, tolerance, &set), 8);
