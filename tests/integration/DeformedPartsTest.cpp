@@ -82,12 +82,13 @@ double median(const std::vector<double>& sorted) {
 } // namespace
 
 TEST(DeformedParts, SupportsVaryingByFivePercentAreStillFound) {
-  RecognitionParams params = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
-                                        "resources/presets/phoxi-bin-surface.json")
-                                 .params;
-  // A table, not a bin: the bin-floor search would take the top faces of supports lying flat
-  // for a bin's floor (docs/accuracy.md, "Deformed parts").
-  params.floor.bin_floor_fraction = 0.0;
+  // A table, not a bin: phoxi-bin-surface without the bin-floor search, which would take the top
+  // faces of supports lying flat for a bin's floor (docs/accuracy.md, "Deformed parts").
+  const RecognitionParams params = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
+                                              "resources/presets/phoxi-table-surface.json")
+                                       .params;
+  ASSERT_EQ(params.floor.bin_floor_fraction, 0.0);
+  ASSERT_GT(params.matching.surface_sampling_mm, 0.0);
   std::vector<test::SynthTeach> views;
   std::vector<std::shared_ptr<const TaughtModel>> models;
   for (int side = 0; side < kTeachSides; ++side) {
