@@ -70,7 +70,8 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
   const auto look = [&](std::size_t k) {
     ++tally.points;
     const Eigen::Vector3f p = T * model.points[k];
-    if (scene.floor_plane && scene.floor_plane->head<3>().dot(p) + (*scene.floor_plane)(3) < -margin) {
+    if (scene.floor_plane &&
+        scene.floor_plane->head<3>().dot(p) + (*scene.floor_plane)(3) < -margin) {
       ++tally.violations;
       return;
     }

@@ -41,8 +41,8 @@ struct VoxelHash {
 };
 
 /// How many voxels of edge `voxel_mm` the points occupy (hashed: the bisection asks 30 times).
-std::size_t occupiedVoxels(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3f& origin,
-                           double voxel_mm) {
+std::size_t occupiedVoxels(const std::vector<Eigen::Vector3f>& points,
+                           const Eigen::Vector3f& origin, double voxel_mm) {
   std::unordered_set<VoxelKey, VoxelHash> occupied;
   occupied.reserve(points.size());
   for (const auto& p : points)

@@ -14,7 +14,9 @@ Part deformedPart(const Part& part, double fraction, std::uint64_t seed) {
   if (fraction == 0.0)
     return part;
   std::uint64_t draw = 0;
-  const auto symmetric = [&](double scale) { return scale * (2.0 * hashUniform(seed, draw++, 0) - 1.0); };
+  const auto symmetric = [&](double scale) {
+    return scale * (2.0 * hashUniform(seed, draw++, 0) - 1.0);
+  };
   Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)

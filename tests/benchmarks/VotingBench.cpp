@@ -90,7 +90,12 @@ void BM_SelfVote(benchmark::State& state) {
 } // namespace
 
 BENCHMARK(BM_PairTable)->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK(BM_SceneVote)->Arg(16)->Arg(2)->ArgName("stride")->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_SceneVote)
+    ->Arg(16)
+    ->Arg(2)
+    ->ArgName("stride")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 BENCHMARK(BM_SelfVote)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 BENCHMARK_MAIN();

@@ -29,8 +29,8 @@ double rotationErrorDeg(const Eigen::Isometry3d& T_detected, const Eigen::Isomet
                         const PartSymmetry& symmetry) {
   double best = Eigen::AngleAxisd(T_true.linear().transpose() * T_detected.linear()).angle();
   for (const auto& S : symmetry.discrete)
-    best = std::min(best, Eigen::AngleAxisd((T_true * S).linear().transpose() *
-                                            T_detected.linear()).angle());
+    best = std::min(
+        best, Eigen::AngleAxisd((T_true * S).linear().transpose() * T_detected.linear()).angle());
   return best * 180.0 / 3.14159265358979323846;
 }
 
@@ -56,11 +56,11 @@ Found recognizeScatters(const std::vector<test::SynthTeach>& views,
     for (const auto& d : result.detections) {
       const auto& view = views.at(static_cast<std::size_t>(d.model_index));
       const test::NearestInstance nearest = test::nearestInstance(d, view, scatter.scene);
-      const PartInstance& instance = scatter.scene.instances.at(static_cast<std::size_t>(nearest.id));
-      const double rotation =
-          rotationErrorDeg(d.T_scene_model * view.T_part_model().inverse(),
-                           scatter.scene.T_scene_part(instance),
-                           scatter.scene.parts.at(instance.part).symmetry);
+      const PartInstance& instance =
+          scatter.scene.instances.at(static_cast<std::size_t>(nearest.id));
+      const double rotation = rotationErrorDeg(d.T_scene_model * view.T_part_model().inverse(),
+                                               scatter.scene.T_scene_part(instance),
+                                               scatter.scene.parts.at(instance.part).symmetry);
       std::printf("deformation %.2f, seed %d: score %.3f, view %d: instance %d at %.2f mm, %.2f°\n",
                   deformation, int(seed), d.score, d.model_index, nearest.id, nearest.distance_mm,
                   rotation);

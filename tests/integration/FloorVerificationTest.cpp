@@ -13,9 +13,9 @@ using namespace scanpick;
 using namespace scanpick::core;
 
 TEST(FloorVerification, APoseSunkIntoTheTableIsContradicted) {
-  const RecognitionParams params = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
-                                              "resources/presets/phoxi-bin.json")
-                                       .params;
+  const RecognitionParams params =
+      loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) / "resources/presets/phoxi-bin.json")
+          .params;
   const test::SynthTeach taught = test::teachFromSynth("support", 5, params, 0);
   // Another scan of the support on a table, resting as taught.
   const SynthScene scan = test::teachScan("support", 9, 0);
@@ -27,8 +27,8 @@ TEST(FloorVerification, APoseSunkIntoTheTableIsContradicted) {
   const Eigen::Vector3d down = -floor.planes.front().head<3>().cast<double>();
   const Eigen::Isometry3d T_sunk = Eigen::Translation3d(20.0 * down) * T_true;
 
-  const auto view = makeVerifyModel(*taught.model, params.refine.model_points,
-                                    params.keypoints.normal_radius_mm);
+  const auto view =
+      makeVerifyModel(*taught.model, params.refine.model_points, params.keypoints.normal_radius_mm);
   const SceneIndex index(floor.remaining);
   const VerifyScene blind{&index, &scan.render.cloud, &scan.sensor, std::nullopt};
   const VerifyScene knowing{&index, &scan.render.cloud, &scan.sensor, floor.planes.front()};

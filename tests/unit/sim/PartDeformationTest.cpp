@@ -1,9 +1,10 @@
 // Shape variation between instances (core/sim/PartDeformation.h): bounded, seeded, closed meshes,
 // and a ground truth that keeps the part as designed.
+#include "core/sim/PartDeformation.h"
+
 #include "core/common/Error.h"
 #include "core/sim/Mesh.h"
 #include "core/sim/PartCatalog.h"
-#include "core/sim/PartDeformation.h"
 #include "core/sim/Synth.h"
 
 #include <gtest/gtest.h>
@@ -18,8 +19,8 @@ double largestDisplacement(const Part& a, const Part& b) {
   double largest = 0.0;
   for (std::size_t c = 0; c < a.components.size(); ++c)
     for (std::size_t v = 0; v < a.components[c].vertices_mm.size(); ++v)
-      largest = std::max(largest, (a.components[c].vertices_mm[v] -
-                                   b.components[c].vertices_mm[v]).norm());
+      largest = std::max(largest,
+                         (a.components[c].vertices_mm[v] - b.components[c].vertices_mm[v]).norm());
   return largest;
 }
 

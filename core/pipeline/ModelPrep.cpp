@@ -1,0 +1,197 @@
+#include "core/pipeline/ModelPrep.h"
+
+#include "core/common/Log.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tbb/parallel_for.h>
+
+namespace scanpick::core::detail {
+namespace {
+
+/// fitRevolutionAxis's angle tolerance (10°). A view whose normals fit an axis this share or more
+/// (but fewer than fitRevolutionAxis's default 98 %) is a surface of revolution but for a detail:
+/// the cup's side views fit 93-96 %, the support's and the coat-rack's views far less.
+constexpr double kRevolutionTolerance = 0.17;
+constexpr double kNearRevolutionShare = 0.85;
+/// Cells (height along and distance from the axis) in which detailPoints compares angles: 2-3 mm
+/// cells split a cup's body (its points scatter by the fit's residual), 6 mm ones keep it whole.
+constexpr double kDetailCellMm = 6.0;
+/// A detection sees the detail of its view when the scan confirms at least this share of it.
+constexpr double kMinDetailSeenShare = 0.25;
+
+/// Whether `S` (model frame) is a turn about `axis`: its rotation axis within 10° of the axis
+/// direction, and the axis point staying within 2 mm.
+bool isTurnAbout(const RevolutionAxis& axis, const Eigen::Isometry3d& S) {
+  const Eigen::AngleAxisd turn(S.linear());
+  return std::abs(turn.axis().dot(axis.direction)) > std::cos(10.0 * M_PI / 180.0) &&
+         (S * axis.point_mm - axis.point_mm).norm() < 2.0;
+}
+
+/// The differing points of a near symmetry tell two poses apart only when at least this share of
+/// the view's points (and 8) are among them and not hidden: a handful at the view's edges is noise.
+constexpr double kMinDistinguishingShare = 0.02;
+
+/// A detection is turned by a near symmetry when the scan contradicts this much larger a share of
+/// its differing points than of the turned pose's (contradictedShare).
+constexpr double kTurnMargin = 0.1;
+
+} // namespace
+
+/// Whether matching with these parameters uses a prepared model (verification or refinement).
+bool needsModelPrep(const RecognitionParams& params) {
+  return params.matching.verify_tolerance_mm > 0 || params.refine.enabled;
+}
+
+/// The cached preparation of `model` for these parameters, made (and cached, replacing the
+/// oldest of at most 8) when missing or lacking what the parameters need.
+std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const ModelPrep>>& preps,
+                                              const std::shared_ptr<const TaughtModel>& model,
+                                              const RecognitionParams& params) {
+  const int points = std::max(10, params.refine.model_points);
+  const double radius = params.keypoints.normal_radius_mm;
+  const double sampling = params.matching.surface_sampling_mm;
+  const double tolerance = params.matching.verify_tolerance_mm;
+  const std::optional<SymmetryKey> symmetry_key =
+      params.matching.symmetry_overlap > 0 && tolerance > 0
+          ? std::optional(SymmetryKey{params.matching.symmetry_overlap, tolerance, params.refine})
+          : std::nullopt;
+  // ICP needs the model prepared: for refinement, to polish surface voting's poses, and to fit
+  // near symmetries.
+  const bool needs_refine = params.refine.enabled || sampling > 0 || symmetry_key;
+  auto found = std::find_if(preps.begin(), preps.end(), [&](const auto& p) {
+    return p->model == model && p->points == points && p->normal_radius_mm == radius;
+  });
+  if (found != preps.end() && (!needs_refine || (*found)->refine) &&
+      (sampling <= 0 || ((*found)->pairs && (*found)->surface_sampling_mm == sampling)) &&
+      (!symmetry_key || (*found)->symmetry_key == symmetry_key))
+    return *found;
+  auto prep = std::make_shared<ModelPrep>();
+  if (found != preps.end()) {
+    *prep = **found;
+    preps.erase(found);
+  } else {
+    prep->model = model;
+    prep->points = points;
+    prep->normal_radius_mm = radius;
+    prep->verify = makeVerifyModel(*model, points, radius);
+    prep->axis = fitRevolutionAxis(prep->verify->points, prep->verify->normals);
+    if (prep->axis)
+      logger()->debug("model '{}' is a surface of revolution ({:.0f} % of its normals), its turn "
+                      "is not seen: axis through ({:.1f}, {:.1f}, {:.1f}) mm along ({:.3f}, "
+                      "{:.3f}, {:.3f})",
+                      model->name, 100.0 * prep->axis->inlier_share, prep->axis->point_mm.x(),
+                      prep->axis->point_mm.y(), prep->axis->point_mm.z(), prep->axis->direction.x(),
+                      prep->axis->direction.y(), prep->axis->direction.z());
+    else if ((prep->near_axis = fitRevolutionAxis(prep->verify->points, prep->verify->normals,
+                                                  kRevolutionTolerance, kNearRevolutionShare))) {
+      prep->near_axis_detail = detailPoints(prep->verify->points, *prep->near_axis, kDetailCellMm);
+      logger()->debug("model '{}' is a surface of revolution but for a detail ({:.0f} % of its "
+                      "normals; {} of its {} points off the surface): its turn is seen only where "
+                      "a scan confirms the detail",
+                      model->name, 100.0 * prep->near_axis->inlier_share,
+                      prep->near_axis_detail.size(), prep->verify->points.size());
+    }
+  }
+  if (needs_refine && !prep->refine)
+    prep->refine = std::make_shared<const RefineModel>(
+        model->cloud_mm, points, Eigen::Vector3d(model->T_teach_model.inverse().translation()));
+  if (sampling > 0 && (!prep->pairs || prep->surface_sampling_mm != sampling)) {
+    prep->pairs = std::make_shared<const PointPairModel>(
+        sampleOriented(prep->verify->points, prep->verify->normals, sampling), sampling);
+    prep->surface_sampling_mm = sampling;
+  }
+  if (symmetry_key && prep->symmetry_key != symmetry_key) {
+    prep->symmetries = findNearSymmetries(*model, *prep->verify, *prep->refine, params.refine,
+                                          tolerance, params.matching.symmetry_overlap);
+    // A surface of revolution reports its turn about the axis as free instead, and one but for a
+    // detail as seen or free by the detail (seesDetail); their other near symmetries (a cup or a
+    // pipe turned end over end) stay.
+    if (prep->axis || prep->near_axis) {
+      const RevolutionAxis& axis = prep->axis ? *prep->axis : *prep->near_axis;
+      const auto turns = std::erase_if(
+          prep->symmetries, [&](const NearSymmetry& s) { return isTurnAbout(axis, s.S_model); });
+      logger()->debug("model '{}': {} near symmetries are turns about its axis, {} others",
+                      model->name, turns, prep->symmetries.size());
+    }
+    prep->symmetry_key = symmetry_key;
+  }
+  constexpr std::size_t kKeptModels = 8;
+  if (preps.size() >= kKeptModels)
+    preps.erase(preps.begin());
+  preps.push_back(prep);
+  return prep;
+}
+
+/// Whether the scan confirms enough of the detail of a view that is a surface of revolution but
+/// for it (ModelPrep::near_axis_detail) at `T_scene_model`: if not (the handle of a cup is hidden
+/// or turned away), nothing in the scan tells the turn about the axis.
+bool seesDetail(const ModelPrep& prep, const VerifyScene& scene,
+                const Eigen::Isometry3d& T_scene_model, double tolerance_mm) {
+  const PointTally t =
+      tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm, &prep.near_axis_detail);
+  return double(t.confirmed) >= kMinDetailSeenShare * double(t.points) && t.confirmed > 0;
+}
+
+/// For each detection and each near symmetry S of the view, tries the turned pose T·S (polished by
+/// ICP). The differing points decide: where one pose puts material and the other does not, the
+/// scan looking through clearly more of one pose's points than of the other's rules it out (the
+/// lip of a hook turned 180° about its plate's normal floats where the scan sees the arm behind
+/// it). Confirmed points tell less: both poses' differing points can lie near other surface of the
+/// part. The detection takes the turned pose when the scan rules its own out; when neither is
+/// ruled out (the differing points are hidden or unseen) and the turned pose verifies too, it is
+/// reported as an alternative. A symmetry under which the view repeats itself (too few differing
+/// points to tell) always gives an alternative: T·S as it is.
+void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& prep,
+                           const VerifyScene& scene, const MatchingParams& params,
+                           const PoseVerifier& verify, const PosePolisher& polish) {
+  const std::size_t min_seen = std::max<std::size_t>(
+      8, static_cast<std::size_t>(kMinDistinguishingShare * double(prep.verify->points.size())));
+  tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
+    Detection& d = detections[k];
+    // With the turn about a near axis not seen (seesDetail), the differing points of both poses
+    // lie at unknown turns: they rule neither out.
+    const bool turn_unseen =
+        prep.near_axis && !seesDetail(prep, scene, d.T_scene_model, params.verify_tolerance_mm);
+    for (const NearSymmetry& s : prep.symmetries) {
+      if (s.differing.size() < min_seen && s.differing_inverse.size() < min_seen) {
+        // The view repeats itself under S: nothing in any scan can tell T from T·S. (Verifying
+        // T·S would not tell either: the view's own self-occlusion, seen from the teach camera,
+        // favours the pose that keeps it where the scan's camera sees it.)
+        d.alternative_poses.push_back(d.T_scene_model * s.S_model);
+        continue;
+      }
+      const double as_found =
+          contradictedShare(tallyPoints(*prep.verify, scene, d.T_scene_model,
+                                        params.verify_tolerance_mm, &s.differing_inverse),
+                            min_seen);
+      const Eigen::Isometry3d T_turned = polish(d.T_scene_model * s.S_model);
+      const double turned = contradictedShare(
+          tallyPoints(*prep.verify, scene, T_turned, params.verify_tolerance_mm, &s.differing),
+          min_seen);
+      logger()->trace("detection {}: {:.2f} of the differing points contradicted as found, {:.2f} "
+                      "turned",
+                      k, as_found, turned);
+      if (!turn_unseen && turned > as_found + kTurnMargin)
+        continue; // the turned pose is ruled out
+      const double coverage = verify(T_turned);
+      if (coverage < params.min_coverage)
+        continue;
+      if (!turn_unseen && as_found > turned + kTurnMargin) {
+        logger()->debug("detection {} turned by a near symmetry: {:.2f} of the differing points "
+                        "contradicted as found, {:.2f} turned; coverage {:.3f} -> {:.3f}",
+                        k, as_found, turned, d.coverage, coverage);
+        d.T_scene_model = T_turned;
+        d.coverage = coverage;
+        d.score = coverage;
+        d.refined = true;
+        d.matched_features.clear();  // they supported the pose it had,
+        d.alternative_poses.clear(); // and so did these
+      } else {
+        d.alternative_poses.push_back(T_turned);
+      }
+    }
+  });
+}
+
+} // namespace scanpick::core::detail

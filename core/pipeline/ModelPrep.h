@@ -1,0 +1,86 @@
+#pragma once
+/// @file ModelPrep.h
+/// What the Recognizer prepares once per taught view and keeps while views alternate from scene
+/// to scene (verification points, ICP model, surface pair table, axis of revolution, near
+/// symmetries), and how a detection's near symmetries are then resolved. Internal to the
+/// Recognizer (core/pipeline/Recognizer.cpp), in its own file to keep that one small.
+
+#include "core/matching/FeatureMatcher.h"
+#include "core/matching/PointPairVoting.h"
+#include "core/matching/RevolutionAxis.h"
+#include "core/model/TaughtModel.h"
+#include "core/params/Parameters.h"
+#include "core/pipeline/Detection.h"
+#include "core/pipeline/NearSymmetry.h"
+#include "core/pipeline/PoseVerification.h"
+#include "core/refine/RefineModel.h"
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace scanpick::core::detail {
+
+/// What a view's near symmetries were found with (findNearSymmetries' parameters).
+struct SymmetryKey {
+  double overlap = 0.0;
+  double tolerance_mm = 0.0;
+  RefineParams icp;
+  bool operator==(const SymmetryKey&) const = default;
+};
+
+/// A model prepared for verification, refinement and surface voting.
+struct ModelPrep {
+  std::shared_ptr<const TaughtModel> model;
+  int points = 0;              ///< refine.model_points it was prepared with
+  double normal_radius_mm = 0; ///< keypoints.normal_radius_mm it was prepared with
+  std::shared_ptr<const VerifyModel> verify;
+  /// The axis about which the model is a surface of revolution, if it is one.
+  std::optional<RevolutionAxis> axis;
+  /// Otherwise, the axis about which it is one but for a detail (a cup's handle), if it is so,
+  /// and the detail's points (indices into verify->points).
+  std::optional<RevolutionAxis> near_axis;
+  std::vector<std::uint32_t> near_axis_detail;
+  std::shared_ptr<const RefineModel> refine;   ///< when ICP or surface voting needs it
+  double surface_sampling_mm = 0;              ///< of `pairs`
+  std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on
+  /// Near symmetries, and what they were found with (unset when not searched).
+  std::optional<SymmetryKey> symmetry_key;
+  std::vector<NearSymmetry> symmetries;
+};
+
+/// Moves a pose closer to the scene (ICP).
+using PosePolisher = std::function<Eigen::Isometry3d(const Eigen::Isometry3d&)>;
+
+/// Whether matching with these parameters uses a prepared model (verification or refinement).
+bool needsModelPrep(const RecognitionParams& params);
+
+/// The cached preparation of `model` for these parameters, made (and cached, replacing the
+/// oldest of at most 8) when missing or lacking what the parameters need.
+std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const ModelPrep>>& preps,
+                                              const std::shared_ptr<const TaughtModel>& model,
+                                              const RecognitionParams& params);
+
+/// Whether the scan confirms enough of the detail of a view that is a surface of revolution but
+/// for it (ModelPrep::near_axis_detail) at `T_scene_model`: if not (the handle of a cup is hidden
+/// or turned away), nothing in the scan tells the turn about the axis.
+bool seesDetail(const ModelPrep& prep, const VerifyScene& scene,
+                const Eigen::Isometry3d& T_scene_model, double tolerance_mm);
+
+/// For each detection and each near symmetry S of the view, tries the turned pose T·S (polished by
+/// ICP). The differing points decide: where one pose puts material and the other does not, the
+/// scan looking through clearly more of one pose's points than of the other's rules it out (the
+/// lip of a hook turned 180° about its plate's normal floats where the scan sees the arm behind
+/// it). Confirmed points tell less: both poses' differing points can lie near other surface of the
+/// part. The detection takes the turned pose when the scan rules its own out; when neither is
+/// ruled out (the differing points are hidden or unseen) and the turned pose verifies too, it is
+/// reported as an alternative. A symmetry under which the view repeats itself (too few differing
+/// points to tell) always gives an alternative: T·S as it is.
+void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& prep,
+                           const VerifyScene& scene, const MatchingParams& params,
+                           const PoseVerifier& verify, const PosePolisher& polish);
+
+} // namespace scanpick::core::detail
