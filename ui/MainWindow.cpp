@@ -377,8 +377,12 @@ bool MainWindow::openModel(const QString& path) {
     // The view's own matching parameters become the panel's values, so that the panel tunes them
     // (the recognizer's copy drops them; the file keeps them when saved again).
     core::RecognitionParams params = model->params;
-    auto searched = std::make_shared<core::TaughtModel>(*model);
-    core::foldViewParams(params, searched->view_params);
+    std::shared_ptr<const core::TaughtModel> searched = model;
+    if (!model->view_params.empty()) {
+      auto folded = std::make_shared<core::TaughtModel>(*model);
+      core::foldViewParams(params, folded->view_params);
+      searched = folded;
+    }
     m_recognizer->setModel(searched);
     m_params->setParams(params);
     prepareModelInBackground();
