@@ -3,14 +3,12 @@
 // (core/sim/PartDeformation.h), scattered on a table, searched with the four views of the support
 // as designed. Most are still found, every detection lies on an instance within the evaluation's
 // bounds (0.1 x diameter, 10°), and the poses are as far off as the deformation makes them.
-#include "core/params/ParamsJson.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/sim/PartCatalog.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <gtest/gtest.h>
 #include <set>
 
@@ -84,9 +82,7 @@ double median(const std::vector<double>& sorted) {
 TEST(DeformedParts, SupportsVaryingByFivePercentAreStillFound) {
   // A table, not a bin: phoxi-bin-surface without the bin-floor search, which would take the top
   // faces of supports lying flat for a bin's floor (docs/accuracy.md, "Deformed parts").
-  const RecognitionParams params = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
-                                              "resources/presets/phoxi-table-surface.json")
-                                       .params;
+  const RecognitionParams params = test::bundledPreset("phoxi-table-surface");
   ASSERT_EQ(params.floor.bin_floor_fraction, 0.0);
   ASSERT_GT(params.matching.surface_sampling_mm, 0.0);
   std::vector<test::SynthTeach> views;

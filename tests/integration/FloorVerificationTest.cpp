@@ -1,21 +1,17 @@
 // Verification knows the floor (beyond the thesis): a pose that sinks a part into the table it
 // lies on is contradicted there, although the camera cannot see through the table to say so.
-#include "core/params/ParamsJson.h"
 #include "core/pipeline/PoseVerification.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <cstdio>
-#include <filesystem>
 #include <gtest/gtest.h>
 
 using namespace scanpick;
 using namespace scanpick::core;
 
 TEST(FloorVerification, APoseSunkIntoTheTableIsContradicted) {
-  const RecognitionParams params =
-      loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) / "resources/presets/phoxi-bin.json")
-          .params;
+  const RecognitionParams params = test::bundledPreset("phoxi-bin");
   const test::SynthTeach taught = test::teachFromSynth("support", 5, params, 0);
   // Another scan of the support on a table, resting as taught.
   const SynthScene scan = test::teachScan("support", 9, 0);

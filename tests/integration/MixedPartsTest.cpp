@@ -1,21 +1,17 @@
 // Detection among several part types (thesis §5.2): a scatter of all four built-in parts seen by
 // the virtual PhoXi; a model taught from a support alone reports supports only.
-#include "core/params/ParamsJson.h"
 #include "core/pipeline/Recognizer.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <filesystem>
 
 using namespace scanpick;
 using namespace scanpick::core;
 
 TEST(MixedParts, OnlyTheTaughtTypeIsReported) {
-  const RecognitionParams params =
-      loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) / "resources/presets/phoxi-bin-surface.json")
-          .params;
+  const RecognitionParams params = test::bundledPreset("phoxi-bin-surface");
   const test::SynthTeach taught = test::teachFromSynth("support", 5, params);
 
   // Two of each part scattered on a table (round robin over the four types).

@@ -2,14 +2,12 @@
 // side is a body of revolution and a handle. Where a scan confirms the handle, recognition reports
 // the cup's turn; where it does not, the detection says its turn about the cup's axis is not seen
 // (Detection::free_turn_axis) instead of passing one turn off as found.
-#include "core/params/ParamsJson.h"
 #include "core/pipeline/Recognizer.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <gtest/gtest.h>
 #include <vector>
 
@@ -21,9 +19,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 RecognitionParams cupPreset() {
-  return loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
-                    "resources/presets/phoxi-bin-cup.json")
-      .params;
+  return test::bundledPreset("phoxi-bin-cup");
 }
 
 /// The detection's part pose against the truth: rotation (degrees) and origin distance (mm).

@@ -4,7 +4,6 @@
 // and recognition reports the right turn.
 #include "core/pipeline/NearSymmetry.h"
 
-#include "core/params/ParamsJson.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/refine/RefineModel.h"
 #include "tests/integration/SynthTeach.h"
@@ -12,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <gtest/gtest.h>
 
 using namespace scanpick;
@@ -23,8 +21,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 RecognitionParams phoxiBin() {
-  return loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) / "resources/presets/phoxi-bin.json")
-      .params;
+  return test::bundledPreset("phoxi-bin");
 }
 
 double angleDeg(const Eigen::Matrix3d& R) {

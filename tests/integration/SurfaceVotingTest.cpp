@@ -2,12 +2,10 @@
 // supports it finds instances the line and circle pairs miss, without false detections, and the
 // same input gives the same output. In a bin of pump-connectors, the views taught from the side
 // report their free turn about the pipe axis.
-#include "core/params/ParamsJson.h"
 #include "core/pipeline/Recognizer.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <cstdio>
-#include <filesystem>
 #include <gtest/gtest.h>
 #include <set>
 
@@ -39,9 +37,7 @@ constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 } // namespace
 
 TEST(SurfaceVoting, FindsMoreSupportsInBinsWithoutFalseDetections) {
-  const RecognitionParams with_surface = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
-                                                    "resources/presets/phoxi-bin-surface.json")
-                                             .params;
+  const RecognitionParams with_surface = test::bundledPreset("phoxi-bin-surface");
   ASSERT_GT(with_surface.matching.surface_sampling_mm, 0.0);
   RecognitionParams features_only = with_surface;
   features_only.matching.surface_sampling_mm = 0.0;
@@ -83,9 +79,7 @@ TEST(SurfaceVoting, FindsMoreSupportsInBinsWithoutFalseDetections) {
 }
 
 TEST(SurfaceVoting, PumpConnectorsSeenFromTheSideReportTheirPipeAxisAsFreeTurn) {
-  RecognitionParams params = loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
-                                        "resources/presets/phoxi-bin-surface.json")
-                                 .params;
+  RecognitionParams params = test::bundledPreset("phoxi-bin-surface");
   // The bin's floor stays: with it removed, this bin gives one false detection, an upright view's
   // top flange matched on the lower flange of a leaning pump-connector (the view does not hold the
   // rest of the part; docs/accuracy.md, "Bin floor"). This test is about the free turn axis.

@@ -1,15 +1,24 @@
 #pragma once
-// Helpers of the integration tests: teach a built-in part from a virtual teach scan, and tell
-// which simulated instance a detection lies on.
+// Helpers of the integration tests: load a bundled preset, teach a built-in part from a virtual
+// teach scan, and tell which simulated instance a detection lies on.
 #include "core/model/TaughtModel.h"
+#include "core/params/ParamsJson.h"
 #include "core/pipeline/Detection.h"
 #include "core/sim/Synth.h"
 
+#include <filesystem>
 #include <limits>
 #include <memory>
 #include <string>
 
 namespace scanpick::test {
+
+/// The parameters of the bundled preset `name` (resources/presets/NAME.json).
+inline core::RecognitionParams bundledPreset(const std::string& name) {
+  return core::loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) / "resources/presets" /
+                          (name + ".json"))
+      .params;
+}
 
 /// A model taught from one part on a table (resting on side `teach_side`, see
 /// core::teachSideTurn), cropped with the box an operator would draw, and the part's pose in that
