@@ -167,10 +167,8 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
   if (min_overlap <= 0 || view.points.size() < 10)
     return found;
   // The view's own surface, seen from the teach camera, is the "scene" the turns are fitted to.
-  SceneIndexOptions options;
-  options.viewpoint_mm = model.T_teach_model.inverse().translation();
-  const SceneIndex surface(model.cloud_mm, options);
-  const Eigen::Vector3f camera = options.viewpoint_mm.cast<float>();
+  const SceneIndex& surface = refine_model.surface();
+  const Eigen::Vector3f camera = model.T_teach_model.inverse().translation().cast<float>();
   const ViewDepth depth(model.cloud_mm, model.T_teach_model);
 
   const double sampling_mm = std::max(kSamplingShare * model.diameter_mm, tolerance_mm);

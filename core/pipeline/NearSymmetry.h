@@ -39,7 +39,9 @@ struct NearSymmetry {
 /// identity does not win every vote) that turn it by 30° or more, each kept as voted or polished
 /// by ICP (`icp`) onto the view itself, whichever overlaps more, when it puts at least
 /// `min_overlap` of the view's points back on its surface (within `tolerance_mm`). `view` are the
-/// verification points of `model`. Deterministic. Empty when min_overlap <= 0.
+/// verification points of `model`; `refine_model` is built from `model` with its teach camera as
+/// the viewpoint, and its surface() is the surface the turns are fitted to. Deterministic. Empty
+/// when min_overlap <= 0.
 std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const VerifyModel& view,
                                              const RefineModel& refine_model,
                                              const RefineParams& icp, double tolerance_mm,

@@ -69,7 +69,8 @@ RefineModel::RefineModel(const PointCloud& model_mm, int max_points,
     const auto box = boundingBox(model_mm);
     options.viewpoint_mm = box.center().cast<double>() - Eigen::Vector3d(0, 0, 1e6);
   }
-  const SceneIndex full(model_mm, options);
+  m_surface = std::make_shared<const SceneIndex>(model_mm, options);
+  const SceneIndex& full = *m_surface;
 
   std::vector<Eigen::Vector3f> points, normals;
   for (std::size_t i = 0; i < full.size(); ++i)

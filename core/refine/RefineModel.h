@@ -4,8 +4,10 @@
 /// points with unit normals facing the teach camera. Built once per model.
 
 #include "core/cloud/PointCloud.h"
+#include "core/refine/SceneIndex.h"
 
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -33,8 +35,12 @@ public:
   [[nodiscard]] double radius_mm() const { return m_radius_mm; }
   /// Edge of the voxel grid used for the subsample (mm); 0 when every point was kept.
   [[nodiscard]] double voxel_mm() const { return m_voxel_mm; }
+  /// All valid points of the model with the normals estimated above, indexed: the model's own
+  /// surface as its teach camera saw it (the near-symmetry search fits turns of the view to it).
+  [[nodiscard]] const SceneIndex& surface() const { return *m_surface; }
 
 private:
+  std::shared_ptr<const SceneIndex> m_surface;
   std::vector<Eigen::Vector3f> m_points;
   std::vector<Eigen::Vector3f> m_normals;
   double m_radius_mm = 0;
