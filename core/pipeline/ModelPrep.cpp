@@ -38,13 +38,10 @@ constexpr double kTurnMargin = 0.1;
 
 } // namespace
 
-/// Whether matching with these parameters uses a prepared model (verification or refinement).
 bool needsModelPrep(const RecognitionParams& params) {
   return params.matching.verify_tolerance_mm > 0 || params.refine.enabled;
 }
 
-/// The cached preparation of `model` for these parameters, made (and cached, replacing the
-/// oldest of at most 8) when missing or lacking what the parameters need.
 std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const ModelPrep>>& preps,
                                               const std::shared_ptr<const TaughtModel>& model,
                                               const RecognitionParams& params) {
@@ -123,9 +120,6 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
   return prep;
 }
 
-/// Whether the scan confirms enough of the detail of a view that is a surface of revolution but
-/// for it (ModelPrep::near_axis_detail) at `T_scene_model`: if not (the handle of a cup is hidden
-/// or turned away), nothing in the scan tells the turn about the axis.
 bool seesDetail(const ModelPrep& prep, const VerifyScene& scene,
                 const Eigen::Isometry3d& T_scene_model, double tolerance_mm) {
   const PointTally t =
@@ -133,15 +127,6 @@ bool seesDetail(const ModelPrep& prep, const VerifyScene& scene,
   return double(t.confirmed) >= kMinDetailSeenShare * double(t.points) && t.confirmed > 0;
 }
 
-/// For each detection and each near symmetry S of the view, tries the turned pose T·S (polished by
-/// ICP). The differing points decide: where one pose puts material and the other does not, the
-/// scan looking through clearly more of one pose's points than of the other's rules it out (the
-/// lip of a hook turned 180° about its plate's normal floats where the scan sees the arm behind
-/// it). Confirmed points tell less: both poses' differing points can lie near other surface of the
-/// part. The detection takes the turned pose when the scan rules its own out; when neither is
-/// ruled out (the differing points are hidden or unseen) and the turned pose verifies too, it is
-/// reported as an alternative. A symmetry under which the view repeats itself (too few differing
-/// points to tell) always gives an alternative: T·S as it is.
 void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& prep,
                            const VerifyScene& scene, const MatchingParams& params,
                            const PoseVerifier& verify, const PosePolisher& polish) {

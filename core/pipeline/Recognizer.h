@@ -53,8 +53,9 @@ public:
   [[nodiscard]] std::shared_ptr<const TaughtModel> model() const;
 
   /// Finds the model in `scene_mm` (camera frame, mm), with `params` except for the matching
-  /// parameters the model sets for itself (TaughtModel::view_params). Throws Error without a model, for a scene
-  /// with no valid point or an inconsistent cloud; Cancelled when `progress` asks to stop.
+  /// parameters the model sets for itself (TaughtModel::view_params). Throws Error without a
+  /// model, for a scene with no valid point or an inconsistent cloud; Cancelled when `progress`
+  /// asks to stop.
   /// Same scene + parameters (seed included) = identical result, cached or not.
   RecognitionResult recognize(const PointCloud& scene_mm, const SensorModel& sensor,
                               const RecognitionParams& params, const ProgressFn& progress = {});

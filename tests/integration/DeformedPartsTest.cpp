@@ -3,13 +3,15 @@
 // (core/sim/PartDeformation.h), scattered on a table, searched with the four views of the support
 // as designed. Most are still found, every detection lies on an instance within the evaluation's
 // bounds (0.1 x diameter, 10°), and the poses are as far off as the deformation makes them.
+#include "core/eval/GroundTruth.h"
+#include "core/eval/PoseError.h"
 #include "core/pipeline/Recognizer.h"
-#include "core/sim/PartCatalog.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <set>
 
 using namespace scanpick;
@@ -21,16 +23,6 @@ struct Found {
   std::size_t instances = 0;
   std::vector<double> origin_errors_mm;
 };
-
-/// Rotation between a detection and an instance, up to the part's symmetries (degrees).
-double rotationErrorDeg(const Eigen::Isometry3d& T_detected, const Eigen::Isometry3d& T_true,
-                        const PartSymmetry& symmetry) {
-  double best = Eigen::AngleAxisd(T_true.linear().transpose() * T_detected.linear()).angle();
-  for (const auto& S : symmetry.discrete)
-    best = std::min(
-        best, Eigen::AngleAxisd((T_true * S).linear().transpose() * T_detected.linear()).angle());
-  return best * 180.0 / 3.14159265358979323846;
-}
 
 /// Recognizes the support in scatters of six with the given deformation; fails on any detection
 /// that is on no instance (origin beyond 0.1 x diameter or rotation beyond 10°) or found twice.
@@ -49,16 +41,23 @@ Found recognizeScatters(const std::vector<test::SynthTeach>& views,
     Recognizer recognizer;
     const RecognitionResult result =
         recognizeViews(recognizer, models, scatter.render.cloud, scatter.sensor, params);
-    const double diameter = builtInPart("support").diameter_mm();
+    // The support as scored by `scanpick-cli eval`: its design and symmetry group.
+    const eval::PartInfo support =
+        eval::parseGroundTruth(nlohmann::json::parse(groundTruthJson(scatter, "s.pcd", "s.png")),
+                               "scatter")
+            .parts.at("support");
+    const auto symmetries = eval::symmetryGroup(support.symmetry, support.diameter_mm);
+    const double diameter = support.diameter_mm;
     std::set<int> found;
     for (const auto& d : result.detections) {
       const auto& view = views.at(static_cast<std::size_t>(d.model_index));
       const test::NearestInstance nearest = test::nearestInstance(d, view, scatter.scene);
       const PartInstance& instance =
           scatter.scene.instances.at(static_cast<std::size_t>(nearest.id));
-      const double rotation = rotationErrorDeg(d.T_scene_model * view.T_part_model().inverse(),
-                                               scatter.scene.T_scene_part(instance),
-                                               scatter.scene.parts.at(instance.part).symmetry);
+      const double rotation =
+          eval::symmetricPoseError(d.T_scene_model * view.T_part_model().inverse(),
+                                   scatter.scene.T_scene_part(instance), support, symmetries, {})
+              .rotation_deg;
       std::printf("deformation %.2f, seed %d: score %.3f, view %d: instance %d at %.2f mm, %.2f°\n",
                   deformation, int(seed), d.score, d.model_index, nearest.id, nearest.distance_mm,
                   rotation);
