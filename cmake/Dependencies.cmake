@@ -10,6 +10,8 @@ find_package(spdlog REQUIRED)
 find_package(PNG REQUIRED)
 find_package(nanoflann REQUIRED)
 find_package(embree 3 REQUIRED)
+# CGAL (header-only here): hole filling of scanned meshes (core/sim/MeshRepair.cpp).
+find_package(CGAL 5.5 REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(BULLET REQUIRED IMPORTED_TARGET bullet)
 

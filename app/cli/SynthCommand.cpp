@@ -28,6 +28,7 @@ struct SynthOptions {
   double deformation = 0;
   bool noiseless = false;
   bool export_mesh = false;
+  bool close_holes = false;
 };
 
 std::vector<std::string> splitCommas(const std::vector<std::string>& items) {
@@ -51,7 +52,7 @@ int runExportMesh(const SynthOptions& o) {
   const auto names = splitCommas(o.parts);
   if (names.size() != 1 && o.mesh.empty())
     throw core::Error("--export-mesh needs exactly one --part NAME (or --mesh FILE)");
-  const core::Part part = o.mesh.empty() ? core::builtInPart(names.front()) : core::partFromMeshFile(o.mesh);
+  const core::Part part = o.mesh.empty() ? core::builtInPart(names.front()) : core::partFromMeshFile(o.mesh, o.close_holes);
   const core::TriangleMesh mesh = part.mesh();
   core::saveMeshPly(out, mesh);
   std::cout << "wrote " << out.string() << " (" << part.name << ", " << mesh.vertices_mm.size() << " vertices, "
@@ -60,6 +61,8 @@ int runExportMesh(const SynthOptions& o) {
 }
 
 int runSynth(const SynthOptions& o) {
+  if (o.close_holes && o.mesh.empty())
+    throw core::Error("--close-holes caps the holes of a --mesh FILE: give one, or drop --close-holes");
   if (o.export_mesh)
     return runExportMesh(o);
   if (o.out.empty())
@@ -72,6 +75,7 @@ int runSynth(const SynthOptions& o) {
     if (!splitCommas(o.parts).empty())
       throw core::Error("give either --part or --mesh, not both");
     r.mesh_path = o.mesh;
+    r.close_holes = o.close_holes;
   }
   r.layout = core::layoutFromName(o.layout);
   r.teach_side = o.teach_side;
@@ -111,6 +115,8 @@ void registerSynthCommands(CLI::App& app) {
   synth->add_option("--part", o->parts, "built-in part: support, cup, pump-connector, coat-rack "
                                         "(several, comma-separated, make a mixed scene)");
   synth->add_option("--mesh", o->mesh, "closed triangle mesh in mm (.ply, .stl, .obj, .vtk) instead of --part");
+  synth->add_flag("--close-holes", o->close_holes,
+                  "cap the --mesh file's holes (a scanned part's open base) by ear clipping");
   synth->add_option("--layout", o->layout, "bin, scatter or teach")->capture_default_str();
   synth->add_option("--teach-side", o->teach_side,
                     "teach layout: side the part rests on, 0 = usual, 1 = turned over, 2 = on its side, "

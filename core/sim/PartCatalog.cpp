@@ -3,6 +3,7 @@
 #include "core/common/Error.h"
 #include "core/sim/MeshBuilder.h"
 #include "core/sim/MeshIo.h"
+#include "core/sim/MeshRepair.h"
 
 #include <cmath>
 #include <numbers>
@@ -138,8 +139,10 @@ Part builtInPart(const std::string& name) {
   throw Error("unknown part '" + name + "': use one of " + known + ", or --mesh FILE");
 }
 
-Part partFromMeshFile(const std::filesystem::path& path) {
-  const TriangleMesh mesh = loadMesh(path);
+Part partFromMeshFile(const std::filesystem::path& path, bool close_holes) {
+  TriangleMesh mesh = loadMesh(path);
+  if (close_holes)
+    closeHoles(mesh);
   Part p;
   p.name = path.stem().string();
   for (auto& c : connectedComponents(mesh)) {
@@ -147,7 +150,7 @@ Part partFromMeshFile(const std::filesystem::path& path) {
     if (open > 0)
       throw Error("mesh '" + path.string() + "' is not closed (" + std::to_string(open) +
                   " open or non-manifold edges): the physics needs a watertight solid; close its "
-                  "holes (e.g. MeshLab: Filters > Remeshing > Close Holes) and retry");
+                  "holes (--close-holes caps them; or MeshLab: Filters > Remeshing > Close Holes) and retry");
     orientOutwards(c);
     if (std::abs(signedVolume(c)) < 1e-3)
       throw Error("mesh '" + path.string() + "' encloses no volume: export the part as a solid");

@@ -24,8 +24,9 @@ std::vector<std::string> builtInPartNames();
 Part builtInPart(const std::string& name);
 
 /// A part from a mesh file in millimetres (see loadMesh): no grip points except the bounding-box
-/// centre ("center"), no known symmetry. Throws Error if the mesh is not closed (it names the
-/// number of open edges) or empty, or if loading fails.
-Part partFromMeshFile(const std::filesystem::path& path);
+/// centre ("center"), no known symmetry. With `close_holes`, the holes of a scanned mesh (an open
+/// base) are capped first (closeHoles). Throws Error if the mesh is not closed (it names the
+/// number of open edges) or empty, or if loading or closing fails.
+Part partFromMeshFile(const std::filesystem::path& path, bool close_holes = false);
 
 } // namespace scanpick::core

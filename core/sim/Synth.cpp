@@ -26,7 +26,7 @@ json vectorJson(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 std::vector<Part> requestedParts(const SynthRequest& r) {
   if (!r.mesh_path.empty())
-    return {partFromMeshFile(r.mesh_path)};
+    return {partFromMeshFile(r.mesh_path, r.close_holes)};
   std::vector<Part> parts;
   for (const auto& name : r.parts)
     parts.push_back(builtInPart(name));

@@ -19,6 +19,7 @@ struct SynthRequest {
   /// Built-in part names (builtInPartNames()); several make a mixed scene (round robin).
   std::vector<std::string> parts{"support"};
   std::filesystem::path mesh_path;      ///< a mesh file (mm) instead of built-in parts when set
+  bool close_holes = false;             ///< cap the mesh file's holes (closeHoles) before use
   LayoutKind layout = LayoutKind::Bin;
   int count = 8;                        ///< instances (teach: 1)
   std::string sensor = "phoxi-m-1032";  ///< sensorPresetNames()
