@@ -1,6 +1,8 @@
 // Repeatability at the command line: two `scanpick-cli recognize` runs on the same scene with the
 // same model and preset write the same results file, timings aside.
 #include "core/model/ModelFile.h"
+#include "core/sim/MeshBuilder.h"
+#include "core/sim/MeshIo.h"
 #include "tests/support/TempDir.h"
 
 #include <cstdlib>
@@ -157,4 +159,29 @@ TEST(CliDemo, TeachesRecognizesAndWritesResultsAndPicture) {
   EXPECT_EQ(std::string(magic + 1, 3), "PNG");
   // A bad preset fails with a non-zero exit code instead of writing anything misleading.
   EXPECT_NE(runCli({"demo", "--out", quoted(dir.path() / "bad"), "--preset", "no-such-preset"}), 0);
+}
+
+TEST(CliSynth, OpenMeshIsRefusedUnlessItsHolesAreClosed) {
+  if (!fs::exists(kCli))
+    GTEST_SKIP() << kCli << " is not built (build the scanpick-cli target first)";
+  const scanpick::test::TempDir dir;
+  // A 40 mm box without its top: a scanned part's open base.
+  scanpick::core::TriangleMesh open = scanpick::core::boxMesh({0, 0, 0}, {40, 40, 40});
+  std::erase_if(open.triangles, [&](const Eigen::Vector3i& t) {
+    return open.vertices_mm[t[0]].z() == 40 && open.vertices_mm[t[1]].z() == 40 &&
+           open.vertices_mm[t[2]].z() == 40;
+  });
+  const fs::path mesh = dir.path() / "open.ply", closed = dir.path() / "closed.ply";
+  scanpick::core::saveMeshPly(mesh, open);
+  const fs::path log = dir.path() / "log.txt";
+  EXPECT_NE(runCli({"synth", "--mesh", quoted(mesh), "--out", quoted(dir.path() / "s")}, log), 0);
+  EXPECT_NE(readText(log).find("--close-holes"), std::string::npos) << readText(log);
+  EXPECT_FALSE(fs::exists(dir.path() / "s.pcd"));
+  ASSERT_EQ(runCli({"synth", "--mesh", quoted(mesh), "--close-holes", "--export-mesh", "--out",
+                    quoted(closed)}),
+            0);
+  EXPECT_EQ(scanpick::core::openEdgeCount(scanpick::core::loadMesh(closed)), 0u);
+  // --close-holes belongs to a mesh file.
+  EXPECT_NE(runCli({"synth", "--part", "support", "--close-holes", "--out", quoted(dir.path() / "t")}, log), 0);
+  EXPECT_NE(readText(log).find("--mesh"), std::string::npos) << readText(log);
 }

@@ -41,11 +41,11 @@ inline core::SynthScene teachScan(const std::string& part, std::uint64_t seed, i
   return core::synthesize(request);
 }
 
-inline SynthTeach teachFromSynth(const std::string& part, std::uint64_t seed,
-                                 const core::RecognitionParams& params, int teach_side = 0) {
-  const core::SynthScene scan = teachScan(part, seed, teach_side);
+/// A model taught from the only part of a virtual scan, cropped to the box of its ground truth.
+inline SynthTeach teachFromScan(const core::SynthScene& scan, const std::string& name,
+                                const core::RecognitionParams& params) {
   core::TeachOptions options;
-  options.name = part;
+  options.name = name;
   options.sensor = scan.sensor;
   options.remove_floor = true;
   const Eigen::AlignedBox3d box = scan.scene.crop_box_world.value();
@@ -57,6 +57,11 @@ inline SynthTeach teachFromSynth(const std::string& part, std::uint64_t seed,
   out.model = std::make_shared<core::TaughtModel>(core::teach(scan.render.cloud, options, params));
   out.T_teach_part = scan.scene.T_scene_part(scan.scene.instances.at(0));
   return out;
+}
+
+inline SynthTeach teachFromSynth(const std::string& part, std::uint64_t seed,
+                                 const core::RecognitionParams& params, int teach_side = 0) {
+  return teachFromScan(teachScan(part, seed, teach_side), part, params);
 }
 
 /// The instance nearest a detection's part origin (as scanpick-cli eval places it).
