@@ -4,7 +4,6 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
-
 #include <algorithm>
 #include <map>
 #include <string>
@@ -28,7 +27,7 @@ EdgeThirds edgeThirds(const TriangleMesh& mesh) {
 /// The boundary loops in the order a cap must run through them (each boundary edge a → b of a
 /// triangle is b → a in the cap), starting at their smallest vertex.
 std::vector<std::vector<int>> boundaryLoops(const EdgeThirds& edges) {
-  std::map<int, int> cap_next;  // vertex → next vertex along its cap
+  std::map<int, int> cap_next; // vertex → next vertex along its cap
   for (const auto& [edge, third] : edges) {
     if (edges.count({edge.second, edge.first}))
       continue;
@@ -78,7 +77,7 @@ std::vector<Eigen::Vector3i> capTriangles(const TriangleMesh& mesh, const std::v
     throw Error("a hole of " + std::to_string(loop.size()) +
                 " vertices could not be capped (it folds over itself): close it in a mesh editor");
   std::vector<Eigen::Vector3i> caps;
-  bool reversed = false;  // the cap beside the loop's first edge must run loop[0] → loop[1]
+  bool reversed = false; // the cap beside the loop's first edge must run loop[0] → loop[1]
   for (const auto& t : patch) {
     caps.emplace_back(loop[t.first], loop[t.second], loop[t.third]);
     for (int k = 0; k < 3; ++k)

@@ -54,7 +54,7 @@ TEST(RabbitKinect, TaughtFromOneScanFoundInOthers) {
 
   std::size_t found_total = 0;
   std::vector<double> origin_errors_mm, rotation_errors_deg;
-  for (std::uint64_t seed : {4u, 6u}) {  // each: two rabbits lying, one standing
+  for (std::uint64_t seed : {4u, 6u}) { // each: two rabbits lying, one standing
     const SynthScene scatter = synthesize(rabbitRequest(mesh, LayoutKind::Scatter, 3, seed));
     const eval::PartInfo rabbit =
         eval::parseGroundTruth(nlohmann::json::parse(groundTruthJson(scatter, "s.pcd", "s.png")),

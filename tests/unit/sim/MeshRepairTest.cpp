@@ -1,15 +1,14 @@
 // Closing the holes of open meshes: caps that make a closed, consistently oriented solid of the
 // right volume, also over a non-convex hole; clear errors where a hole cannot be capped.
-#include "core/sim/MeshBuilder.h"
-#include "core/sim/MeshIo.h"
 #include "core/sim/MeshRepair.h"
 
-#include <gtest/gtest.h>
-
 #include "core/common/Error.h"
+#include "core/sim/MeshBuilder.h"
+#include "core/sim/MeshIo.h"
 #include "tests/support/TempDir.h"
 
 #include <algorithm>
+#include <gtest/gtest.h>
 
 using namespace scanpick::core;
 
@@ -35,7 +34,7 @@ TEST(MeshRepair, OpenBoxIsClosedWithItsVolume) {
   EXPECT_EQ(report.triangles, 2u);
   EXPECT_NEAR(report.largest_hole_mm, std::hypot(10.0, 20.0), 1e-9);
   EXPECT_EQ(openEdgeCount(box), 0u);
-  EXPECT_NEAR(signedVolume(box), 6000.0, 1e-9);  // the cap faces outwards like the rest
+  EXPECT_NEAR(signedVolume(box), 6000.0, 1e-9); // the cap faces outwards like the rest
 }
 
 TEST(MeshRepair, NonConvexHoleIsCappedWithoutOverlap) {
@@ -49,7 +48,7 @@ TEST(MeshRepair, NonConvexHoleIsCappedWithoutOverlap) {
   EXPECT_EQ(report.holes, 1u);
   EXPECT_EQ(openEdgeCount(plate), 0u);
   EXPECT_NEAR(signedVolume(plate), 800.0 * 5, 1e-6);
-  EXPECT_NEAR(surfaceArea(plate), 2 * 800.0 + 5 * 120.0, 1e-6);  // no cap triangle overlaps
+  EXPECT_NEAR(surfaceArea(plate), 2 * 800.0 + 5 * 120.0, 1e-6); // no cap triangle overlaps
 }
 
 TEST(MeshRepair, ClosedMeshIsLeftAlone) {
@@ -72,13 +71,14 @@ TEST(MeshRepair, HolesSharingAVertexAreRefusedAndTheMeshKept) {
 TEST(MeshRepair, ScannedRabbitBecomesASolid) {
   const auto file = scanpick::test::sharedData("pcl/tum_rabbit.vtk");
   if (file.empty())
-    GTEST_SKIP() << "../shared/data/pcl/tum_rabbit.vtk is absent (the real scanned mesh lives beside "
-                    "the project, not in it)";
+    GTEST_SKIP()
+        << "../shared/data/pcl/tum_rabbit.vtk is absent (the real scanned mesh lives beside "
+           "the project, not in it)";
   TriangleMesh rabbit = loadMesh(file);
-  ASSERT_GT(openEdgeCount(rabbit), 0u);  // its base is open: 141 border edges
+  ASSERT_GT(openEdgeCount(rabbit), 0u); // its base is open: 141 border edges
   const HoleFilling report = closeHoles(rabbit);
   EXPECT_EQ(report.holes, 1u);
-  EXPECT_EQ(report.triangles, 139u);  // a 141-gon in 139 triangles, no vertex added
+  EXPECT_EQ(report.triangles, 139u); // a 141-gon in 139 triangles, no vertex added
   EXPECT_EQ(openEdgeCount(rabbit), 0u);
-  EXPECT_GT(std::abs(signedVolume(rabbit)), 1e5);  // a solid of a few hundred cm³
+  EXPECT_GT(std::abs(signedVolume(rabbit)), 1e5); // a solid of a few hundred cm³
 }
