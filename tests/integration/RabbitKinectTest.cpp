@@ -41,7 +41,7 @@ TEST(RabbitKinect, TaughtFromOneScanFoundInOthers) {
     GTEST_SKIP() << "../shared/data/pcl/tum_rabbit.vtk is absent (the real scanned mesh lives "
                     "beside the project, not in it)";
   const RecognitionParams params = test::bundledPreset("kinect-bin-support");
-  // Teach sides 1 and 2 of the rabbit: lying on its flank and standing on its base, the two ways
+  // Teach sides 1 and 2 of the rabbit: lying and standing on its base, the two ways
   // the rabbits of these scatters rest.
   std::vector<test::SynthTeach> views;
   std::vector<std::shared_ptr<const TaughtModel>> models;
