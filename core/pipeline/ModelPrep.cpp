@@ -28,6 +28,9 @@ bool isTurnAbout(const RevolutionAxis& axis, const Eigen::Isometry3d& S) {
          (S * axis.point_mm - axis.point_mm).norm() < 2.0;
 }
 
+/// A turn the detail chooses is taken only while the pose verifies at most this much worse.
+constexpr double kDetailTurnCoverageSlack = 0.05;
+
 /// The differing points of a near symmetry tell two poses apart only when at least this share of
 /// the view's points (and 8) are among them and not hidden: a handful at the view's edges is noise.
 constexpr double kMinDistinguishingShare = 0.02;
@@ -127,6 +130,68 @@ bool seesDetail(const ModelPrep& prep, const VerifyScene& scene,
   return double(t.confirmed) >= kMinDetailSeenShare * double(t.points) && t.confirmed > 0;
 }
 
+std::optional<DetailTurn> turnByDetail(const ModelPrep& prep, const VerifyScene& scene,
+                                       const MatchingParams& params, const PoseVerifier& verify,
+                                       const PosePolisher& polish,
+                                       const Eigen::Isometry3d& T_scene_model, double coverage) {
+  if (!prep.near_axis || prep.near_axis_detail.empty())
+    return std::nullopt;
+  const RevolutionAxis& axis = *prep.near_axis;
+  const auto detailScore = [&](const Eigen::Isometry3d& T) {
+    const PointTally t =
+        tallyPoints(*prep.verify, scene, T, params.verify_tolerance_mm, &prep.near_axis_detail);
+    return (double(t.confirmed) - double(t.violations)) /
+           double(std::max<std::size_t>(1, t.points));
+  };
+  const double as_found = detailScore(T_scene_model);
+  DetailTurn turn{T_scene_model, 0.0, as_found, as_found, false};
+  for (int degrees = 1; degrees < 360; ++degrees) {
+    const Eigen::Isometry3d T = T_scene_model * Eigen::Translation3d(axis.point_mm) *
+                                Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.direction) *
+                                Eigen::Translation3d(-axis.point_mm);
+    if (const double score = detailScore(T); score > turn.detail_confirmed) {
+      turn.detail_confirmed = score;
+      turn.T_scene_model = T;
+    }
+  }
+  if (turn.detail_confirmed < kMinDetailSeenShare || turn.detail_confirmed < as_found + kTurnMargin)
+    return std::nullopt;
+  // The turn is known to a degree: ICP finishes it.
+  turn.coverage = verify(turn.T_scene_model);
+  const Eigen::Isometry3d polished = polish(turn.T_scene_model);
+  if (const double polished_coverage = verify(polished); polished_coverage >= turn.coverage) {
+    turn.T_scene_model = polished;
+    turn.coverage = polished_coverage;
+    turn.refined = true;
+  }
+  // The body must still agree: a side view turned far about its axis moves its visible half out
+  // of the camera's sight, where a handle-like patch of another part can confirm the detail.
+  if (turn.coverage < coverage - kDetailTurnCoverageSlack)
+    return std::nullopt;
+  return turn;
+}
+
+void resolveDetailTurns(std::vector<Detection>& detections, const ModelPrep& prep,
+                        const VerifyScene& scene, const MatchingParams& params,
+                        const PoseVerifier& verify, const PosePolisher& polish) {
+  tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
+    Detection& d = detections[k];
+    const auto turn =
+        turnByDetail(prep, scene, params, verify, polish, d.T_scene_model, d.coverage);
+    if (!turn)
+      return;
+    logger()->debug("detection {} turned about its axis by its detail: {:.2f} -> {:.2f} of the "
+                    "detail confirmed, coverage {:.3f} -> {:.3f}",
+                    k, turn->detail_as_found, turn->detail_confirmed, d.coverage, turn->coverage);
+    d.T_scene_model = turn->T_scene_model;
+    d.coverage = turn->coverage;
+    d.score = turn->coverage;
+    d.refined = turn->refined;
+    d.matched_features.clear();
+    d.alternative_poses.clear();
+  });
+}
+
 void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& prep,
                            const VerifyScene& scene, const MatchingParams& params,
                            const PoseVerifier& verify, const PosePolisher& polish) {
@@ -150,7 +215,16 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
           contradictedShare(tallyPoints(*prep.verify, scene, d.T_scene_model,
                                         params.verify_tolerance_mm, &s.differing_inverse),
                             min_seen);
-      const Eigen::Isometry3d T_turned = polish(d.T_scene_model * s.S_model);
+      Eigen::Isometry3d T_turned = polish(d.T_scene_model * s.S_model);
+      // Turned end over end, a cup's handle lies at another turn about its axis: its detail says
+      // which.
+      if (const auto turn =
+              turnByDetail(prep, scene, params, verify, polish, T_turned, verify(T_turned))) {
+        logger()->trace("detection {} turned by a near symmetry: then about its axis by its "
+                        "detail, {:.2f} -> {:.2f} of it confirmed",
+                        k, turn->detail_as_found, turn->detail_confirmed);
+        T_turned = turn->T_scene_model;
+      }
       const double turned = contradictedShare(
           tallyPoints(*prep.verify, scene, T_turned, params.verify_tolerance_mm, &s.differing),
           min_seen);

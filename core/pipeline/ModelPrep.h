@@ -70,6 +70,33 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
 bool seesDetail(const ModelPrep& prep, const VerifyScene& scene,
                 const Eigen::Isometry3d& T_scene_model, double tolerance_mm);
 
+/// A pose turned about its view's near axis to where its detail (a cup's handle) is confirmed.
+struct DetailTurn {
+  Eigen::Isometry3d T_scene_model = Eigen::Isometry3d::Identity();
+  double coverage = 0.0;         ///< verification score of the turned pose
+  double detail_confirmed = 0.0; ///< (confirmed − violations) ÷ detail points, turned
+  double detail_as_found = 0.0;  ///< the same before the turn
+  bool refined = false;          ///< ICP polished the turned pose
+};
+
+/// The turn about the view's near axis (1° steps, the detail's points alone) whose detail the scan
+/// confirms most, polished by ICP; nothing when the view has no near axis, the best turn confirms
+/// less than a quarter of the detail or not a clear share more than `T_scene_model`, or it
+/// verifies clearly worse than `coverage` (the pose's own score).
+std::optional<DetailTurn> turnByDetail(const ModelPrep& prep, const VerifyScene& scene,
+                                       const MatchingParams& params, const PoseVerifier& verify,
+                                       const PosePolisher& polish,
+                                       const Eigen::Isometry3d& T_scene_model, double coverage);
+
+/// For each detection of a view that is a surface of revolution but for a detail (a cup's handle),
+/// finds the turn about the axis the detail says: turns of 1° are tallied on the detail's points
+/// alone (the rest of the view lies on the same surface at any turn; only which of it the
+/// projector lit differs), and the detection takes the turn whose detail the scan confirms most,
+/// when that confirms a clear share more than the turn found; `polish` (ICP) then finishes it.
+void resolveDetailTurns(std::vector<Detection>& detections, const ModelPrep& prep,
+                        const VerifyScene& scene, const MatchingParams& params,
+                        const PoseVerifier& verify, const PosePolisher& polish);
+
 /// For each detection and each near symmetry S of the view, tries the turned pose T·S (polished by
 /// ICP). The differing points decide: where one pose puts material and the other does not, the
 /// scan looking through clearly more of one pose's points than of the other's rules it out (the

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace scanpick::core {
 namespace {
@@ -34,6 +35,42 @@ double edgeAgreement(const VerifyModel& model, const SceneIndex& index, const Ei
 }
 
 } // namespace
+
+ProjectorShadow::ProjectorShadow(const PointCloud& scan, const SensorModel& sensor)
+    : m_T_projector_scene(sensor.T_camera_projector.inverse().cast<float>()),
+      m_fx(float(sensor.fx)), m_fy(float(sensor.fy)), m_cx(float(sensor.cx)),
+      m_cy(float(sensor.cy)), m_width(sensor.width), m_height(sensor.height),
+      m_depth_mm(std::size_t(std::max(0, sensor.width * sensor.height)),
+                 std::numeric_limits<float>::infinity()) {
+  for (const auto& s : scan.points_mm) {
+    if (!isValid(s))
+      continue;
+    const Eigen::Vector3f q = m_T_projector_scene * s;
+    if (q.z() <= 0.0f)
+      continue;
+    const long u = std::lround(m_fx * q.x() / q.z() + m_cx);
+    const long v = std::lround(m_fy * q.y() / q.z() + m_cy);
+    if (u < 0 || v < 0 || u >= m_width || v >= m_height)
+      continue;
+    float& depth = m_depth_mm[std::size_t(v) * std::size_t(m_width) + std::size_t(u)];
+    depth = std::min(depth, q.z());
+  }
+}
+
+bool ProjectorShadow::shadowed(const Eigen::Vector3f& p, float margin_mm) const {
+  const Eigen::Vector3f q = m_T_projector_scene * p;
+  if (q.z() <= 0.0f)
+    return false;
+  const long u0 = std::lround(m_fx * q.x() / q.z() + m_cx);
+  const long v0 = std::lround(m_fy * q.y() / q.z() + m_cy);
+  // Within a pixel: measured points fall between the projector pixels' centres.
+  for (long v = v0 - 1; v <= v0 + 1; ++v)
+    for (long u = u0 - 1; u <= u0 + 1; ++u)
+      if (u >= 0 && v >= 0 && u < m_width && v < m_height &&
+          m_depth_mm[std::size_t(v) * std::size_t(m_width) + std::size_t(u)] < q.z() - margin_mm)
+        return true;
+  return false;
+}
 
 std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int points,
                                                    double normal_radius_mm) {
@@ -101,8 +138,11 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
       return;
     const Eigen::Vector3f& s =
         scan.points_mm[static_cast<std::size_t>(v) * scan.width + static_cast<std::size_t>(u)];
-    if (!isValid(s))
+    if (!isValid(s)) {
+      if (scene.shadow && scene.shadow->shadowed(p, margin))
+        ++tally.shadowed;
       return;
+    }
     if (s.z() > p.z() + margin)
       ++tally.violations;
     else if (s.z() < p.z() - margin)
@@ -123,8 +163,10 @@ double verifyPose(const VerifyModel& model, const VerifyScene& scene,
   if (model.points.empty())
     return 0.0;
   const PointTally t = tallyPoints(model, scene, T_scene_model, tolerance_mm);
-  const double expected =
-      std::max(double(t.points - t.hidden), kMinExpectedShare * double(t.points));
+  const double seeable = double(t.points - t.shadowed);
+  const double expected = std::max(seeable - double(t.hidden), kMinExpectedShare * seeable);
+  if (expected <= 0.0)
+    return 0.0;
   const double q = (double(t.confirmed) - double(t.violations)) / expected;
   const auto tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
   return std::clamp(q, 0.0, 1.0) *

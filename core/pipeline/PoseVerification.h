@@ -41,6 +41,29 @@ struct PointTally {
   std::size_t confirmed = 0;  ///< a scene point facing the same way lies within the tolerance
   std::size_t violations = 0; ///< the camera sees clearly behind the point: nothing is there
   std::size_t hidden = 0;     ///< turned away from the camera, or behind something else
+  /// Unmeasured, and the projector's light to it is blocked by measured surface (the inside of
+  /// an upright cup behind its rim): the scan can say nothing about it.
+  std::size_t shadowed = 0;
+};
+
+/// Where a structured-light scan's projector light reached: for each projector pixel, the depth
+/// (along the projector's axis) of the nearest measured point. A point without a measurement lay
+/// in the projector's shadow when measured surface lies between the projector and it (the inside
+/// of a cup behind its rim).
+class ProjectorShadow {
+public:
+  /// Projects every valid point of `scan` (scene frame = camera frame, mm) into the projector,
+  /// modelled as a pinhole with the camera's intrinsics at sensor.T_camera_projector.
+  ProjectorShadow(const PointCloud& scan, const SensorModel& sensor);
+  /// True when measured surface lies more than `margin_mm` nearer to the projector than `p`
+  /// (scene frame) on its ray, within a pixel.
+  [[nodiscard]] bool shadowed(const Eigen::Vector3f& p, float margin_mm) const;
+
+private:
+  Eigen::Isometry3f m_T_projector_scene;
+  float m_fx, m_fy, m_cx, m_cy;
+  int m_width, m_height;
+  std::vector<float> m_depth_mm; ///< nearest measured depth per projector pixel; +inf: none
 };
 
 /// The scene a pose is verified against: its indexed points, the organized scan itself (for the
@@ -53,6 +76,8 @@ struct VerifyScene {
   /// The floor (or table) plane, (a, b, c, d) with a unit normal towards the camera
   /// (FloorRemovalResult::planes[0]); none: no floor test.
   std::optional<Eigen::Vector4f> floor_plane;
+  /// The scan's projector shadows; none: unmeasured points are expected like any other.
+  const ProjectorShadow* shadow = nullptr;
 };
 
 /// Tallies the model points listed in `subset` (indices into model.points; all when null) at pose

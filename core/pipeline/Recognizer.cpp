@@ -120,6 +120,7 @@ struct Recognizer::Cache {
   /// preparation of the last few models searched (views alternate from scene to scene).
   std::optional<PreKey> index_key;
   std::shared_ptr<const SceneIndex> scene_index;
+  std::shared_ptr<const ProjectorShadow> shadow; ///< of the scan (key: index_key)
   std::vector<std::shared_ptr<const ModelPrep>> model_preps;
   /// Every object's keypoints in one index (key: keypoint_key), for the edge check.
   std::optional<KeypointKey> edge_key;
@@ -188,8 +189,11 @@ std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
     }
     d.score = d.coverage;
   });
-  for (std::size_t k = 0; k < std::min<std::size_t>(out.size(), 20); ++k)
-    logger()->trace("surface pose {}: {} votes, coverage {:.3f}, {} features{}", k, poses[k].votes,
+  for (std::size_t k = 0; k < out.size(); ++k)
+    logger()->trace("surface pose {}: {} votes at ({:.1f}, {:.1f}, {:.1f}) mm, coverage {:.3f}, {} "
+                    "features{}",
+                    k, poses[k].votes, out[k].T_scene_model.translation().x(),
+                    out[k].T_scene_model.translation().y(), out[k].T_scene_model.translation().z(),
                     out[k].coverage, out[k].matched_features.size(), out[k].refined ? ", ICP" : "");
   std::erase_if(out, [&](const Detection& d) { return d.coverage < params.min_coverage; });
   sortBestFirst(out);
@@ -333,6 +337,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       SceneIndexOptions options;
       options.normal_radius_mm = params.keypoints.normal_radius_mm;
       cache.scene_index = std::make_shared<const SceneIndex>(*cache.pre, options);
+      cache.shadow = std::make_shared<const ProjectorShadow>(scene_mm, sensor);
       cache.index_key = pre_key;
     }
     prep = detail::prepareModel(cache.model_preps, model, params);
@@ -368,7 +373,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
 
   const auto t_match = Clock::now();
-  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane};
+  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane,
+                                 cache.shadow.get()};
   PoseVerifier verify;
   if (verifying && prep)
     verify = [&](const Eigen::Isometry3d& T) {
@@ -402,6 +408,9 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   sortBestFirst(result.detections);
   result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
+  if (verify && prep->near_axis)
+    detail::resolveDetailTurns(result.detections, *prep, verify_scene, params.matching, verify,
+                               [&](const Eigen::Isometry3d& T) { return icp(T).T_scene_model; });
   if (verify && !prep->symmetries.empty()) {
     detail::resolveNearSymmetries(result.detections, *prep, verify_scene, params.matching, verify,
                                   [&](const Eigen::Isometry3d& T) { return icp(T).T_scene_model; });

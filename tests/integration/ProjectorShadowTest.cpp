@@ -1,0 +1,83 @@
+// Projector shadows (beyond the thesis): where a structured-light scan has no point because
+// measured surface kept the projector's light off (a cup's inside behind its rim, the floor beside
+// a part), verification counts the model neither confirmed nor missing there.
+#include "core/pipeline/PoseVerification.h"
+#include "core/preprocess/FloorRemoval.h"
+#include "tests/integration/SynthTeach.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <gtest/gtest.h>
+#include <limits>
+
+using namespace scanpick;
+using namespace scanpick::core;
+
+TEST(ProjectorShadow, TheFloorBehindAPlateIsShadowed) {
+  // A 100 mm square plate 100 mm above the floor, seen by the PhoXi from 1 m: the floor is
+  // unmeasured where the plate blocks the projector's light (its projector sits 300 mm aside).
+  const SensorModel sensor = sensorPreset("phoxi-m-1032");
+  const Eigen::Vector3d projector = sensor.projectorPosition();
+  const auto onPlate = [](const Eigen::Vector3d& p) {
+    return std::abs(p.x()) <= 50.0 && std::abs(p.y()) <= 50.0;
+  };
+  PointCloud scan;
+  scan.width = std::uint32_t(sensor.width);
+  scan.height = std::uint32_t(sensor.height);
+  std::vector<Eigen::Vector3f> in_shadow, lit_floor;
+  for (int v = 0; v < sensor.height; ++v)
+    for (int u = 0; u < sensor.width; ++u) {
+      const Eigen::Vector3d ray((u - sensor.cx) / sensor.fx, (v - sensor.cy) / sensor.fy, 1.0);
+      const Eigen::Vector3d plate = 900.0 * ray, floor = 1000.0 * ray;
+      Eigen::Vector3f point = Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
+      if (onPlate(plate)) {
+        point = plate.cast<float>();
+      } else if (onPlate(floor + 0.1 * (projector - floor))) { // its light crosses z = 900 there
+        in_shadow.push_back(floor.cast<float>());
+      } else {
+        point = floor.cast<float>();
+        lit_floor.push_back(point);
+      }
+      scan.points_mm.push_back(point);
+    }
+  const ProjectorShadow shadow(scan, sensor);
+  const auto count = [&](const std::vector<Eigen::Vector3f>& points) {
+    return std::count_if(points.begin(), points.end(),
+                         [&](const Eigen::Vector3f& p) { return shadow.shadowed(p, 3.0f); });
+  };
+  const auto shadowed = std::size_t(count(in_shadow)), lit_shadowed = std::size_t(count(lit_floor));
+  std::printf("floor: %zu of %zu unlit points shadowed, %zu of %zu lit ones\n", shadowed,
+              in_shadow.size(), lit_shadowed, lit_floor.size());
+  ASSERT_GT(in_shadow.size(), 2000u);
+  EXPECT_GT(shadowed, in_shadow.size() * 98 / 100);
+  // Lit floor taken for shadow: only along the shadow's edge, within the pixel the test allows.
+  EXPECT_LT(lit_shadowed, in_shadow.size() / 6);
+  EXPECT_LT(lit_shadowed, lit_floor.size() / 1000);
+}
+
+TEST(ProjectorShadow, ShadowedPointsAreNeitherConfirmedNorExpected) {
+  const RecognitionParams params = test::bundledPreset("phoxi-bin");
+  const test::SynthTeach taught = test::teachFromSynth("cup", 5, params, 0);
+  const SynthScene scan = test::teachScan("cup", 9, 0);
+  const Eigen::Isometry3d T_true =
+      scan.scene.T_scene_part(scan.scene.instances.at(0)) * taught.T_part_model();
+  const FloorRemovalResult floor = removeFloor(scan.render.cloud, params.floor, params.seed);
+  const auto view =
+      makeVerifyModel(*taught.model, params.refine.model_points, params.keypoints.normal_radius_mm);
+  const SceneIndex index(floor.remaining);
+  const ProjectorShadow shadow(scan.render.cloud, scan.sensor);
+  const VerifyScene blind{&index, &scan.render.cloud, &scan.sensor, std::nullopt};
+  const VerifyScene knowing{&index, &scan.render.cloud, &scan.sensor, std::nullopt, &shadow};
+  const double tolerance = params.matching.verify_tolerance_mm;
+  const PointTally t_blind = tallyPoints(*view, blind, T_true, tolerance);
+  const PointTally t_knowing = tallyPoints(*view, knowing, T_true, tolerance);
+  const double q_blind = verifyPose(*view, blind, T_true, tolerance, {});
+  const double q_knowing = verifyPose(*view, knowing, T_true, tolerance, {});
+  std::printf("true pose: %zu of %zu points confirmed, %zu shadowed; coverage %.3f -> %.3f\n",
+              t_knowing.confirmed, t_knowing.points, t_knowing.shadowed, q_blind, q_knowing);
+  EXPECT_EQ(t_blind.shadowed, 0u);
+  EXPECT_EQ(t_knowing.confirmed, t_blind.confirmed); // the shadow takes only unmeasured points
+  EXPECT_EQ(t_knowing.violations, t_blind.violations);
+  EXPECT_GE(q_knowing, q_blind);
+}
