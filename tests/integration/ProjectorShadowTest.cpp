@@ -1,8 +1,6 @@
 // Projector shadows (beyond the thesis): where a structured-light scan has no point because
 // measured surface kept the projector's light off (a cup's inside behind its rim, the floor beside
 // a part), verification counts the model neither confirmed nor missing there.
-#include "core/pipeline/PoseVerification.h"
-#include "core/preprocess/FloorRemoval.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <algorithm>
@@ -58,22 +56,16 @@ TEST(ProjectorShadow, TheFloorBehindAPlateIsShadowed) {
 
 TEST(ProjectorShadow, ShadowedPointsAreNeitherConfirmedNorExpected) {
   const RecognitionParams params = test::bundledPreset("phoxi-bin");
-  const test::SynthTeach taught = test::teachFromSynth("cup", 5, params, 0);
-  const SynthScene scan = test::teachScan("cup", 9, 0);
-  const Eigen::Isometry3d T_true =
-      scan.scene.T_scene_part(scan.scene.instances.at(0)) * taught.T_part_model();
-  const FloorRemovalResult floor = removeFloor(scan.render.cloud, params.floor, params.seed);
-  const auto view =
-      makeVerifyModel(*taught.model, params.refine.model_points, params.keypoints.normal_radius_mm);
-  const SceneIndex index(floor.remaining);
-  const ProjectorShadow shadow(scan.render.cloud, scan.sensor);
-  const VerifyScene blind{&index, &scan.render.cloud, &scan.sensor, std::nullopt};
-  const VerifyScene knowing{&index, &scan.render.cloud, &scan.sensor, std::nullopt, &shadow};
+  const test::VerifyCase c = test::verifyCase("cup", params, 5, 9, 0);
+  const ProjectorShadow shadow(c.scan.render.cloud, c.scan.sensor);
+  const VerifyScene blind{c.index.get(), &c.scan.render.cloud, &c.scan.sensor, std::nullopt};
+  const VerifyScene knowing{c.index.get(), &c.scan.render.cloud, &c.scan.sensor, std::nullopt,
+                            &shadow};
   const double tolerance = params.matching.verify_tolerance_mm;
-  const PointTally t_blind = tallyPoints(*view, blind, T_true, tolerance);
-  const PointTally t_knowing = tallyPoints(*view, knowing, T_true, tolerance);
-  const double q_blind = verifyPose(*view, blind, T_true, tolerance, {});
-  const double q_knowing = verifyPose(*view, knowing, T_true, tolerance, {});
+  const PointTally t_blind = tallyPoints(*c.view, blind, c.T_true, tolerance);
+  const PointTally t_knowing = tallyPoints(*c.view, knowing, c.T_true, tolerance);
+  const double q_blind = verifyPose(*c.view, blind, c.T_true, tolerance, {});
+  const double q_knowing = verifyPose(*c.view, knowing, c.T_true, tolerance, {});
   std::printf("true pose: %zu of %zu points confirmed, %zu shadowed; coverage %.3f -> %.3f\n",
               t_knowing.confirmed, t_knowing.points, t_knowing.shadowed, q_blind, q_knowing);
   EXPECT_EQ(t_blind.shadowed, 0u);

@@ -4,6 +4,8 @@
 #include "core/model/TaughtModel.h"
 #include "core/params/ParamsJson.h"
 #include "core/pipeline/Detection.h"
+#include "core/pipeline/PoseVerification.h"
+#include "core/preprocess/FloorRemoval.h"
 #include "core/sim/Synth.h"
 
 #include <filesystem>
@@ -62,6 +64,28 @@ inline SynthTeach teachFromScan(const core::SynthScene& scan, const std::string&
 inline SynthTeach teachFromSynth(const std::string& part, std::uint64_t seed,
                                  const core::RecognitionParams& params, int teach_side = 0) {
   return teachFromScan(teachScan(part, seed, teach_side), part, params);
+}
+
+/// A view taught from one teach scan and verified against another scan of the part resting the
+/// same way: the true pose of the view in it, and what verification needs of that scan.
+struct VerifyCase {
+  SynthTeach taught;
+  core::SynthScene scan;
+  Eigen::Isometry3d T_true = Eigen::Isometry3d::Identity(); ///< scene ← model
+  core::FloorRemovalResult floor;
+  std::shared_ptr<const core::VerifyModel> view;
+  std::shared_ptr<const core::SceneIndex> index; ///< of the scan less its floor
+};
+
+inline VerifyCase verifyCase(const std::string& part, const core::RecognitionParams& params,
+                             std::uint64_t teach_seed, std::uint64_t scan_seed, int side) {
+  VerifyCase c{teachFromSynth(part, teach_seed, params, side), teachScan(part, scan_seed, side)};
+  c.T_true = c.scan.scene.T_scene_part(c.scan.scene.instances.at(0)) * c.taught.T_part_model();
+  c.floor = core::removeFloor(c.scan.render.cloud, params.floor, params.seed);
+  c.view = core::makeVerifyModel(*c.taught.model, params.refine.model_points,
+                                 params.keypoints.normal_radius_mm);
+  c.index = std::make_shared<const core::SceneIndex>(c.floor.remaining);
+  return c;
 }
 
 /// The instance nearest a detection's part origin (as scanpick-cli eval places it).
