@@ -87,7 +87,8 @@ struct VerifyScene {
 /// where the pose puts material: a hole, or the floor beside a part), and hidden when the camera
 /// sees something that much in front of it (another part); points turned away are hidden too.
 /// A point more than 3 x tolerance below the scene's floor plane is a violation wherever the scan
-/// is: no part reaches into the floor it rests on.
+/// is: no part reaches into the floor it rests on. A point whose pixel has no measurement is
+/// shadowed when scene.shadow says the projector's light to it was blocked.
 PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                        const std::vector<std::uint32_t>* subset = nullptr);
@@ -95,9 +96,10 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
 /// Verification score in [0, 1]: (confirmed − violations) ÷ the points expected to be seen,
 /// times the edge agreement (the share of model keypoints on confirmed surface with a scene
 /// keypoint within edges.tolerance_mm: a flat face matched onto another at a wrong turn confirms
-/// its surface but not its outline). The expected count is never taken below 75 % of the model,
-/// so a pose that turns the taught side away (a flip), or is confirmed on one leg of a bracket
-/// whose other leg falls behind other parts, cannot score on the few points left.
+/// its surface but not its outline). Shadowed points count for nothing. The expected count is
+/// never taken below 75 % of the points not shadowed, so a pose that turns the taught side away (a
+/// flip), or is confirmed on one leg of a bracket whose other leg falls behind other parts, cannot
+/// score on the few points left.
 double verifyPose(const VerifyModel& model, const VerifyScene& scene,
                   const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                   const EdgeCheck& edges);

@@ -120,7 +120,9 @@ struct Recognizer::Cache {
   /// preparation of the last few models searched (views alternate from scene to scene).
   std::optional<PreKey> index_key;
   std::shared_ptr<const SceneIndex> scene_index;
-  std::shared_ptr<const ProjectorShadow> shadow; ///< of the scan (key: index_key)
+  /// The scan's projector shadows (key: the scan's and the sensor's hashes).
+  std::optional<std::pair<std::uint64_t, std::uint64_t>> shadow_key;
+  std::shared_ptr<const ProjectorShadow> shadow;
   std::vector<std::shared_ptr<const ModelPrep>> model_preps;
   /// Every object's keypoints in one index (key: keypoint_key), for the edge check.
   std::optional<KeypointKey> edge_key;
@@ -337,8 +339,12 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       SceneIndexOptions options;
       options.normal_radius_mm = params.keypoints.normal_radius_mm;
       cache.scene_index = std::make_shared<const SceneIndex>(*cache.pre, options);
-      cache.shadow = std::make_shared<const ProjectorShadow>(scene_mm, sensor);
       cache.index_key = pre_key;
+    }
+    const std::pair shadow_key{pre_key.scene, sensorHash(sensor)};
+    if (cache.shadow_key != shadow_key || !cache.shadow) {
+      cache.shadow = std::make_shared<const ProjectorShadow>(scene_mm, sensor);
+      cache.shadow_key = shadow_key;
     }
     prep = detail::prepareModel(cache.model_preps, model, params);
     result.timings.matching_ms += msSince(t0);
@@ -399,8 +405,11 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   const auto icp = [&](const Eigen::Isometry3d& T) {
     return refinePose(*prep->refine, *cache.scene_index, T, params.refine);
   };
+  // ICP where the model was prepared for it (refinement, surface voting, near symmetries).
+  const auto polish = [&](const Eigen::Isometry3d& T) {
+    return prep && prep->refine ? icp(T).T_scene_model : T;
+  };
   if (surface) {
-    const auto polish = [&](const Eigen::Isometry3d& T) { return icp(T).T_scene_model; };
     for (auto& d : surfaceDetections(*prep->pairs, *cache.surface_scene, model->features,
                                      *cache.features, params.matching, 0.1 * model->diameter_mm,
                                      verify, polish, subProgress(progress, 0.95, 0.98)))
@@ -410,10 +419,10 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
   if (verify && prep->near_axis)
     detail::resolveDetailTurns(result.detections, *prep, verify_scene, params.matching, verify,
-                               [&](const Eigen::Isometry3d& T) { return icp(T).T_scene_model; });
+                               polish);
   if (verify && !prep->symmetries.empty()) {
     detail::resolveNearSymmetries(result.detections, *prep, verify_scene, params.matching, verify,
-                                  [&](const Eigen::Isometry3d& T) { return icp(T).T_scene_model; });
+                                  polish);
     sortBestFirst(result.detections);
     result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
   }

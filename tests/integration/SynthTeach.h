@@ -79,7 +79,9 @@ struct VerifyCase {
 
 inline VerifyCase verifyCase(const std::string& part, const core::RecognitionParams& params,
                              std::uint64_t teach_seed, std::uint64_t scan_seed, int side) {
-  VerifyCase c{teachFromSynth(part, teach_seed, params, side), teachScan(part, scan_seed, side)};
+  VerifyCase c;
+  c.taught = teachFromSynth(part, teach_seed, params, side);
+  c.scan = teachScan(part, scan_seed, side);
   c.T_true = c.scan.scene.T_scene_part(c.scan.scene.instances.at(0)) * c.taught.T_part_model();
   c.floor = core::removeFloor(c.scan.render.cloud, params.floor, params.seed);
   c.view = core::makeVerifyModel(*c.taught.model, params.refine.model_points,
