@@ -417,9 +417,13 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   sortBestFirst(result.detections);
   result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
-  if (verify && prep->near_axis)
+  if (verify && prep->near_axis) {
+    const auto t0 = Clock::now();
     detail::resolveDetailTurns(result.detections, *prep, verify_scene, params.matching, verify,
                                polish);
+    logger()->debug("the handle's turn of {} detections: {:.0f} ms", result.detections.size(),
+                    msSince(t0));
+  }
   if (verify && !prep->symmetries.empty()) {
     detail::resolveNearSymmetries(result.detections, *prep, verify_scene, params.matching, verify,
                                   polish);
