@@ -1,6 +1,7 @@
 #include "core/sim/PartCatalog.h"
 
 #include "core/common/Error.h"
+#include "core/common/Log.h"
 #include "core/sim/MeshBuilder.h"
 #include "core/sim/MeshIo.h"
 #include "core/sim/MeshRepair.h"
@@ -14,7 +15,8 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr int kHoleSegments = 32;
 
-Eigen::Isometry3d rotation(const Eigen::Matrix3d& R, const Eigen::Vector3d& t = Eigen::Vector3d::Zero()) {
+Eigen::Isometry3d rotation(const Eigen::Matrix3d& R,
+                           const Eigen::Vector3d& t = Eigen::Vector3d::Zero()) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = R;
   T.translation() = t;
@@ -22,7 +24,8 @@ Eigen::Isometry3d rotation(const Eigen::Matrix3d& R, const Eigen::Vector3d& t = 
 }
 
 /// Rotation by `angle` about the axis through `point` along `dir`.
-Eigen::Isometry3d rotationAbout(const Eigen::Vector3d& point, const Eigen::Vector3d& dir, double angle) {
+Eigen::Isometry3d rotationAbout(const Eigen::Vector3d& point, const Eigen::Vector3d& dir,
+                                double angle) {
   const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, dir.normalized()).toRotationMatrix();
   return rotation(R, point - R * point);
 }
@@ -48,7 +51,7 @@ Part support() {
   PlateCell gusset;
   gusset.boundary_mm = {{4, 4}, {45, 4}, {4, 45}};
   gusset.center_mm = {53.0 / 3, 53.0 / 3};
-  Eigen::Matrix3d R_plane;  // (a, b, c) -> (a, -c, b): the cell plane becomes xz
+  Eigen::Matrix3d R_plane; // (a, b, c) -> (a, -c, b): the cell plane becomes xz
   R_plane << 1, 0, 0, 0, 0, -1, 0, 1, 0;
   TriangleMesh g = transformed(extrudeCells({gusset}, -2.5, 2.5, kHoleSegments), rotation(R_plane));
   orientOutwards(g);
@@ -64,8 +67,8 @@ Part cup() {
   p.components.push_back(
       revolveProfile({{0, 0}, {40, 0}, {40, 95}, {37, 95}, {37, 6}, {0, 6}}, 64));
   // Handle: a bent bar in the xz plane whose ends (±93°) are buried in the 3 mm wall.
-  p.components.push_back(bentBar({40, 0, 50}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 24,
-                                 4.5, -93.0 * kPi / 180, 93.0 * kPi / 180, 24, 16));
+  p.components.push_back(bentBar({40, 0, 50}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(),
+                                 24, 4.5, -93.0 * kPi / 180, 93.0 * kPi / 180, 24, 16));
   p.grip_points = {{"rim", {-38.5, 0, 95}}, {"handle", {64, 0, 50}}};
   return p;
 }
@@ -81,9 +84,9 @@ Part pumpConnector() {
   p.components.push_back(revolveProfile({{12, 7.5}, {20, 7.5}, {20, 92.5}, {12, 92.5}}, 48));
   p.grip_points = {{"pipe", {0, 0, 50}}, {"flange-a", {0, 0, 0}}, {"flange-b", {0, 0, 100}}};
   const Eigen::Vector3d mid(0, 0, 50);
-  for (int k = 1; k < 4; ++k)  // quarter turns about the axis (4 bolt holes)
+  for (int k = 1; k < 4; ++k) // quarter turns about the axis (4 bolt holes)
     p.symmetry.discrete.push_back(rotationAbout(mid, Eigen::Vector3d::UnitZ(), k * kPi / 2));
-  for (int k = 0; k < 4; ++k)  // end-to-end flips about horizontal axes at 0°, 45°, 90°, 135°
+  for (int k = 0; k < 4; ++k) // end-to-end flips about horizontal axes at 0°, 45°, 90°, 135°
     p.symmetry.discrete.push_back(
         rotationAbout(mid, Eigen::Vector3d(std::cos(k * kPi / 4), std::sin(k * kPi / 4), 0), kPi));
   return p;
@@ -97,7 +100,8 @@ Part coatRack() {
     c.hole_radius_mm = 5;
   p.components.push_back(extrudeCells(cells, 0, 4, kHoleSegments));
   // Suction cup under the plate (solid; its stem is sunk into the plate).
-  p.components.push_back(revolveProfile({{0, 1}, {7, 1}, {7, -2}, {20, -7}, {20, -8}, {0, -8}}, 48));
+  p.components.push_back(
+      revolveProfile({{0, 1}, {7, 1}, {7, -2}, {20, -7}, {20, -8}, {0, -8}}, 48));
   // The hook: a stem out of the plate, an arm along +y and a lip.
   p.components.push_back(boxMesh({-4, -10, 3.5}, {4, -2, 23.5}));
   p.components.push_back(boxMesh({-4, -10, 20}, {4, 10, 24}));
@@ -122,7 +126,9 @@ Eigen::Vector3d Part::center_mm() const {
   return box.isEmpty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(box.center());
 }
 
-std::vector<std::string> builtInPartNames() { return {"support", "cup", "pump-connector", "coat-rack"}; }
+std::vector<std::string> builtInPartNames() {
+  return {"support", "cup", "pump-connector", "coat-rack"};
+}
 
 Part builtInPart(const std::string& name) {
   if (name == "support")
@@ -141,8 +147,11 @@ Part builtInPart(const std::string& name) {
 
 Part partFromMeshFile(const std::filesystem::path& path, bool close_holes) {
   TriangleMesh mesh = loadMesh(path);
-  if (close_holes)
-    closeHoles(mesh);
+  if (close_holes) {
+    const HoleFilling filled = closeHoles(mesh);
+    logger()->info("mesh '{}': {} hole(s) closed with {} triangles (the largest {:.1f} mm across)",
+                   path.string(), filled.holes, filled.triangles, filled.largest_hole_mm);
+  }
   Part p;
   p.name = path.stem().string();
   for (auto& c : connectedComponents(mesh)) {
@@ -150,7 +159,8 @@ Part partFromMeshFile(const std::filesystem::path& path, bool close_holes) {
     if (open > 0)
       throw Error("mesh '" + path.string() + "' is not closed (" + std::to_string(open) +
                   " open or non-manifold edges): the physics needs a watertight solid; close its "
-                  "holes (--close-holes caps them; or MeshLab: Filters > Remeshing > Close Holes) and retry");
+                  "holes (--close-holes caps them; or MeshLab: Filters > Remeshing > Close Holes) "
+                  "and retry");
     orientOutwards(c);
     if (std::abs(signedVolume(c)) < 1e-3)
       throw Error("mesh '" + path.string() + "' encloses no volume: export the part as a solid");
