@@ -105,32 +105,42 @@ SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& resul
     if (detection.model >= T_model_part.size())
       throw Error(results.source + ": detection " + std::to_string(detection.id) +
                   " names a model the file does not list");
-    const Eigen::Isometry3d T_scene_part_est = detection.T_scene_model * T_model_part[detection.model];
-    // A reported free turn is scored as a symmetry of this detection alone.
-    PartInfo scored = part;
-    if (tolerances.accept_free_turns && detection.free_turn_axis &&
-        !part.symmetry.continuous_axis) {
-      const Eigen::Isometry3d T_part_scene = T_scene_part_est.inverse();
-      scored.symmetry.continuous_axis =
-          ContinuousAxis{T_part_scene * detection.free_turn_axis->point_mm,
-                         T_part_scene.linear() * detection.free_turn_axis->direction};
-    }
+    // A pose estimate and the part as scored for it: a reported free turn is scored as a symmetry
+    // of that pose alone.
+    struct Estimate {
+      Eigen::Isometry3d T_scene_part;
+      PartInfo scored;
+    };
+    const auto estimate = [&](const Eigen::Isometry3d& T_scene_model,
+                              const std::optional<ContinuousAxis>& free_turn_axis) {
+      Estimate e{T_scene_model * T_model_part[detection.model], part};
+      if (tolerances.accept_free_turns && free_turn_axis && !part.symmetry.continuous_axis) {
+        const Eigen::Isometry3d T_part_scene = e.T_scene_part.inverse();
+        e.scored.symmetry.continuous_axis =
+            ContinuousAxis{T_part_scene * free_turn_axis->point_mm,
+                           T_part_scene.linear() * free_turn_axis->direction};
+      }
+      return e;
+    };
     DetectionOutcome outcome;
     outcome.detection_id = detection.id;
     outcome.score = detection.score;
     // Reported alternative poses are scored as poses of this detection too (the best one counts).
-    std::vector<Eigen::Isometry3d> estimates{T_scene_part_est};
+    std::vector<Estimate> estimates{estimate(detection.T_scene_model, detection.free_turn_axis)};
     if (tolerances.accept_free_turns)
-      for (const auto& T : detection.alternative_poses)
-        estimates.push_back(T * T_model_part[detection.model]);
+      for (std::size_t k = 0; k < detection.alternative_poses.size(); ++k)
+        estimates.push_back(
+            estimate(detection.alternative_poses[k], k < detection.alternative_free_turn_axes.size()
+                                                         ? detection.alternative_free_turn_axes[k]
+                                                         : std::nullopt));
     double nearest_cost = 0.0, match_cost = 0.0;
     std::optional<PoseError> match_error;
     for (const std::size_t i : targets) {
       PoseError e;
       double cost = std::numeric_limits<double>::infinity();
-      for (const auto& T_est : estimates) {
-        PoseError candidate = symmetricPoseError(T_est, truth.instances[i].T_scene_part, scored,
-                                                 group, tolerances);
+      for (const auto& est : estimates) {
+        PoseError candidate = symmetricPoseError(est.T_scene_part, truth.instances[i].T_scene_part,
+                                                 est.scored, group, tolerances);
         const double candidate_cost = poseCost(candidate, part.diameter_mm);
         if (candidate_cost < cost) {
           cost = candidate_cost;
@@ -278,9 +288,10 @@ std::vector<const GroundTruth*> selectViewTeachTruths(const std::vector<GroundTr
     if (model.teach_scan.empty())
       return {};
     const std::string scan = std::filesystem::path(model.teach_scan).filename().string();
-    const auto it = std::find_if(teach_truths.begin(), teach_truths.end(), [&](const GroundTruth& t) {
-      return std::filesystem::path(t.cloud).filename().string() == scan;
-    });
+    const auto it =
+        std::find_if(teach_truths.begin(), teach_truths.end(), [&](const GroundTruth& t) {
+          return std::filesystem::path(t.cloud).filename().string() == scan;
+        });
     if (it == teach_truths.end())
       throw Error(results.source + ": no teach ground truth for model '" + model.name +
                   "' taught from " + scan + ": pass its .gt.json with --teach-truth (or a folder)");

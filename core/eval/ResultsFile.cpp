@@ -6,6 +6,19 @@
 #include <cmath>
 
 namespace scanpick::core::eval {
+namespace {
+
+/// An axis {"point_mm": [x, y, z], "direction": [x, y, z]} (direction made unit).
+ContinuousAxis readAxis(const nlohmann::json& axis, const std::string& at) {
+  const Eigen::Vector3d point = readVector3(requireField(axis, "point_mm", at), at + ".point_mm");
+  const Eigen::Vector3d direction =
+      readVector3(requireField(axis, "direction", at), at + ".direction");
+  if (direction.norm() < 1e-6)
+    throw Error(at + ".direction is zero: it must be a unit vector");
+  return ContinuousAxis{point, direction.normalized()};
+}
+
+} // namespace
 
 ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
   checkFormatAndVersion(doc, "scanpick-results", kResultsVersion, source);
@@ -22,8 +35,8 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
       m.name = model["name"].get<std::string>();
     if (model.contains("teach_scan") && model["teach_scan"].is_string())
       m.teach_scan = model["teach_scan"].get<std::string>();
-    m.T_teach_model = readRigidTransform(requireField(model, "T_teach_model", at),
-                                         at + ".T_teach_model");
+    m.T_teach_model =
+        readRigidTransform(requireField(model, "T_teach_model", at), at + ".T_teach_model");
     return m;
   };
   if (doc.contains("models")) {
@@ -69,17 +82,8 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
         d.grip_points_scene.push_back(std::move(p));
       }
     }
-    if (value.contains("free_turn_axis")) {
-      const auto& axis = value["free_turn_axis"];
-      const std::string aat = at + ".free_turn_axis";
-      const Eigen::Vector3d point =
-          readVector3(requireField(axis, "point_mm", aat), aat + ".point_mm");
-      const Eigen::Vector3d direction =
-          readVector3(requireField(axis, "direction", aat), aat + ".direction");
-      if (direction.norm() < 1e-6)
-        throw Error(aat + ".direction is zero: it must be a unit vector");
-      d.free_turn_axis = ContinuousAxis{point, direction.normalized()};
-    }
+    if (value.contains("free_turn_axis"))
+      d.free_turn_axis = readAxis(value["free_turn_axis"], at + ".free_turn_axis");
     if (value.contains("alternative_poses")) {
       const auto& alternatives = value["alternative_poses"];
       if (!alternatives.is_array())
@@ -87,6 +91,18 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
       for (std::size_t k = 0; k < alternatives.size(); ++k)
         d.alternative_poses.push_back(readRigidTransform(
             alternatives[k], at + ".alternative_poses[" + std::to_string(k) + "]"));
+    }
+    if (value.contains("alternative_free_turn_axes")) {
+      const auto& axes = value["alternative_free_turn_axes"];
+      if (!axes.is_array() || axes.size() != d.alternative_poses.size())
+        throw Error(at + ".alternative_free_turn_axes must be an array with one entry (an axis or "
+                         "null) per alternative pose");
+      for (std::size_t k = 0; k < axes.size(); ++k)
+        d.alternative_free_turn_axes.push_back(
+            axes[k].is_null()
+                ? std::nullopt
+                : std::optional(readAxis(axes[k], at + ".alternative_free_turn_axes[" +
+                                                      std::to_string(k) + "]")));
     }
     results.detections.push_back(std::move(d));
   }

@@ -28,6 +28,8 @@ struct ResultDetection {
   std::optional<ContinuousAxis> free_turn_axis;
   /// Other poses (model frame → scene frame) the detection reports it cannot tell apart.
   std::vector<Eigen::Isometry3d> alternative_poses;
+  /// Empty, or per alternative pose the axis (scene frame) about which its turn was not seen.
+  std::vector<std::optional<ContinuousAxis>> alternative_free_turn_axes;
 };
 
 /// One taught model (view) the results were produced with.

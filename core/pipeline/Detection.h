@@ -47,6 +47,10 @@ struct Detection {
   /// from below, turned 180° about its normal) whose differing points are hidden here, and the
   /// turned pose verifies too. Grip points that move between them must not be trusted.
   std::vector<Eigen::Isometry3d> alternative_poses;
+  /// Empty, or one entry per alternative pose: the axis about which that pose's turn is not seen,
+  /// as free_turn_axis is for T_scene_model (a cup turned end over end whose handle would be
+  /// hidden there), or nothing where it is seen.
+  std::vector<std::optional<FreeTurnAxis>> alternative_free_turn_axes;
 };
 
 } // namespace scanpick::core

@@ -1,9 +1,11 @@
 #include "core/pipeline/ModelPrep.h"
 
 #include "core/common/Log.h"
+#include "core/features/FeatureExtraction.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tbb/parallel_for.h>
 
 namespace scanpick::core::detail {
@@ -26,6 +28,55 @@ bool isTurnAbout(const RevolutionAxis& axis, const Eigen::Isometry3d& S) {
   const Eigen::AngleAxisd turn(S.linear());
   return std::abs(turn.axis().dot(axis.direction)) > std::cos(10.0 * M_PI / 180.0) &&
          (S * axis.point_mm - axis.point_mm).norm() < 2.0;
+}
+
+/// How deep below a view's nearest flat point rimAxis looks for its rim, mm.
+constexpr float kRimDepthMm = 3.0f;
+
+/// The axis of a view seen along it (a cup from above: its rim's ring and its inside's disk, whose
+/// normals point one way and so fit no axis): the mean direction of its normals, through the
+/// centre of the circle (the project's circle search) that the nearest of its flat points make.
+/// Nothing unless most normals agree within 10° and those points hold a circle.
+std::optional<RevolutionAxis> rimAxis(const std::vector<Eigen::Vector3f>& points,
+                                      const std::vector<Eigen::Vector3f>& normals) {
+  Eigen::Vector3f mean = Eigen::Vector3f::Zero();
+  for (const auto& n : normals)
+    if (n.allFinite())
+      mean += n;
+  if (mean.norm() < 1e-6f)
+    return std::nullopt;
+  const Eigen::Vector3f direction = mean.normalized();
+  std::vector<std::size_t> flat;
+  float top = -std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (normals[i].allFinite() && normals[i].dot(direction) > std::cos(float(M_PI) / 18.0f)) {
+      flat.push_back(i);
+      top = std::max(top, points[i].dot(direction));
+    }
+  if (flat.size() < points.size() / 2)
+    return std::nullopt;
+  std::vector<Eigen::Vector3f> nearest;
+  for (const std::size_t i : flat)
+    if (points[i].dot(direction) > top - kRimDepthMm)
+      nearest.push_back(points[i]);
+  FeatureParams circle;
+  circle.lines = false;
+  circle.circle_threshold_mm = 1.5;
+  circle.ransac_size = std::max(30, int(nearest.size() / 3));
+  circle.max_iterations = 500;
+  circle.max_features = 1;
+  circle.min_circle_radius_mm = 10.0;
+  const FeatureExtraction found = extractFeatures(nearest, circle, 0);
+  if (found.features.empty())
+    return std::nullopt;
+  const Feature& rim = found.features.front();
+  if (std::abs(rim.direction.dot(direction)) < std::cos(float(M_PI) / 18.0f))
+    return std::nullopt;
+  RevolutionAxis axis;
+  axis.point_mm = rim.centre_mm.cast<double>();
+  axis.direction = direction.cast<double>();
+  axis.inlier_share = double(flat.size()) / double(points.size());
+  return axis;
 }
 
 /// A turn the detail chooses is taken only while the pose verifies at most this much worse.
@@ -84,7 +135,8 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
                       prep->axis->point_mm.y(), prep->axis->point_mm.z(), prep->axis->direction.x(),
                       prep->axis->direction.y(), prep->axis->direction.z());
     else if ((prep->near_axis = fitRevolutionAxis(prep->verify->points, prep->verify->normals,
-                                                  kRevolutionTolerance, kNearRevolutionShare))) {
+                                                  kRevolutionTolerance, kNearRevolutionShare)) ||
+             (prep->near_axis = rimAxis(prep->verify->points, prep->verify->normals))) {
       prep->near_axis_detail = detailPoints(prep->verify->points, *prep->near_axis, kDetailCellMm);
       logger()->debug("model '{}' is a surface of revolution but for a detail ({:.0f} % of its "
                       "normals; {} of its {} points off the surface): its turn is seen only where "

@@ -466,16 +466,25 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     sortBestFirst(result.detections);
     result.timings.refine_ms = msSince(t0);
   }
+  // The turn about the view's axis is not seen at a pose where the view is a surface of
+  // revolution, or one but for a detail that the scan does not confirm there.
+  const auto freeTurnAt = [&](const Eigen::Isometry3d& T) -> std::optional<FreeTurnAxis> {
+    if (!prep || !(prep->axis || (verify && prep->near_axis &&
+                                  !detail::seesDetail(*prep, verify_scene, T,
+                                                      params.matching.verify_tolerance_mm))))
+      return std::nullopt;
+    const RevolutionAxis& axis = prep->axis ? *prep->axis : *prep->near_axis;
+    return FreeTurnAxis{T * axis.point_mm, T.linear() * axis.direction};
+  };
   for (auto& d : result.detections) {
     for (const auto& g : model->grip_points)
       d.grip_points_scene.push_back({g.name, d.T_scene_model * g.position_mm});
-    if (prep && (prep->axis || (verify && prep->near_axis &&
-                                !detail::seesDetail(*prep, verify_scene, d.T_scene_model,
-                                                    params.matching.verify_tolerance_mm)))) {
-      const RevolutionAxis& axis = prep->axis ? *prep->axis : *prep->near_axis;
-      d.free_turn_axis =
-          FreeTurnAxis{d.T_scene_model * axis.point_mm, d.T_scene_model.linear() * axis.direction};
-    }
+    d.free_turn_axis = freeTurnAt(d.T_scene_model);
+    for (const auto& T_alternative : d.alternative_poses)
+      d.alternative_free_turn_axes.push_back(freeTurnAt(T_alternative));
+    if (std::none_of(d.alternative_free_turn_axes.begin(), d.alternative_free_turn_axes.end(),
+                     [](const auto& axis) { return axis.has_value(); }))
+      d.alternative_free_turn_axes.clear();
   }
   reportProgress(progress, 1.0);
 

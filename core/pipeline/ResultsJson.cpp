@@ -13,7 +13,9 @@ json matrix(const Eigen::Isometry3d& T) {
     rows.push_back(json::array({T(r, 0), T(r, 1), T(r, 2), T(r, 3)}));
   return rows;
 }
-json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+json vec(const Eigen::Vector3d& v) {
+  return json::array({v.x(), v.y(), v.z()});
+}
 } // namespace
 
 json resultsToJson(const RecognitionResult& result, const std::vector<ModelSource>& models,
@@ -22,7 +24,8 @@ json resultsToJson(const RecognitionResult& result, const std::vector<ModelSourc
     throw Error("results need at least one model");
   json model_docs = json::array();
   for (const auto& m : models)
-    model_docs.push_back({{"path", m.path}, {"name", m.model->name},
+    model_docs.push_back({{"path", m.path},
+                          {"name", m.model->name},
                           {"teach_scan", m.model->teach_scan},
                           {"T_teach_model", matrix(m.model->T_teach_model)}});
   json detections = json::array();
@@ -47,14 +50,24 @@ json resultsToJson(const RecognitionResult& result, const std::vector<ModelSourc
                           {"quaternion_wxyz", json::array({q.w(), q.x(), q.y(), q.z()})},
                           {"grip_points", grips},
                           {"matched_features", pairs}});
+    const auto axisJson = [&](const std::optional<FreeTurnAxis>& axis) -> json {
+      if (!axis)
+        return nullptr;
+      return {{"point_mm", vec(axis->point_mm)}, {"direction", vec(axis->direction)}};
+    };
     if (d.free_turn_axis)
-      detections.back()["free_turn_axis"] = {{"point_mm", vec(d.free_turn_axis->point_mm)},
-                                             {"direction", vec(d.free_turn_axis->direction)}};
+      detections.back()["free_turn_axis"] = axisJson(d.free_turn_axis);
     if (!d.alternative_poses.empty()) {
       json alternatives = json::array();
       for (const auto& T : d.alternative_poses)
         alternatives.push_back(matrix(T));
       detections.back()["alternative_poses"] = alternatives;
+    }
+    if (!d.alternative_free_turn_axes.empty()) {
+      json axes = json::array();
+      for (const auto& axis : d.alternative_free_turn_axes)
+        axes.push_back(axisJson(axis));
+      detections.back()["alternative_free_turn_axes"] = axes;
     }
   }
   const StageTimings& t = result.timings;
@@ -65,10 +78,14 @@ json resultsToJson(const RecognitionResult& result, const std::vector<ModelSourc
           {"model", model_docs.front()},
           {"models", model_docs},
           {"detections", detections},
-          {"timings_ms", {{"preprocess", t.preprocess_ms}, {"clustering", t.clustering_ms},
-                          {"keypoints", t.keypoints_ms}, {"features", t.features_ms},
-                          {"matching", t.matching_ms}, {"refine", t.refine_ms},
-                          {"total", t.total_ms}}}};
+          {"timings_ms",
+           {{"preprocess", t.preprocess_ms},
+            {"clustering", t.clustering_ms},
+            {"keypoints", t.keypoints_ms},
+            {"features", t.features_ms},
+            {"matching", t.matching_ms},
+            {"refine", t.refine_ms},
+            {"total", t.total_ms}}}};
 }
 
 json resultsToJson(const RecognitionResult& result, const TaughtModel& model,

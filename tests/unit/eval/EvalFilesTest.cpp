@@ -166,6 +166,14 @@ TEST(EvalFiles, BadInputThrowsClearErrors) {
   json alternative_scaled = good;
   alternative_scaled["detections"][0]["alternative_poses"] = {scaled["detections"][0]["T_scene_model"]};
   expectError([&] { f.evalResults(alternative_scaled); }, "alternative_poses[0]");
+  json axes_unpaired = good;
+  axes_unpaired["detections"][0]["alternative_free_turn_axes"] = {nullptr};
+  expectError([&] { f.evalResults(axes_unpaired); }, "one entry (an axis or null) per alternative");
+  json axis_zero = good;
+  axis_zero["detections"][0]["alternative_poses"] = {good["detections"][0]["T_scene_model"]};
+  axis_zero["detections"][0]["alternative_free_turn_axes"] = {
+      {{"point_mm", {0, 0, 0}}, {"direction", {0, 0, 0}}}};
+  expectError([&] { f.evalResults(axis_zero); }, "alternative_free_turn_axes[0].direction is zero");
 
   json truth_bad = f.truth;
   truth_bad["parts"]["widget"].erase("diameter_mm");

@@ -204,6 +204,39 @@ TEST(Evaluator, ReportedAlternativePoseIsAcceptedOnlyWhenAsked) {
   }
 }
 
+TEST(Evaluator, AnAlternativePosesFreeTurnIsItsOwn) {
+  // A cup-like part found end over end (turned 180° about x); its alternative, the other end,
+  // is off by a turn about the part's z axis that the alternative reports as not seen. Accepted,
+  // the alternative scores the instance; the same free turn reported for the detection's own pose
+  // would not (that pose is the wrong end).
+  const auto part = test::makePart("cup-like", 100.0);
+  const auto teach = test::makeTeachTruth(part);
+  GroundTruth truth;
+  truth.parts[part.name] = part;
+  const Eigen::Isometry3d T_true = pose({10, -20, 790}, 40, Eigen::Vector3d(1, 1, 0));
+  truth.instances.push_back({0, part.name, T_true, 1.0, 1000});
+  const Eigen::Isometry3d T_flipped = T_true * pose({0, 0, 0}, 180, Eigen::Vector3d::UnitX());
+  const Eigen::Isometry3d T_alternative = T_true * pose({0, 0, 0}, 126);
+  const core::eval::ContinuousAxis axis_of_alternative{
+      T_alternative.translation(), T_alternative.linear() * Eigen::Vector3d::UnitZ()};
+  for (const bool per_alternative : {false, true}) {
+    auto results = test::makeResults();
+    test::addDetection(results, 0.9, T_flipped, teach);
+    auto& d = results.detections[0];
+    d.alternative_poses = {test::modelPoseFor(T_alternative, teach)};
+    if (per_alternative)
+      d.alternative_free_turn_axes = {axis_of_alternative};
+    else
+      d.free_turn_axis = core::eval::ContinuousAxis{T_flipped.translation(),
+                                                    T_flipped.linear() * Eigen::Vector3d::UnitZ()};
+    core::eval::Tolerances tolerances;
+    tolerances.accept_free_turns = true;
+    const auto scene = core::eval::evaluateScene(truth, results, teach, tolerances, "scene");
+    ASSERT_EQ(scene.outcomes.size(), 1u);
+    EXPECT_EQ(scene.outcomes[0].true_positive, per_alternative);
+  }
+}
+
 TEST(Evaluator, GreedyOneToOneMatchingAndThresholdSweep) {
   const auto part = test::makePart("widget", 60.0);
   const auto teach = test::makeTeachTruth(part);
