@@ -32,6 +32,8 @@ bool isTurnAbout(const RevolutionAxis& axis, const Eigen::Isometry3d& S) {
 
 /// How deep below a view's nearest flat point rimAxis looks for its rim, mm.
 constexpr float kRimDepthMm = 3.0f;
+/// cos 10°: a flat point's normal, and the rim circle's, agree with the view's mean normal.
+const float kRimAngleCos = std::cos(static_cast<float>(M_PI) / 18.0f);
 
 /// The axis of a view seen along it (a cup from above: its rim's ring and its inside's disk, whose
 /// normals point one way and so fit no axis): the mean direction of its normals, through the
@@ -49,7 +51,7 @@ std::optional<RevolutionAxis> rimAxis(const std::vector<Eigen::Vector3f>& points
   std::vector<std::size_t> flat;
   float top = -std::numeric_limits<float>::infinity();
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (normals[i].allFinite() && normals[i].dot(direction) > std::cos(float(M_PI) / 18.0f)) {
+    if (normals[i].allFinite() && normals[i].dot(direction) > kRimAngleCos) {
       flat.push_back(i);
       top = std::max(top, points[i].dot(direction));
     }
@@ -70,7 +72,7 @@ std::optional<RevolutionAxis> rimAxis(const std::vector<Eigen::Vector3f>& points
   if (found.features.empty())
     return std::nullopt;
   const Feature& rim = found.features.front();
-  if (std::abs(rim.direction.dot(direction)) < std::cos(float(M_PI) / 18.0f))
+  if (std::abs(rim.direction.dot(direction)) < kRimAngleCos)
     return std::nullopt;
   RevolutionAxis axis;
   axis.point_mm = rim.centre_mm.cast<double>();
