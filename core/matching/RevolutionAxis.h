@@ -16,6 +16,7 @@
 /// repeated twice on the inliers of the previous fit, so a detail does not pull the axis off.
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -30,6 +31,12 @@ struct RevolutionAxis {
   /// a flat end face does) whose normal lies within the angle tolerance of the plane through the
   /// axis and the point.
   double inlier_share = 0.0;
+
+  /// The turn by `angle_rad` about this axis (model frame → model frame).
+  [[nodiscard]] Eigen::Isometry3d turn(double angle_rad) const {
+    return Eigen::Translation3d(point_mm) * Eigen::AngleAxisd(angle_rad, direction) *
+           Eigen::Translation3d(-point_mm);
+  }
 };
 
 /// Fits the axis of revolution of `points_mm` with unit `normals` (entries with a non-finite

@@ -200,9 +200,7 @@ std::optional<DetailTurn> turnByDetail(const ModelPrep& prep, const VerifyScene&
   const double as_found = detailScore(T_scene_model);
   DetailTurn turn{T_scene_model, 0.0, as_found, as_found, false};
   for (int degrees = 1; degrees < 360; ++degrees) {
-    const Eigen::Isometry3d T = T_scene_model * Eigen::Translation3d(axis.point_mm) *
-                                Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.direction) *
-                                Eigen::Translation3d(-axis.point_mm);
+    const Eigen::Isometry3d T = T_scene_model * axis.turn(degrees * M_PI / 180.0);
     if (const double score = detailScore(T); score > turn.detail_confirmed) {
       turn.detail_confirmed = score;
       turn.T_scene_model = T;

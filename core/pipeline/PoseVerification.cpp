@@ -37,37 +37,42 @@ double edgeAgreement(const VerifyModel& model, const SceneIndex& index, const Ei
 } // namespace
 
 ProjectorShadow::ProjectorShadow(const PointCloud& scan, const SensorModel& sensor)
-    : m_T_projector_scene(sensor.T_camera_projector.inverse().cast<float>()),
-      m_fx(float(sensor.fx)), m_fy(float(sensor.fy)), m_cx(float(sensor.cx)),
-      m_cy(float(sensor.cy)), m_width(sensor.width), m_height(sensor.height),
+    : m_T_projector_scene(sensor.T_camera_projector.inverse().cast<float>()), m_sensor(sensor),
       m_depth_mm(std::size_t(std::max(0, sensor.width * sensor.height)),
                  std::numeric_limits<float>::infinity()) {
   for (const auto& s : scan.points_mm) {
     if (!isValid(s))
       continue;
-    const Eigen::Vector3f q = m_T_projector_scene * s;
-    if (q.z() <= 0.0f)
-      continue;
-    const long u = std::lround(m_fx * q.x() / q.z() + m_cx);
-    const long v = std::lround(m_fy * q.y() / q.z() + m_cy);
-    if (u < 0 || v < 0 || u >= m_width || v >= m_height)
-      continue;
-    float& depth = m_depth_mm[std::size_t(v) * std::size_t(m_width) + std::size_t(u)];
-    depth = std::min(depth, q.z());
+    const auto pixel = projectorPixel(s);
+    if (pixel && pixel->first.x() >= 0 && pixel->first.y() >= 0 &&
+        pixel->first.x() < m_sensor.width && pixel->first.y() < m_sensor.height) {
+      float& depth = m_depth_mm[std::size_t(pixel->first.y()) * std::size_t(m_sensor.width) +
+                                std::size_t(pixel->first.x())];
+      depth = std::min(depth, pixel->second);
+    }
   }
 }
 
-bool ProjectorShadow::shadowed(const Eigen::Vector3f& p, float margin_mm) const {
+std::optional<std::pair<Eigen::Vector2i, float>>
+ProjectorShadow::projectorPixel(const Eigen::Vector3f& p) const {
   const Eigen::Vector3f q = m_T_projector_scene * p;
   if (q.z() <= 0.0f)
+    return std::nullopt;
+  // Clamped far outside the image, so that points near the projector's plane cannot overflow.
+  const Eigen::Vector2d uv = m_sensor.project(q.cast<double>()).cwiseMax(-1e6).cwiseMin(1e6);
+  return std::pair{Eigen::Vector2i(int(std::lround(uv.x())), int(std::lround(uv.y()))), q.z()};
+}
+
+bool ProjectorShadow::shadowed(const Eigen::Vector3f& p, float margin_mm) const {
+  const auto pixel = projectorPixel(p);
+  if (!pixel)
     return false;
-  const long u0 = std::lround(m_fx * q.x() / q.z() + m_cx);
-  const long v0 = std::lround(m_fy * q.y() / q.z() + m_cy);
   // Within a pixel: measured points fall between the projector pixels' centres.
-  for (long v = v0 - 1; v <= v0 + 1; ++v)
-    for (long u = u0 - 1; u <= u0 + 1; ++u)
-      if (u >= 0 && v >= 0 && u < m_width && v < m_height &&
-          m_depth_mm[std::size_t(v) * std::size_t(m_width) + std::size_t(u)] < q.z() - margin_mm)
+  for (int v = pixel->first.y() - 1; v <= pixel->first.y() + 1; ++v)
+    for (int u = pixel->first.x() - 1; u <= pixel->first.x() + 1; ++u)
+      if (u >= 0 && v >= 0 && u < m_sensor.width && v < m_sensor.height &&
+          m_depth_mm[std::size_t(v) * std::size_t(m_sensor.width) + std::size_t(u)] <
+              pixel->second - margin_mm)
         return true;
   return false;
 }

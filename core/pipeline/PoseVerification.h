@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 namespace scanpick::core {
@@ -60,9 +61,13 @@ public:
   [[nodiscard]] bool shadowed(const Eigen::Vector3f& p, float margin_mm) const;
 
 private:
+  /// The projector pixel of `p` (scene frame) and its depth along the projector's axis; nothing
+  /// behind the projector.
+  [[nodiscard]] std::optional<std::pair<Eigen::Vector2i, float>>
+  projectorPixel(const Eigen::Vector3f& p) const;
+
   Eigen::Isometry3f m_T_projector_scene;
-  float m_fx, m_fy, m_cx, m_cy;
-  int m_width, m_height;
+  SensorModel m_sensor;          ///< its intrinsics stand for the projector's
   std::vector<float> m_depth_mm; ///< nearest measured depth per projector pixel; +inf: none
 };
 

@@ -137,9 +137,7 @@ TEST(NearRevolution, ACupFoundAtAWrongTurnIsTurnedToWhereItsHandleIs) {
   const RevolutionAxis& axis = *prep->near_axis;
   for (const double wrong_deg : {63.4, 127.7, 244.3}) {
     Detection d;
-    d.T_scene_model = T_true * Eigen::Translation3d(axis.point_mm) *
-                      Eigen::AngleAxisd(wrong_deg * kPi / 180.0, axis.direction) *
-                      Eigen::Translation3d(-axis.point_mm);
+    d.T_scene_model = T_true * axis.turn(wrong_deg * kPi / 180.0);
     d.coverage = verify(d.T_scene_model);
     std::vector<Detection> detections{d};
     detail::resolveDetailTurns(
