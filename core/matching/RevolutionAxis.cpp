@@ -130,4 +130,81 @@ std::vector<std::uint32_t> detailPoints(const std::vector<Eigen::Vector3f>& poin
   return detail;
 }
 
+RevolvedBody::RevolvedBody(const std::vector<Eigen::Vector3f>& points_mm,
+                           const RevolutionAxis& axis, double cell_mm,
+                           const std::vector<std::uint32_t>& excluded)
+    : m_origin(axis.point_mm.cast<float>()), m_along(axis.direction.normalized().cast<float>()),
+      m_cell(static_cast<float>(cell_mm)) {
+  std::vector<bool> skip(points_mm.size(), false);
+  for (const std::uint32_t k : excluded)
+    if (k < skip.size())
+      skip[k] = true;
+  std::vector<Eigen::Vector2f> profile; // (height, distance) of each point used
+  for (std::size_t i = 0; i < points_mm.size(); ++i) {
+    if (skip[i] || !points_mm[i].allFinite())
+      continue;
+    const Eigen::Vector3f d = points_mm[i] - m_origin;
+    const float h = d.dot(m_along);
+    profile.emplace_back(h, (d - h * m_along).norm());
+  }
+  if (profile.empty())
+    return;
+  float h_max = profile.front().x(), r_max = 0.0f;
+  m_h_min = h_max;
+  for (const auto& hr : profile) {
+    m_h_min = std::min(m_h_min, hr.x());
+    h_max = std::max(h_max, hr.x());
+    r_max = std::max(r_max, hr.y());
+  }
+  // One cell of margin on every side, for the widening.
+  m_h_min -= m_cell;
+  m_rows = int((h_max - m_h_min) / m_cell) + 2;
+  m_columns = int(r_max / m_cell) + 2;
+  m_cells.assign(std::size_t(m_rows) * std::size_t(m_columns), 0);
+  for (const auto& hr : profile) {
+    const int row = int((hr.x() - m_h_min) / m_cell), column = int(hr.y() / m_cell);
+    for (int i = std::max(0, row - 1); i <= std::min(m_rows - 1, row + 1); ++i)
+      for (int j = std::max(0, column - 1); j <= std::min(m_columns - 1, column + 1); ++j)
+        m_cells[std::size_t(i) * std::size_t(m_columns) + std::size_t(j)] = 1;
+  }
+}
+
+bool RevolvedBody::occupied(float h, float r) const {
+  const float row = std::floor((h - m_h_min) / m_cell), column = std::floor(r / m_cell);
+  return row >= 0.0f && column >= 0.0f && row < float(m_rows) && column < float(m_columns) &&
+         m_cells[std::size_t(row) * std::size_t(m_columns) + std::size_t(column)] != 0;
+}
+
+bool RevolvedBody::blocks(const Eigen::Vector3f& from_mm, const Eigen::Vector3f& to_mm) const {
+  if (m_cells.empty())
+    return false;
+  const Eigen::Vector3f ray = to_mm - from_mm;
+  const float length = ray.norm();
+  if (!(length > 0.0f))
+    return false;
+  const Eigen::Vector3f step = ray * (0.5f * m_cell / length);
+  const auto steps = static_cast<int>(2.0f * length / m_cell);
+  const float h_max = m_h_min + float(m_rows) * m_cell, r_max = float(m_columns) * m_cell;
+  Eigen::Vector3f d = from_mm - m_origin; // from the axis point
+  const float step_h = step.dot(m_along);
+  const Eigen::Vector3f step_across = step - step_h * m_along;
+  bool left = false; // the path has left the cells it starts in
+  for (int k = 1; k <= steps; ++k) {
+    d += step;
+    const float h = d.dot(m_along);
+    const Eigen::Vector3f across = d - h * m_along;
+    const float r = across.norm();
+    // Outside the body's extent and moving away from it: nothing further can block.
+    if ((h < m_h_min && step_h <= 0.0f) || (h > h_max && step_h >= 0.0f) ||
+        (r > r_max && across.dot(step_across) >= 0.0f))
+      return false;
+    const bool inside = occupied(h, r);
+    if (!inside)
+      left = true;
+    else if (left)
+      return true;
+  }
+  return false;
+}
+
 } // namespace scanpick::core

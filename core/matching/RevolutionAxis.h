@@ -58,4 +58,31 @@ std::vector<std::uint32_t> detailPoints(const std::vector<Eigen::Vector3f>& poin
                                         const RevolutionAxis& axis, double cell_mm,
                                         double max_span_deg = 45.0);
 
+/// The body a view of a surface of revolution stands for: the view's surface turned through the
+/// full turn about its axis, held as the cells of height along and distance from the axis that its
+/// points occupy (each widened by a cell). A view sees only part of its surface of revolution (the
+/// inside of an upright cup and its rim, not the outside of the near wall); the body tells which
+/// points the part itself hides from the camera or the projector at a pose, as the wall of an
+/// upright cup leaves part of its inside in the projector's shadow.
+class RevolvedBody {
+public:
+  /// The body of `points_mm` (model frame) about `axis`, in cells of `cell_mm` (> 0), leaving out
+  /// the points listed in `excluded` (a detail off the surface, such as a cup's handle).
+  RevolvedBody(const std::vector<Eigen::Vector3f>& points_mm, const RevolutionAxis& axis,
+               double cell_mm, const std::vector<std::uint32_t>& excluded = {});
+
+  /// Whether the straight path from `from_mm`, a point of the body's surface, to `to_mm` (both in
+  /// the model frame, mm) passes through the body once it has left the cells it starts in.
+  [[nodiscard]] bool blocks(const Eigen::Vector3f& from_mm, const Eigen::Vector3f& to_mm) const;
+
+private:
+  [[nodiscard]] bool occupied(float h, float r) const;
+
+  Eigen::Vector3f m_origin, m_along; ///< a point on the axis and its unit direction
+  float m_cell = 1.0f;
+  float m_h_min = 0.0f;              ///< height of the first row of cells
+  int m_rows = 0, m_columns = 0;     ///< cells along (height) and away from (distance) the axis
+  std::vector<std::uint8_t> m_cells; ///< rows × columns, 1 where occupied
+};
+
 } // namespace scanpick::core

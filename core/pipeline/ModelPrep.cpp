@@ -19,6 +19,8 @@ constexpr double kNearRevolutionShare = 0.85;
 /// Cells (height along and distance from the axis) in which detailPoints compares angles: 2-3 mm
 /// cells split a cup's body (its points scatter by the fit's residual), 6 mm ones keep it whole.
 constexpr double kDetailCellMm = 6.0;
+/// Cell of a view's revolved body (RevolvedBody), mm: about the spacing of its verification points.
+constexpr double kBodyCellMm = 2.0;
 /// A detection sees the detail of its view when the scan confirms at least this share of it.
 constexpr double kMinDetailSeenShare = 0.25;
 
@@ -145,6 +147,13 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
                       "a scan confirms the detail",
                       model->name, 100.0 * prep->near_axis->inlier_share,
                       prep->near_axis_detail.size(), prep->verify->points.size());
+    }
+    if (prep->axis || prep->near_axis) {
+      auto verify = std::make_shared<VerifyModel>(*prep->verify);
+      verify->body = std::make_shared<const RevolvedBody>(
+          verify->points, prep->axis ? *prep->axis : *prep->near_axis, kBodyCellMm,
+          prep->near_axis_detail);
+      prep->verify = std::move(verify);
     }
   }
   if (needs_refine && !prep->refine)

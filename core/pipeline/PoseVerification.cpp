@@ -108,6 +108,10 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
   const Eigen::Isometry3f T = T_scene_model.cast<float>();
   const auto tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
   const auto margin = static_cast<float>(3.0 * tolerance_mm);
+  // The camera and the projector in the model frame, for the model's own body.
+  const Eigen::Isometry3f T_model_scene = T.inverse();
+  const Eigen::Vector3f camera_model = T_model_scene.translation();
+  const Eigen::Vector3f projector_model = T_model_scene * sensor.projectorPosition().cast<float>();
   PointTally tally;
   const auto look = [&](std::size_t k) {
     ++tally.points;
@@ -144,7 +148,10 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     const Eigen::Vector3f& s =
         scan.points_mm[static_cast<std::size_t>(v) * scan.width + static_cast<std::size_t>(u)];
     if (!isValid(s)) {
-      if (scene.shadow && scene.shadow->shadowed(p, margin))
+      if (model.body && model.body->blocks(model.points[k], camera_model))
+        ++tally.hidden;
+      else if ((scene.shadow && scene.shadow->shadowed(p, margin)) ||
+               (model.body && model.body->blocks(model.points[k], projector_model)))
         ++tally.shadowed;
       return;
     }

@@ -5,6 +5,7 @@
 
 #include "core/cloud/PointCloud.h"
 #include "core/cloud/Sensor.h"
+#include "core/matching/RevolutionAxis.h"
 #include "core/model/TaughtModel.h"
 #include "core/refine/SceneIndex.h"
 
@@ -22,6 +23,9 @@ namespace scanpick::core {
 struct VerifyModel {
   std::vector<Eigen::Vector3f> points, normals;
   std::vector<Eigen::Vector3f> keypoints;
+  /// For a view of a surface of revolution, the body it stands for (null otherwise): which of its
+  /// unmeasured points the part itself hides from the camera or the projector.
+  std::shared_ptr<const RevolvedBody> body;
 };
 
 /// Every valid point of `model`, strided to at most about `points`, with its normal (PCA within
@@ -93,7 +97,9 @@ struct VerifyScene {
 /// sees something that much in front of it (another part); points turned away are hidden too.
 /// A point more than 3 x tolerance below the scene's floor plane is a violation wherever the scan
 /// is: no part reaches into the floor it rests on. A point whose pixel has no measurement is
-/// shadowed when scene.shadow says the projector's light to it was blocked.
+/// hidden when the model's own body lies between it and the camera, and shadowed when scene.shadow
+/// says the projector's light to it was blocked or the model's body lies between it and the
+/// projector.
 PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                        const std::vector<std::uint32_t>* subset = nullptr);

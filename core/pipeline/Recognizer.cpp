@@ -134,16 +134,20 @@ struct Recognizer::Cache {
 };
 
 namespace {
+/// Another try for a pose that verified under the minimum but at least half of it: may replace
+/// the detection's pose and coverage.
+using PoseRescue = std::function<void(Detection&)>;
+
 /// Surface voting's poses as detections (cluster -1), each polished into the version that
 /// verifies best: as voted, fitted on the scene features it confirms, or (with `polish`, ICP)
-/// refined; kept when the coverage reaches params.min_coverage. Best first.
+/// refined, or else `rescue`d; kept when the coverage reaches params.min_coverage. Best first.
 std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
                                          const OrientedPoints& scene_points,
                                          const FeatureList& model_features,
                                          const std::vector<FeatureList>& object_features,
                                          const MatchingParams& params, double cluster_mm,
                                          const PoseVerifier& verify, const PosePolisher& polish,
-                                         const ProgressFn& progress) {
+                                         const PoseRescue& rescue, const ProgressFn& progress) {
   VotingOptions options;
   options.reference_stride = params.surface_reference_stride;
   options.max_poses = params.surface_poses;
@@ -189,6 +193,8 @@ std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
         d.refined = true;
       }
     }
+    if (rescue && d.coverage < params.min_coverage && d.coverage >= 0.5 * params.min_coverage)
+      rescue(d);
     d.score = d.coverage;
   });
   for (std::size_t k = 0; k < out.size(); ++k)
@@ -409,10 +415,24 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   const auto polish = [&](const Eigen::Isometry3d& T) {
     return prep && prep->refine ? icp(T).T_scene_model : T;
   };
+  // A view that is a surface of revolution but for a detail may be found turned about its axis,
+  // its detail (a cup's handle) where the scan has none: the turn its detail says can verify.
+  PoseRescue rescue;
+  if (verify && prep->near_axis)
+    rescue = [&](Detection& d) {
+      const auto turn = detail::turnByDetail(*prep, verify_scene, params.matching, verify, polish,
+                                             d.T_scene_model, d.coverage);
+      if (turn && turn->coverage > d.coverage) {
+        d.T_scene_model = turn->T_scene_model;
+        d.coverage = turn->coverage;
+        d.refined = turn->refined;
+        d.matched_features.clear();
+      }
+    };
   if (surface) {
     for (auto& d : surfaceDetections(*prep->pairs, *cache.surface_scene, model->features,
                                      *cache.features, params.matching, 0.1 * model->diameter_mm,
-                                     verify, polish, subProgress(progress, 0.95, 0.98)))
+                                     verify, polish, rescue, subProgress(progress, 0.95, 0.98)))
       result.detections.push_back(std::move(d));
   }
   sortBestFirst(result.detections);

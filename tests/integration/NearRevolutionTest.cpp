@@ -2,10 +2,12 @@
 // side is a body of revolution and a handle. Where a scan confirms the handle, recognition reports
 // the cup's turn; where it does not, the detection says its turn about the cup's axis is not seen
 // (Detection::free_turn_axis) instead of passing one turn off as found.
+#include "core/common/Error.h"
 #include "core/pipeline/ModelPrep.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "core/refine/PoseRefinement.h"
+#include "core/sim/Suite.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <algorithm>
@@ -151,4 +153,45 @@ TEST(NearRevolution, ACupFoundAtAWrongTurnIsTurnedToWhereItsHandleIs) {
                 detections.front().coverage);
     EXPECT_LT(off.rotation_deg, 3.0) << "turned to its handle";
   }
+}
+
+TEST(NearRevolution, AnUprightCupInABinIsFoundByItsTopView) {
+  // The phoxi-bin suite's scene-009 as synth-suite writes it: an upright cup (instance 2) among
+  // others, off to the side of the projector, so its wall keeps the light off half its inside
+  // (ProjectorShadow.AnUprightCupsBodyHidesPartOfItsInside). Surface voting's pose of it has the
+  // handle turned away and verifies under the minimum; turned to where the handle is, it verifies.
+  const RecognitionParams params = cupPreset();
+  const auto find = [](const std::string& name) {
+    for (const SuiteScene& s :
+         suiteScenes(name == "teach/phoxi-m-1032/cup" ? "teach" : "phoxi-bin", kDefaultSuiteSeed))
+      if (s.relative_prefix == name)
+        return synthesize(s.request);
+    throw Error("no suite scene " + name);
+  };
+  const test::SynthTeach top = test::teachFromScan(find("teach/phoxi-m-1032/cup"), "cup", params);
+  const SynthScene bin = find("phoxi-bin/scene-009");
+  const auto upright = std::find_if(bin.scene.instances.begin(), bin.scene.instances.end(),
+                                    [](const PartInstance& i) { return i.id == 2; });
+  ASSERT_NE(upright, bin.scene.instances.end());
+  const Eigen::Isometry3d T_true = bin.scene.T_scene_part(*upright) * top.T_part_model();
+  Recognizer recognizer;
+  recognizer.setModel(top.model);
+  const RecognitionResult result = recognizer.recognize(bin.render.cloud, bin.sensor, params);
+  const auto found =
+      std::find_if(result.detections.begin(), result.detections.end(), [&](const Detection& d) {
+        return (d.T_scene_model.translation() - T_true.translation()).norm() < 10.0;
+      });
+  ASSERT_NE(found, result.detections.end()) << result.detections.size() << " detections";
+  const PoseOff off = offBy(T_true, found->T_scene_model);
+  // The cup's axis (the part frame's z) as found against the truth.
+  const Eigen::Matrix3d R_model_part = top.T_part_model().inverse().linear();
+  const Eigen::Vector3d axis_true = T_true.linear() * R_model_part * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d axis_found =
+      found->T_scene_model.linear() * R_model_part * Eigen::Vector3d::UnitZ();
+  const double axis_deg = std::acos(std::clamp(axis_true.dot(axis_found), -1.0, 1.0)) * 180.0 / kPi;
+  std::printf("upright cup found %.2f° (axis %.2f°) and %.2f mm off, coverage %.3f\n",
+              off.rotation_deg, axis_deg, off.translation_mm, found->coverage);
+  EXPECT_LT(axis_deg, 2.0);
+  EXPECT_LT(off.translation_mm, 2.0);
+  EXPECT_LT(off.rotation_deg, 10.0) << "the handle tells the turn";
 }

@@ -1,6 +1,8 @@
 // Projector shadows (beyond the thesis): where a structured-light scan has no point because
 // measured surface kept the projector's light off (a cup's inside behind its rim, the floor beside
-// a part), verification counts the model neither confirmed nor missing there.
+// a part), verification counts the model neither confirmed nor missing there; so also where the
+// part's own body, as a view of a surface of revolution stands for it, hides it.
+#include "core/pipeline/ModelPrep.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <algorithm>
@@ -72,4 +74,42 @@ TEST(ProjectorShadow, ShadowedPointsAreNeitherConfirmedNorExpected) {
   EXPECT_EQ(t_knowing.confirmed, t_blind.confirmed); // the shadow takes only unmeasured points
   EXPECT_EQ(t_knowing.violations, t_blind.violations);
   EXPECT_GE(q_knowing, q_blind);
+}
+
+TEST(ProjectorShadow, AnUprightCupsBodyHidesPartOfItsInside) {
+  // The cup taught upright (its top view: rim, inside, the inside's bottom) and a scan of it
+  // placed again: its wall keeps the projector's light, and the camera's view, off part of the
+  // inside, also where the scan did not measure that wall.
+  const RecognitionParams params = test::bundledPreset("phoxi-bin-cup");
+  const test::VerifyCase c = test::verifyCase("cup", params, 5, 9, 0);
+  std::vector<std::shared_ptr<const detail::ModelPrep>> preps;
+  const auto prep = detail::prepareModel(preps, c.taught.model, params);
+  ASSERT_TRUE(prep->near_axis) << "the top view has an axis through its rim";
+  ASSERT_TRUE(prep->verify->body);
+  const ProjectorShadow shadow(c.scan.render.cloud, c.scan.sensor);
+  const VerifyScene scene{c.index.get(), &c.scan.render.cloud, &c.scan.sensor, std::nullopt,
+                          &shadow};
+  VerifyModel bodiless = *prep->verify;
+  bodiless.body.reset();
+  const double tolerance = params.matching.verify_tolerance_mm;
+  const PointTally without = tallyPoints(bodiless, scene, c.T_true, tolerance);
+  const PointTally with = tallyPoints(*prep->verify, scene, c.T_true, tolerance);
+  const double q_without = verifyPose(bodiless, scene, c.T_true, tolerance, {});
+  const double q_with = verifyPose(*prep->verify, scene, c.T_true, tolerance, {});
+  std::printf("true pose, %zu points: hidden %zu -> %zu, shadowed %zu -> %zu, unexplained %zu -> "
+              "%zu; coverage %.3f -> %.3f\n",
+              with.points, without.hidden, with.hidden, without.shadowed, with.shadowed,
+              without.points - without.confirmed - without.violations - without.hidden -
+                  without.shadowed,
+              with.points - with.confirmed - with.violations - with.hidden - with.shadowed,
+              q_without, q_with);
+  // The body takes only unmeasured points.
+  EXPECT_EQ(with.confirmed, without.confirmed);
+  EXPECT_EQ(with.violations, without.violations);
+  EXPECT_GT(with.hidden + with.shadowed, without.hidden + without.shadowed);
+  EXPECT_GT(q_with, q_without);
+  // Turned a quarter about the axis, the handle stands where the scan has none: the body must
+  // not excuse that.
+  const Eigen::Isometry3d turned = c.T_true * prep->near_axis->turn(M_PI / 2);
+  EXPECT_LT(verifyPose(*prep->verify, scene, turned, tolerance, {}) + 0.05, q_with);
 }

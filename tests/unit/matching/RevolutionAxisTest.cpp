@@ -1,6 +1,7 @@
 // The axis of revolution of a taught view (core/matching/RevolutionAxis.h): found for a flanged
 // pipe seen from its side, refused for views whose turn shows or that pin down no axis; found
-// under a detail at a lower share, with the detail's points picked out.
+// under a detail at a lower share, with the detail's points picked out; and the body such a view
+// stands for, which hides points from a camera or a projector.
 #include "core/matching/RevolutionAxis.h"
 
 #include <Eigen/Geometry>
@@ -143,4 +144,61 @@ TEST(RevolutionAxis, FindsTheAxisUnderADetailAndPicksOutTheDetail) {
   std::printf("%zu detail points, %zu on the fin\n", detail.size(), on_fin);
   EXPECT_GE(on_fin, 7u * 41u);
   EXPECT_EQ(on_fin, detail.size()) << "the pipe and its flanges span 180° at every cell";
+}
+
+namespace {
+
+/// What a camera straight above sees of an upright cup (axis along z, the camera towards −z):
+/// the rim (Ø76–Ø88 at z = 100), the inside's bottom (Ø76 at z = 10) and a band of the inside
+/// wall (r = 38) near the rim; the rest of the wall it does not see.
+std::vector<Eigen::Vector3f> cupFromAbove() {
+  std::vector<Eigen::Vector3f> out;
+  for (double angle = 0.0; angle < 2 * kPi; angle += kPi / 90) {
+    const Eigen::Vector3d radial(std::cos(angle), std::sin(angle), 0.0);
+    for (double r = 38; r <= 44; r += 1.5)
+      out.push_back((r * radial + Eigen::Vector3d(0, 0, 100)).cast<float>());
+    for (double r = 0; r < 38; r += 1.5)
+      out.push_back((r * radial + Eigen::Vector3d(0, 0, 10)).cast<float>());
+    for (double z = 85; z < 100; z += 1.5)
+      out.push_back((38.0 * radial + Eigen::Vector3d(0, 0, z)).cast<float>());
+  }
+  return out;
+}
+
+} // namespace
+
+TEST(RevolvedBody, ItsWallShadowsTheInsideFromALowSourceButNotFromAbove) {
+  const RevolutionAxis axis{Eigen::Vector3d(0, 0, 50), Eigen::Vector3d::UnitZ(), 1.0};
+  const RevolvedBody body(cupFromAbove(), axis, 2.0);
+  const Eigen::Vector3f bottom(20, 0, 10), rim(-41, 0, 100);
+  // Straight above the cup and far up at an angle through its mouth: lit, seen.
+  EXPECT_FALSE(body.blocks(bottom, {20, 0, 800}));
+  EXPECT_FALSE(body.blocks(bottom, {-100, 0, 800}));
+  // Lower to the side: the ray leaves the bottom and meets the wall where the view saw it, near
+  // the rim (it crosses r = 38 at z = 90).
+  EXPECT_TRUE(body.blocks(bottom, {200, 0, 810}));
+  // From the other side: across the inside, into the far wall (r = 38 at z = 97).
+  EXPECT_TRUE(body.blocks(bottom, {-400, 0, 640}));
+  // Where the view did not see the wall (r = 38 at z = 17), the body cannot block.
+  EXPECT_FALSE(body.blocks(bottom, {400, 0, 150}));
+  // The rim sees everything above it.
+  EXPECT_FALSE(body.blocks(rim, {-400, 0, 150}));
+  EXPECT_FALSE(body.blocks(rim, {300, 0, 800}));
+}
+
+TEST(RevolvedBody, LeavesOutTheDetailAndHasNoBodyWithoutPoints) {
+  // The fin of a handled pipe does not become a disc about the axis.
+  const Oriented handled = handledPipeSide();
+  const std::size_t fin_begin = flangedPipeSide().points.size();
+  std::vector<std::uint32_t> fin;
+  for (std::size_t k = fin_begin; k < handled.points.size(); ++k)
+    fin.push_back(static_cast<std::uint32_t>(k));
+  const RevolutionAxis axis{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), 1.0};
+  // From the inner face of the lower flange (r = 30, z = 8) up and out to (0, 62, 60): the ray
+  // crosses z = 30-70 at r = 43-62, where only the fin (at y = 0, x = 20-62) turned about the
+  // axis would stand.
+  const Eigen::Vector3f flange(0, 30, 8), source(0, 62, 60);
+  EXPECT_FALSE(RevolvedBody(handled.points, axis, 2.0, fin).blocks(flange, source));
+  EXPECT_TRUE(RevolvedBody(handled.points, axis, 2.0).blocks(flange, source));
+  EXPECT_FALSE(RevolvedBody({}, axis, 2.0).blocks(flange, source));
 }
