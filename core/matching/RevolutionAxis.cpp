@@ -182,8 +182,8 @@ bool RevolvedBody::blocks(const Eigen::Vector3f& from_mm, const Eigen::Vector3f&
   const float length = ray.norm();
   if (!(length > 0.0f))
     return false;
-  const Eigen::Vector3f step = ray * (0.5f * m_cell / length);
-  const auto steps = static_cast<int>(2.0f * length / m_cell);
+  const Eigen::Vector3f step = ray * (m_cell / length);
+  const auto steps = static_cast<int>(length / m_cell);
   const float h_max = m_h_min + float(m_rows) * m_cell, r_max = float(m_columns) * m_cell;
   Eigen::Vector3f d = from_mm - m_origin; // from the axis point
   const float step_h = step.dot(m_along);
