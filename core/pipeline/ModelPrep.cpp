@@ -244,13 +244,17 @@ void resolveDetailTurns(std::vector<Detection>& detections, const ModelPrep& pre
     logger()->debug("detection {} turned about its axis by its detail: {:.2f} -> {:.2f} of the "
                     "detail confirmed, coverage {:.3f} -> {:.3f}",
                     k, turn->detail_as_found, turn->detail_confirmed, d.coverage, turn->coverage);
-    d.T_scene_model = turn->T_scene_model;
-    d.coverage = turn->coverage;
-    d.score = turn->coverage;
-    d.refined = turn->refined;
-    d.matched_features.clear();
-    d.alternative_poses.clear();
+    takeTurn(d, *turn);
   });
+}
+
+void takeTurn(Detection& detection, const DetailTurn& turn) {
+  detection.T_scene_model = turn.T_scene_model;
+  detection.coverage = turn.coverage;
+  detection.score = turn.coverage;
+  detection.refined = turn.refined;
+  detection.matched_features.clear();
+  detection.alternative_poses.clear();
 }
 
 void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& prep,

@@ -88,6 +88,10 @@ std::optional<DetailTurn> turnByDetail(const ModelPrep& prep, const VerifyScene&
                                        const PosePolisher& polish,
                                        const Eigen::Isometry3d& T_scene_model, double coverage);
 
+/// Puts `detection` at the turned pose: its pose, coverage, score and polish from `turn`; the
+/// features and alternatives of the pose it had no longer hold.
+void takeTurn(Detection& detection, const DetailTurn& turn);
+
 /// For each detection of a view that is a surface of revolution but for a detail (a cup's handle),
 /// finds the turn about the axis the detail says: turns of 1° are tallied on the detail's points
 /// alone (the rest of the view lies on the same surface at any turn; only which of it the

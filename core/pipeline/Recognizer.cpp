@@ -422,12 +422,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     rescue = [&](Detection& d) {
       const auto turn = detail::turnByDetail(*prep, verify_scene, params.matching, verify, polish,
                                              d.T_scene_model, d.coverage);
-      if (turn && turn->coverage > d.coverage) {
-        d.T_scene_model = turn->T_scene_model;
-        d.coverage = turn->coverage;
-        d.refined = turn->refined;
-        d.matched_features.clear();
-      }
+      if (turn && turn->coverage > d.coverage)
+        detail::takeTurn(d, *turn);
     };
   if (surface) {
     for (auto& d : surfaceDetections(*prep->pairs, *cache.surface_scene, model->features,
