@@ -116,7 +116,7 @@ void registerSynthCommands(CLI::App& app) {
                                         "(several, comma-separated, make a mixed scene)");
   synth->add_option("--mesh", o->mesh, "closed triangle mesh in mm (.ply, .stl, .obj, .vtk) instead of --part");
   synth->add_flag("--close-holes", o->close_holes,
-                  "cap the --mesh file's holes (a scanned part's open base) by ear clipping");
+                  "cap the --mesh file's holes (a scanned part's open base) with triangles");
   synth->add_option("--layout", o->layout, "bin, scatter or teach")->capture_default_str();
   synth->add_option("--teach-side", o->teach_side,
                     "teach layout: side the part rests on, 0 = usual, 1 = turned over, 2 = on its side, "

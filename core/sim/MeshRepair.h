@@ -16,10 +16,10 @@ struct HoleFilling {
 };
 
 /// Closes every boundary loop of `mesh` (edges used by one triangle only) with a cap: the loop is
-/// projected onto its best-fit plane and triangulated by ear clipping (pcl::EarClipping), with the
-/// caps oriented like the triangles around them. No vertices are added. Throws Error, leaving
-/// `mesh` unchanged, when a boundary is not a set of simple loops (a vertex on several holes, a
-/// non-manifold edge) or a loop is not a simple polygon seen along its plane's normal.
+/// triangulated in 3D by CGAL's hole filling (triangulate_hole_polyline: least area and dihedral
+/// angles), with the caps oriented like the triangles around them. No vertices are added. Throws
+/// Error, leaving `mesh` unchanged, when a boundary is not a set of simple loops (a vertex on
+/// several holes, a non-manifold edge) or a loop cannot be capped (it folds over itself).
 HoleFilling closeHoles(TriangleMesh& mesh);
 
 } // namespace scanpick::core

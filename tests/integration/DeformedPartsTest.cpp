@@ -3,15 +3,13 @@
 // (core/sim/PartDeformation.h), scattered on a table, searched with the four views of the support
 // as designed. Most are still found, every detection lies on an instance within the evaluation's
 // bounds (0.1 x diameter, 10°), and the poses are as far off as the deformation makes them.
-#include "core/eval/GroundTruth.h"
-#include "core/eval/PoseError.h"
 #include "core/pipeline/Recognizer.h"
+#include "tests/integration/EvalTruth.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <set>
 
 using namespace scanpick;
@@ -42,12 +40,8 @@ Found recognizeScatters(const std::vector<test::SynthTeach>& views,
     const RecognitionResult result =
         recognizeViews(recognizer, models, scatter.render.cloud, scatter.sensor, params);
     // The support as scored by `scanpick-cli eval`: its design and symmetry group.
-    const eval::PartInfo support =
-        eval::parseGroundTruth(nlohmann::json::parse(groundTruthJson(scatter, "s.pcd", "s.png")),
-                               "scatter")
-            .parts.at("support");
-    const auto symmetries = eval::symmetryGroup(support.symmetry, support.diameter_mm);
-    const double diameter = support.diameter_mm;
+    const test::ScoredPart support = test::scoredPart(scatter, "support");
+    const double diameter = support.info.diameter_mm;
     std::set<int> found;
     for (const auto& d : result.detections) {
       const auto& view = views.at(static_cast<std::size_t>(d.model_index));
@@ -55,9 +49,8 @@ Found recognizeScatters(const std::vector<test::SynthTeach>& views,
       const PartInstance& instance =
           scatter.scene.instances.at(static_cast<std::size_t>(nearest.id));
       const double rotation =
-          eval::symmetricPoseError(d.T_scene_model * view.T_part_model().inverse(),
-                                   scatter.scene.T_scene_part(instance), support, symmetries, {})
-              .rotation_deg;
+          test::rotationErrorDeg(d.T_scene_model * view.T_part_model().inverse(),
+                                 scatter.scene.T_scene_part(instance), support);
       std::printf("deformation %.2f, seed %d: score %.3f, view %d: instance %d at %.2f mm, %.2f°\n",
                   deformation, int(seed), d.score, d.model_index, nearest.id, nearest.distance_mm,
                   rotation);

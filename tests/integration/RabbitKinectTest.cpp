@@ -4,16 +4,14 @@
 // simulated Kinect v1 lying and standing on a table (two views) and scattered three at a time;
 // with surface voting (preset kinect-bin-support) every rabbit that rests as one of the views
 // shows it is found, no detection is off its rabbit, and the poses are within a millimetre.
-#include "core/eval/GroundTruth.h"
-#include "core/eval/PoseError.h"
 #include "core/pipeline/Recognizer.h"
+#include "tests/integration/EvalTruth.h"
 #include "tests/integration/SynthTeach.h"
 #include "tests/support/TempDir.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <set>
 
 using namespace scanpick;
@@ -56,10 +54,7 @@ TEST(RabbitKinect, TaughtFromOneScanFoundInOthers) {
   std::vector<double> origin_errors_mm, rotation_errors_deg;
   for (std::uint64_t seed : {4u, 6u}) { // each: two rabbits lying, one standing
     const SynthScene scatter = synthesize(rabbitRequest(mesh, LayoutKind::Scatter, 3, seed));
-    const eval::PartInfo rabbit =
-        eval::parseGroundTruth(nlohmann::json::parse(groundTruthJson(scatter, "s.pcd", "s.png")),
-                               "scatter")
-            .parts.at("tum_rabbit");
+    const test::ScoredPart rabbit = test::scoredPart(scatter, "tum_rabbit");
     Recognizer recognizer;
     const RecognitionResult result =
         recognizeViews(recognizer, models, scatter.render.cloud, scatter.sensor, params);
@@ -67,15 +62,13 @@ TEST(RabbitKinect, TaughtFromOneScanFoundInOthers) {
     for (const auto& d : result.detections) {
       const auto& view = views.at(static_cast<std::size_t>(d.model_index));
       const test::NearestInstance nearest = test::nearestInstance(d, view, scatter.scene);
-      const double rotation =
-          eval::symmetricPoseError(
-              d.T_scene_model * view.T_part_model().inverse(),
-              scatter.scene.T_scene_part(scatter.scene.instances.at(std::size_t(nearest.id))),
-              rabbit, eval::symmetryGroup(rabbit.symmetry, rabbit.diameter_mm), {})
-              .rotation_deg;
+      const double rotation = test::rotationErrorDeg(
+          d.T_scene_model * view.T_part_model().inverse(),
+          scatter.scene.T_scene_part(scatter.scene.instances.at(std::size_t(nearest.id))), rabbit);
       std::printf("seed %d: score %.3f, view %d: instance %d at %.2f mm, %.2f°\n", int(seed),
                   d.score, d.model_index, nearest.id, nearest.distance_mm, rotation);
-      EXPECT_LT(nearest.distance_mm, 0.1 * rabbit.diameter_mm) << "a detection is on no rabbit";
+      EXPECT_LT(nearest.distance_mm, 0.1 * rabbit.info.diameter_mm)
+          << "a detection is on no rabbit";
       EXPECT_LT(rotation, 10.0) << "a detection is turned away from its rabbit";
       EXPECT_TRUE(found.insert(nearest.id).second) << "a rabbit found twice";
       origin_errors_mm.push_back(nearest.distance_mm);
