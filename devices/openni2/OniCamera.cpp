@@ -4,9 +4,13 @@
 #include <cmath>
 #include <filesystem>
 #include <mutex>
+#include <thread>
 
 namespace scanpick::devices {
 namespace {
+
+/// How long a stopped recording's player thread is given to reach its idle loop (close()).
+constexpr std::chrono::milliseconds kPlayerSettle{30};
 
 /// OpenNI2 is initialized once per process and stays up: shutting it down while another camera
 /// (or a later one) uses it is not supported by the library.
@@ -109,6 +113,12 @@ OniCamera::~OniCamera() {
 void OniCamera::close() {
   if (m_impl->depth.isValid()) {
     m_impl->depth.stop();
+    // OpenNI2's file player walks its list of streams without its lock, continuously once the
+    // recording has ended, every 10 ms once no stream is started; destroying a stream while it
+    // walks crashes it (libOniFile, PlayerDevice::MainLoop). Stopped, it settles into its 10 ms
+    // sleep before the stream goes.
+    if (m_impl->is_file)
+      std::this_thread::sleep_for(kPlayerSettle);
     m_impl->depth.destroy();
   }
   if (m_impl->device.isValid())
