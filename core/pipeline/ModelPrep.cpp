@@ -21,6 +21,10 @@ constexpr double kNearRevolutionShare = 0.85;
 constexpr double kDetailCellMm = 6.0;
 /// Cell of a view's revolved body (RevolvedBody), mm: about the spacing of its verification points.
 constexpr double kBodyCellMm = 2.0;
+/// A view is a surface of revolution but for a detail only while the detail is at most this
+/// share of its points (a cup's handle: 5-13 %). A flat face seen along its normal fits a rim axis
+/// through any circle among its points, and then no cell of it turns: all of it is "detail".
+constexpr double kMaxDetailShare = 0.5;
 /// A detection sees the detail of its view when the scan confirms at least this share of it.
 constexpr double kMinDetailSeenShare = 0.25;
 
@@ -138,15 +142,24 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
                       model->name, 100.0 * prep->axis->inlier_share, prep->axis->point_mm.x(),
                       prep->axis->point_mm.y(), prep->axis->point_mm.z(), prep->axis->direction.x(),
                       prep->axis->direction.y(), prep->axis->direction.z());
-    else if ((prep->near_axis = fitRevolutionAxis(prep->verify->points, prep->verify->normals,
-                                                  kRevolutionTolerance, kNearRevolutionShare)) ||
-             (prep->near_axis = rimAxis(prep->verify->points, prep->verify->normals))) {
-      prep->near_axis_detail = detailPoints(prep->verify->points, *prep->near_axis, kDetailCellMm);
-      logger()->debug("model '{}' is a surface of revolution but for a detail ({:.0f} % of its "
-                      "normals; {} of its {} points off the surface): its turn is seen only where "
-                      "a scan confirms the detail",
-                      model->name, 100.0 * prep->near_axis->inlier_share,
-                      prep->near_axis_detail.size(), prep->verify->points.size());
+    else if (auto near = fitRevolutionAxis(prep->verify->points, prep->verify->normals,
+                                           kRevolutionTolerance, kNearRevolutionShare);
+             near || (near = rimAxis(prep->verify->points, prep->verify->normals))) {
+      auto detail = detailPoints(prep->verify->points, *near, kDetailCellMm);
+      const std::size_t count = prep->verify->points.size();
+      if (double(detail.size()) <= kMaxDetailShare * double(count)) {
+        prep->near_axis = near;
+        prep->near_axis_detail = std::move(detail);
+        logger()->debug("model '{}' is a surface of revolution but for a detail ({:.0f} % of its "
+                        "normals; {} of its {} points off the surface): its turn is seen only "
+                        "where a scan confirms the detail",
+                        model->name, 100.0 * near->inlier_share, prep->near_axis_detail.size(),
+                        count);
+      } else {
+        logger()->debug("model '{}' fits an axis with {:.0f} % of its normals, but {} of its {} "
+                        "points lie off the surface they turn: not a surface of revolution",
+                        model->name, 100.0 * near->inlier_share, detail.size(), count);
+      }
     }
     if (prep->axis || prep->near_axis) {
       auto verify = std::make_shared<VerifyModel>(*prep->verify);

@@ -195,3 +195,17 @@ TEST(NearRevolution, AnUprightCupInABinIsFoundByItsTopView) {
   EXPECT_LT(off.translation_mm, 2.0);
   EXPECT_LT(off.rotation_deg, 10.0) << "the handle tells the turn";
 }
+
+TEST(NearRevolution, ALegSeenFaceOnIsNotASurfaceOfRevolution) {
+  // The support's table view shows one leg face-on: its normals point one way, so a rim axis fits
+  // through a circle among its nearest points, but none of the leg turns about it. Taken for a
+  // cup, every detection of it would search its "handle" (all of it) at 360 turns.
+  const RecognitionParams params = test::bundledPreset("phoxi-bin-surface");
+  const test::SynthTeach top = test::teachFromSynth("support", 5, params, 0);
+  std::vector<std::shared_ptr<const detail::ModelPrep>> preps;
+  const auto prep = detail::prepareModel(preps, top.model, params);
+  EXPECT_FALSE(prep->axis);
+  EXPECT_FALSE(prep->near_axis) << prep->near_axis_detail.size() << " of "
+                                << prep->verify->points.size() << " points taken for a detail";
+  EXPECT_TRUE(prep->near_axis_detail.empty());
+}
