@@ -3,9 +3,13 @@
 #include "core/cloud/PointCloud.h"
 #include "core/common/Error.h"
 
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <numeric>
+#include <optional>
 #include <pcl/console/print.h>
 #include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/search/kdtree.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/mlesac.h>
@@ -13,15 +17,9 @@
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_circle3d.h>
 #include <pcl/sample_consensus/sac_model_line.h>
-
-#include <algorithm>
-#include <cmath>
-#include <iterator>
-#include <numeric>
-#include <optional>
+#include <pcl/search/kdtree.h>
 #include <random>
 #include <string>
-
 #include <tbb/parallel_invoke.h>
 
 namespace scanpick::core {
@@ -40,9 +38,45 @@ public:
 };
 using LineModel = Seeded<pcl::SampleConsensusModelLine<pcl::PointXYZ>>;
 using SearchPtr = pcl::search::Search<pcl::PointXYZ>::Ptr;
-using CircleModel = Seeded<pcl::SampleConsensusModelCircle3D<pcl::PointXYZ>>;
 
-std::uint64_t mix(std::uint64_t x) {  // splitmix64
+/// PCL's circle, with its inliers tested without a division and with one square root per point:
+/// a point at height h above the circle's plane and at ρ from its axis lies at √(h² + (ρ − r)²)
+/// from the circle (PCL finds the nearest circle point first). Every RANSAC trial counts its
+/// inliers, and the circle search was the slower half of feature extraction.
+class CircleModel : public Seeded<pcl::SampleConsensusModelCircle3D<pcl::PointXYZ>> {
+public:
+  using Seeded::Seeded;
+  std::size_t countWithinDistance(const Eigen::VectorXf& c, double threshold) const override {
+    std::size_t count = 0;
+    forEachInlier(c, threshold, [&](pcl::index_t) { ++count; });
+    return count;
+  }
+  void selectWithinDistance(const Eigen::VectorXf& c, double threshold,
+                            pcl::Indices& inliers) override {
+    inliers.clear();
+    forEachInlier(c, threshold, [&](pcl::index_t i) { inliers.push_back(i); });
+  }
+
+private:
+  template <typename Visit>
+  void forEachInlier(const Eigen::VectorXf& c, double threshold, Visit&& visit) const {
+    if (!isModelValid(c))
+      return;
+    const Eigen::Vector3d centre = c.head<3>().cast<double>();
+    const Eigen::Vector3d normal = c.tail<3>().cast<double>().normalized();
+    const double radius = c[3], threshold_sq = threshold * threshold;
+    for (const pcl::index_t i : *indices_) {
+      const Eigen::Vector3d d =
+          (*input_)[static_cast<std::size_t>(i)].getVector3fMap().cast<double>() - centre;
+      const double h = d.dot(normal);
+      const double rho = std::sqrt(std::max(0.0, d.squaredNorm() - h * h));
+      if (h * h + (rho - radius) * (rho - radius) < threshold_sq)
+        visit(i);
+    }
+  }
+};
+
+std::uint64_t mix(std::uint64_t x) { // splitmix64
   x += 0x9e3779b97f4a7c15ULL;
   x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
   x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
@@ -76,11 +110,12 @@ bool runEstimator(const pcl::SampleConsensusModel<pcl::PointXYZ>::Ptr& model,
 std::vector<int> largestRun(std::vector<std::pair<double, int>> values, double gap, double period) {
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
-  std::vector<std::size_t> cuts;  // run starts
+  std::vector<std::size_t> cuts; // run starts
   for (std::size_t i = 1; i < n; ++i)
     if (values[i].first - values[i - 1].first > gap)
       cuts.push_back(i);
-  const bool wraps = period > 0 && n > 1 && values.front().first + period - values.back().first <= gap;
+  const bool wraps =
+      period > 0 && n > 1 && values.front().first + period - values.back().first <= gap;
   if (cuts.empty()) {
     std::vector<int> ids;
     for (const auto& v : values)
@@ -131,9 +166,10 @@ std::optional<Candidate> bestLine(const Cloud::Ptr& cloud, const std::vector<int
   if (!runEstimator(search, params, params.line_threshold_mm, c))
     return std::nullopt;
   // Inliers and refinement over every remaining keypoint, not only the search sample.
-  auto model = sample.size() == remaining.size()
-                   ? search
-                   : std::make_shared<LineModel>(cloud, pcl::Indices(remaining.begin(), remaining.end()));
+  auto model =
+      sample.size() == remaining.size()
+          ? search
+          : std::make_shared<LineModel>(cloud, pcl::Indices(remaining.begin(), remaining.end()));
   pcl::Indices inliers;
   model->selectWithinDistance(c, params.line_threshold_mm, inliers);
   if (inliers.size() < 2)
@@ -147,10 +183,12 @@ std::optional<Candidate> bestLine(const Cloud::Ptr& cloud, const std::vector<int
   const Eigen::Vector3f origin = c.head<3>(), axis = c.tail<3>().normalized();
   std::vector<std::pair<double, int>> along;
   for (int i : inliers)
-    along.emplace_back(static_cast<double>(axis.dot((*cloud)[static_cast<std::size_t>(i)].getVector3fMap() - origin)), i);
+    along.emplace_back(static_cast<double>(axis.dot(
+                           (*cloud)[static_cast<std::size_t>(i)].getVector3fMap() - origin)),
+                       i);
   Candidate out;
   out.inliers = largestRun(std::move(along), gap, 0.0);
-  if (out.inliers.size() >= 2) {  // the run's own axis, not the one pulled by other runs
+  if (out.inliers.size() >= 2) { // the run's own axis, not the one pulled by other runs
     pcl::Indices run(out.inliers.begin(), out.inliers.end());
     model->optimizeModelCoefficients(run, c, refined);
     if (refined.size() == 6 && refined.allFinite() && refined.tail<3>().norm() > 0)
@@ -209,7 +247,8 @@ std::optional<Candidate> bestCircle(const Cloud::Ptr& cloud, const std::vector<i
   std::vector<std::pair<double, int>> around;
   for (int i : inliers) {
     const Eigen::Vector3f d = (*cloud)[static_cast<std::size_t>(i)].getVector3fMap() - centre;
-    around.emplace_back(radius * std::atan2(static_cast<double>(d.dot(v)), static_cast<double>(d.dot(u))), i);
+    around.emplace_back(
+        radius * std::atan2(static_cast<double>(d.dot(v)), static_cast<double>(d.dot(u))), i);
   }
   Candidate out;
   out.inliers = largestRun(std::move(around), gap, kTwoPi * radius);
@@ -244,7 +283,8 @@ double medianSpacing(const Cloud::Ptr& cloud) {
       spacing.push_back(std::sqrt(dist[1]));
   if (spacing.empty())
     return 0.0;
-  std::nth_element(spacing.begin(), spacing.begin() + static_cast<long>(spacing.size() / 2), spacing.end());
+  std::nth_element(spacing.begin(), spacing.begin() + static_cast<long>(spacing.size() / 2),
+                   spacing.end());
   return spacing[spacing.size() / 2];
 }
 
@@ -267,7 +307,8 @@ FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_
   for (std::size_t i = 0; i < keypoints_mm.size(); ++i)
     if (isValid(keypoints_mm[i])) {
       remaining.push_back(static_cast<int>(cloud->size()));
-      cloud->push_back(pcl::PointXYZ(keypoints_mm[i].x(), keypoints_mm[i].y(), keypoints_mm[i].z()));
+      cloud->push_back(
+          pcl::PointXYZ(keypoints_mm[i].x(), keypoints_mm[i].y(), keypoints_mm[i].z()));
     }
   // Map from the cloud (valid keypoints only) back to the caller's indices.
   std::vector<int> original;
@@ -284,7 +325,9 @@ FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_
   const std::size_t min_support = static_cast<std::size_t>(std::max(2, params.ransac_size));
 
   for (int round = 0; round < params.max_features; ++round) {
-    reportProgress(progress, total ? 1.0 - static_cast<double>(remaining.size()) / static_cast<double>(total) : 1.0);
+    reportProgress(progress,
+                   total ? 1.0 - static_cast<double>(remaining.size()) / static_cast<double>(total)
+                         : 1.0);
     if (remaining.size() < min_support)
       break;
     // PROSAC draws from a growing prefix; without a quality order a seeded shuffle keeps it fair.
@@ -311,14 +354,16 @@ FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_
     SearchPtr near;
     if (params.sample_radius_mm > 0) {
       near = std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>(true);
-      near->setInputCloud(cloud, std::make_shared<pcl::Indices>(candidates.begin(), candidates.end()));
+      near->setInputCloud(cloud,
+                          std::make_shared<pcl::Indices>(candidates.begin(), candidates.end()));
     }
     // The two searches are independent (own models and seeds): run them side by side.
     std::optional<Candidate> line, circle;
     tbb::parallel_invoke(
         [&] {
           if (params.lines && candidates.size() >= 2)
-            line = bestLine(cloud, candidates, remaining, params, line_gap, mix(round_seed + 1), near);
+            line =
+                bestLine(cloud, candidates, remaining, params, line_gap, mix(round_seed + 1), near);
         },
         [&] {
           if (params.circles && candidates.size() >= 3)
