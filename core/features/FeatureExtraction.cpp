@@ -30,22 +30,49 @@ constexpr double kTwoPi = 6.283185307179586;
 /// Most keypoints a RANSAC search scores its trials on (see extractFeatures).
 constexpr std::size_t kMaxSearchPoints = 3000;
 
-/// PCL seeds its samplers with a constant; these expose the generator so our seed drives it.
-template <typename Model> class Seeded : public Model {
+/// Whether a point lies within the threshold of a line (PCL's coefficients: point, direction).
+class NearLine {
+public:
+  NearLine(const Eigen::VectorXf& c, double threshold)
+      : m_origin(c.head<3>()), m_along(c.tail<3>().normalized()),
+        m_threshold_sq(static_cast<float>(threshold * threshold)) {}
+  bool operator()(const Eigen::Vector3f& p) const {
+    return (m_origin - p).cross(m_along).squaredNorm() < m_threshold_sq;
+  }
+
+private:
+  Eigen::Vector3f m_origin, m_along;
+  float m_threshold_sq;
+};
+
+/// Whether a point lies within the threshold of a circle (centre, radius, normal): at height h
+/// above its plane and ρ from its axis, a point lies √(h² + (ρ − r)²) from it, without the
+/// nearest circle point that PCL computes first.
+class NearCircle {
+public:
+  NearCircle(const Eigen::VectorXf& c, double threshold)
+      : m_centre(c.head<3>().cast<double>()), m_normal(c.tail<3>().cast<double>().normalized()),
+        m_radius(c[3]), m_threshold_sq(threshold * threshold) {}
+  bool operator()(const Eigen::Vector3f& p) const {
+    const Eigen::Vector3d d = p.cast<double>() - m_centre;
+    const double h = d.dot(m_normal);
+    const double rho = std::sqrt(std::max(0.0, d.squaredNorm() - h * h));
+    return h * h + (rho - m_radius) * (rho - m_radius) < m_threshold_sq;
+  }
+
+private:
+  Eigen::Vector3d m_centre, m_normal;
+  double m_radius, m_threshold_sq;
+};
+
+/// A PCL model seeded by us (PCL seeds its samplers with a constant) whose inliers are counted and
+/// selected by `Near`. Every RANSAC trial counts its inliers, and PCL's own loops for that took
+/// two thirds of feature extraction (perf); these compute the same distances (the line's by PCL's
+/// cross product, so its inliers are the same bit for bit) and ran 2-3 times faster.
+template <typename Model, typename Near> class SeededModel : public Model {
 public:
   using Model::Model;
   void seed(std::uint64_t s) { this->rng_alg_.seed(static_cast<unsigned>(s ^ (s >> 32))); }
-};
-using LineModel = Seeded<pcl::SampleConsensusModelLine<pcl::PointXYZ>>;
-using SearchPtr = pcl::search::Search<pcl::PointXYZ>::Ptr;
-
-/// PCL's circle, with its inliers tested without a division and with one square root per point:
-/// a point at height h above the circle's plane and at ρ from its axis lies at √(h² + (ρ − r)²)
-/// from the circle (PCL finds the nearest circle point first). Every RANSAC trial counts its
-/// inliers, and the circle search was the slower half of feature extraction.
-class CircleModel : public Seeded<pcl::SampleConsensusModelCircle3D<pcl::PointXYZ>> {
-public:
-  using Seeded::Seeded;
   std::size_t countWithinDistance(const Eigen::VectorXf& c, double threshold) const override {
     std::size_t count = 0;
     forEachInlier(c, threshold, [&](pcl::index_t) { ++count; });
@@ -60,21 +87,17 @@ public:
 private:
   template <typename Visit>
   void forEachInlier(const Eigen::VectorXf& c, double threshold, Visit&& visit) const {
-    if (!isModelValid(c))
+    if (!this->isModelValid(c))
       return;
-    const Eigen::Vector3d centre = c.head<3>().cast<double>();
-    const Eigen::Vector3d normal = c.tail<3>().cast<double>().normalized();
-    const double radius = c[3], threshold_sq = threshold * threshold;
-    for (const pcl::index_t i : *indices_) {
-      const Eigen::Vector3d d =
-          (*input_)[static_cast<std::size_t>(i)].getVector3fMap().cast<double>() - centre;
-      const double h = d.dot(normal);
-      const double rho = std::sqrt(std::max(0.0, d.squaredNorm() - h * h));
-      if (h * h + (rho - radius) * (rho - radius) < threshold_sq)
+    const Near near(c, threshold);
+    for (const pcl::index_t i : *this->indices_)
+      if (near((*this->input_)[static_cast<std::size_t>(i)].getVector3fMap()))
         visit(i);
-    }
   }
 };
+using LineModel = SeededModel<pcl::SampleConsensusModelLine<pcl::PointXYZ>, NearLine>;
+using CircleModel = SeededModel<pcl::SampleConsensusModelCircle3D<pcl::PointXYZ>, NearCircle>;
+using SearchPtr = pcl::search::Search<pcl::PointXYZ>::Ptr;
 
 std::uint64_t mix(std::uint64_t x) { // splitmix64
   x += 0x9e3779b97f4a7c15ULL;
