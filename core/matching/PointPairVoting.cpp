@@ -79,56 +79,18 @@ OrientedPoints sampleOriented(const std::vector<Eigen::Vector3f>& points_mm,
   return out;
 }
 
-PointPairModel::PointPairModel(OrientedPoints model, double distance_step_mm, int angle_bins)
-    : m_model(std::move(model)), m_distance_step_mm(distance_step_mm), m_angle_bins(angle_bins) {
-  const std::size_t n = m_model.points.size();
-  if (n < 3 || m_model.normals.size() != n)
-    throw Error("point pair model: fewer than 3 oriented model points (widen the crop or lower "
-                "the surface sampling)");
-  if (n > 0xFFFF)
-    throw Error("point pair model: " + std::to_string(n) +
-                " oriented model points, at most 65535 (raise the surface sampling)");
+PairQuantizer::PairQuantizer(double distance_step_mm, int angle_bins)
+    : m_distance_step_mm(distance_step_mm), m_angle_bins(angle_bins) {
   if (!(distance_step_mm > 0.0) || angle_bins < 4 || angle_bins > 360)
     throw Error("point pair model: distance step must be > 0 and angle bins in [4, 360]");
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j)
-      m_diameter_mm =
-          std::max(m_diameter_mm, double((m_model.points[i] - m_model.points[j]).norm()));
   const int half = m_angle_bins / 2;
   for (int k = 1; k < half; ++k)
     m_bin_cosines.push_back(std::cos(float(k) * float(M_PI) / float(half)));
-  m_to_local.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-    m_to_local.push_back(localFrame(m_model.points[i], m_model.normals[i]));
-  std::vector<std::pair<std::uint32_t, Entry>> keyed;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j) {
-      if (i == j)
-        continue;
-      bool valid = false;
-      const std::uint32_t k =
-          key(m_model.points[i], m_model.normals[i], m_model.points[j], m_model.normals[j], &valid);
-      if (valid)
-        keyed.push_back({k, Entry{static_cast<std::uint16_t>(i),
-                                  planeAngle(m_to_local[i] * m_model.points[j])}});
-    }
-  std::stable_sort(keyed.begin(), keyed.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  // Dense offsets: the entries of key k are m_table[m_offsets[k], m_offsets[k + 1]).
-  const std::uint32_t keys = keyed.empty() ? 0 : keyed.back().first + 1;
-  m_offsets.assign(keys + 1, 0);
-  m_table.reserve(keyed.size());
-  for (const auto& [k, e] : keyed) {
-    ++m_offsets[k + 1];
-    m_table.push_back(e);
-  }
-  for (std::uint32_t k = 0; k < keys; ++k)
-    m_offsets[k + 1] += m_offsets[k];
 }
 
-std::uint32_t PointPairModel::key(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1,
-                                  const Eigen::Vector3f& p2, const Eigen::Vector3f& n2,
-                                  bool* valid) const {
+std::uint32_t PairQuantizer::key(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1,
+                                 const Eigen::Vector3f& p2, const Eigen::Vector3f& n2,
+                                 bool* valid) const {
   const Eigen::Vector3f d = p2 - p1;
   const float distance = d.norm();
   *valid = false;
@@ -153,31 +115,125 @@ std::uint32_t PointPairModel::key(const Eigen::Vector3f& p1, const Eigen::Vector
   return ((d_bin * half + a1) * half + a2) * half + a3;
 }
 
-std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
-                                            const VotingOptions& options,
-                                            const ProgressFn& progress) const {
+ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantizer,
+                       int reference_stride, double radius_mm, const ProgressFn& progress)
+    : m_quantizer(quantizer), m_reference_stride(std::max(1, reference_stride)),
+      m_radius_mm(radius_mm) {
   const std::size_t n_scene = scene.points.size();
-  if (n_scene < 2)
-    return {};
-  const auto stride = static_cast<std::size_t>(std::max(1, options.reference_stride));
+  if (scene.normals.size() != n_scene)
+    throw Error("scene pairs: points and normals differ in count");
+  const auto stride = static_cast<std::size_t>(m_reference_stride);
+  const std::size_t n_refs = n_scene < 2 ? 0 : (n_scene + stride - 1) / stride;
+  m_offsets.assign(n_refs + 1, 0);
+  if (n_refs == 0)
+    return;
   PointVectorSource source{&scene.points};
   PointKdTree tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   tree.buildIndex();
-  const std::size_t n_refs = (n_scene + stride - 1) / stride;
+  const auto radius_sq = static_cast<float>(radius_mm * radius_mm);
+  m_reference_points.resize(n_refs);
+  m_to_local.resize(n_refs);
+  std::vector<std::vector<Pair>> per_reference(n_refs);
+  parallelForWithProgress(
+      n_refs, progress,
+      [&](std::size_t r) {
+        const std::size_t s = r * stride;
+        const Eigen::Vector3f& p = scene.points[s];
+        const Eigen::Vector3f& n = scene.normals[s];
+        m_reference_points[r] = p;
+        m_to_local[r] = localFrame(p, n);
+        std::vector<std::pair<std::uint32_t, float>> neighbours;
+        // The votes are counts: the order in which the neighbours are visited does not matter.
+        tree.radiusSearch(p.data(), radius_sq, neighbours,
+                          nanoflann::SearchParams(32, 0.0f, false));
+        std::vector<Pair>& pairs = per_reference[r];
+        pairs.reserve(neighbours.size());
+        for (const auto& [i, distance_sq] : neighbours) {
+          if (i == s)
+            continue;
+          bool valid = false;
+          const std::uint32_t k = m_quantizer.key(p, n, scene.points[i], scene.normals[i], &valid);
+          if (valid)
+            pairs.push_back({k, planeAngle(m_to_local[r] * scene.points[i]), distance_sq});
+        }
+      },
+      64);
+  for (std::size_t r = 0; r < n_refs; ++r)
+    m_offsets[r + 1] = m_offsets[r] + per_reference[r].size();
+  m_pairs.reserve(m_offsets.back());
+  for (auto& pairs : per_reference) {
+    m_pairs.insert(m_pairs.end(), pairs.begin(), pairs.end());
+    std::vector<Pair>().swap(pairs);
+  }
+}
+
+PointPairModel::PointPairModel(OrientedPoints model, double distance_step_mm, int angle_bins)
+    : m_model(std::move(model)), m_quantizer(distance_step_mm, angle_bins) {
+  const std::size_t n = m_model.points.size();
+  if (n < 3 || m_model.normals.size() != n)
+    throw Error("point pair model: fewer than 3 oriented model points (widen the crop or lower "
+                "the surface sampling)");
+  if (n > 0xFFFF)
+    throw Error("point pair model: " + std::to_string(n) +
+                " oriented model points, at most 65535 (raise the surface sampling)");
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      m_diameter_mm =
+          std::max(m_diameter_mm, double((m_model.points[i] - m_model.points[j]).norm()));
+  m_to_local.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    m_to_local.push_back(localFrame(m_model.points[i], m_model.normals[i]));
+  std::vector<std::pair<std::uint32_t, Entry>> keyed;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j)
+        continue;
+      bool valid = false;
+      const std::uint32_t k = m_quantizer.key(m_model.points[i], m_model.normals[i],
+                                              m_model.points[j], m_model.normals[j], &valid);
+      if (valid)
+        keyed.push_back({k, Entry{static_cast<std::uint16_t>(i),
+                                  planeAngle(m_to_local[i] * m_model.points[j])}});
+    }
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  // Dense offsets: the entries of key k are m_table[m_offsets[k], m_offsets[k + 1]).
+  const std::uint32_t keys = keyed.empty() ? 0 : keyed.back().first + 1;
+  m_offsets.assign(keys + 1, 0);
+  m_table.reserve(keyed.size());
+  for (const auto& [k, e] : keyed) {
+    ++m_offsets[k + 1];
+    m_table.push_back(e);
+  }
+  for (std::uint32_t k = 0; k < keys; ++k)
+    m_offsets[k + 1] += m_offsets[k];
+}
+
+std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
+                                            const VotingOptions& options,
+                                            const ProgressFn& progress) const {
+  if (scene.points.size() < 2)
+    return {};
+  // The pairing takes most of a vote without a table: half the progress each.
+  const ScenePairs pairs(scene, m_quantizer, options.reference_stride, m_diameter_mm,
+                         subProgress(progress, 0.0, 0.5));
+  return vote(pairs, options, subProgress(progress, 0.5, 1.0));
+}
+
+std::vector<VotedPose> PointPairModel::vote(const ScenePairs& scene, const VotingOptions& options,
+                                            const ProgressFn& progress) const {
+  if (!(scene.quantizer() == m_quantizer) || scene.radius() < m_diameter_mm)
+    throw Error("point pair voting: the scene was paired with another quantization or within a "
+                "smaller radius than the model's diameter");
+  const std::size_t n_refs = scene.referenceCount();
   std::vector<RawPose> raw(n_refs);
   const auto radius_sq = static_cast<float>(m_diameter_mm * m_diameter_mm);
   const auto n_model = m_model.points.size();
-  const auto bins = static_cast<std::size_t>(m_angle_bins);
-  const float alpha_step = kTwoPi / float(m_angle_bins);
+  const auto bins = static_cast<std::size_t>(m_quantizer.angleBins());
+  const float alpha_step = kTwoPi / float(m_quantizer.angleBins());
   const auto exclude_sq = static_cast<float>(options.exclude_self_mm * options.exclude_self_mm);
   auto voteFrom = [&](std::size_t r) {
-    const std::size_t s = r * stride;
-    const Eigen::Vector3f& p = scene.points[s];
-    const Eigen::Vector3f& n = scene.normals[s];
-    const Eigen::Isometry3f to_local = localFrame(p, n);
-    std::vector<std::pair<std::uint32_t, float>> neighbours;
-    // The votes are counts: the order in which the neighbours are visited does not matter.
-    tree.radiusSearch(p.data(), radius_sq, neighbours, nanoflann::SearchParams(32, 0.0f, false));
+    const Eigen::Vector3f& p = scene.referencePoint(r);
     std::vector<std::uint16_t> accumulator(n_model * bins, 0);
     // Self-voting: the model points near the reference, found once instead of per table entry.
     std::vector<std::uint8_t> excluded;
@@ -186,21 +242,17 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
       for (std::size_t m = 0; m < n_model; ++m)
         excluded[m] = (m_model.points[m] - p).squaredNorm() < exclude_sq;
     }
-    for (const auto& [i, distance_sq] : neighbours) {
-      if (i == s)
+    for (const ScenePairs::Pair* pair = scene.pairsBegin(r); pair != scene.pairsEnd(r); ++pair) {
+      const std::uint32_t k = pair->key;
+      // Strictly within the diameter, as the radius search finds them.
+      if (pair->distance_sq >= radius_sq || k + 1 >= m_offsets.size() ||
+          m_offsets[k] == m_offsets[k + 1])
         continue;
-      bool valid = false;
-      const std::uint32_t k = key(p, n, scene.points[i], scene.normals[i], &valid);
-      if (!valid)
-        continue;
-      if (k + 1 >= m_offsets.size() || m_offsets[k] == m_offsets[k + 1])
-        continue;
-      const std::uint16_t alpha_scene = planeAngle(to_local * scene.points[i]);
       const Entry* end = m_table.data() + m_offsets[k + 1];
       for (const Entry* e = m_table.data() + m_offsets[k]; e != end; ++e) {
         if (!excluded.empty() && excluded[e->model_point])
           continue;
-        const auto alpha = static_cast<std::uint16_t>(e->alpha - alpha_scene); // modulo 2π
+        const auto alpha = static_cast<std::uint16_t>(e->alpha - pair->alpha); // modulo 2π
         const std::size_t bin = (std::size_t{alpha} * bins) >> 16;
         auto& cell = accumulator[e->model_point * bins + bin];
         if (cell < 0xFFFF)
@@ -215,7 +267,8 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
     const auto cell = static_cast<std::size_t>(peak - accumulator.begin());
     const std::size_t m = cell / bins;
     const float alpha = (float(cell % bins) + 0.5f) * alpha_step;
-    out.T = to_local.inverse() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) * m_to_local[m];
+    out.T = scene.toLocal(r).inverse() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) *
+            m_to_local[m];
   };
   parallelForWithProgress(n_refs, progress, voteFrom, 64);
 

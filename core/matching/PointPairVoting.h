@@ -55,13 +55,88 @@ struct VotingOptions {
   double exclude_self_mm = 0.0;
 };
 
+/// How a pair of oriented points becomes a table key (Drost's feature: the distance, the angle of
+/// each normal to the joining line and the angle between the normals, each quantized). A model's
+/// table and the scene pairs voted against it must quantize alike.
+class PairQuantizer {
+public:
+  /// `distance_step_mm` quantizes the distance (usually the sampling voxel), `angle_bins` the
+  /// angles (bins per 2π; the angles in [0, π] use half as many). Throws Error for a step <= 0 or
+  /// bins outside [4, 360].
+  PairQuantizer(double distance_step_mm, int angle_bins);
+
+  /// The pair's key, or false in `valid` for a pair that tells nothing (closer than half a step,
+  /// or two points of one plane, both normals across the joining line).
+  [[nodiscard]] std::uint32_t key(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1,
+                                  const Eigen::Vector3f& p2, const Eigen::Vector3f& n2,
+                                  bool* valid) const;
+  [[nodiscard]] double distanceStep() const { return m_distance_step_mm; }
+  [[nodiscard]] int angleBins() const { return m_angle_bins; }
+  bool operator==(const PairQuantizer& other) const {
+    return m_distance_step_mm == other.m_distance_step_mm && m_angle_bins == other.m_angle_bins;
+  }
+
+private:
+  double m_distance_step_mm;
+  int m_angle_bins;
+  /// cos(k π / half) for k = 1 .. half - 1 (half = m_angle_bins / 2): an angle's bin is the number
+  /// of these its cosine does not exceed, without an arccosine per pair.
+  std::vector<float> m_bin_cosines;
+};
+
+/// The scene side of the voting: each reference point's local frame and the pairs it makes with
+/// its neighbours within a radius, keyed. It depends on the scene, the reference stride, the
+/// quantizer and the radius only, so the views of a part that sample their surfaces alike vote
+/// with one ScenePairs per scene instead of pairing the scene again each. Immutable.
+class ScenePairs {
+public:
+  /// Every `reference_stride`-th point of `scene` (scene frame, mm) pairs with its neighbours
+  /// within `radius_mm`. Parallel (TBB) and deterministic; throws Cancelled when `progress` asks
+  /// to stop.
+  ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantizer, int reference_stride,
+             double radius_mm, const ProgressFn& progress = {});
+
+  /// One keyed pair of a reference point.
+  struct Pair {
+    std::uint32_t key;
+    /// The neighbour's rotation about the reference normal into the local plane (planeAngle).
+    std::uint16_t alpha;
+    float distance_sq; ///< mm², to keep only the neighbours within a smaller radius
+  };
+  [[nodiscard]] std::size_t referenceCount() const { return m_reference_points.size(); }
+  [[nodiscard]] const Eigen::Vector3f& referencePoint(std::size_t r) const {
+    return m_reference_points[r];
+  }
+  /// The frame in which reference `r` is the origin and its normal the +x axis.
+  [[nodiscard]] const Eigen::Isometry3f& toLocal(std::size_t r) const { return m_to_local[r]; }
+  /// Reference `r`'s pairs: [begin, end).
+  [[nodiscard]] const Pair* pairsBegin(std::size_t r) const {
+    return m_pairs.data() + m_offsets[r];
+  }
+  [[nodiscard]] const Pair* pairsEnd(std::size_t r) const {
+    return m_pairs.data() + m_offsets[r + 1];
+  }
+  [[nodiscard]] std::size_t pairCount() const { return m_pairs.size(); }
+  [[nodiscard]] const PairQuantizer& quantizer() const { return m_quantizer; }
+  [[nodiscard]] int referenceStride() const { return m_reference_stride; }
+  [[nodiscard]] double radius() const { return m_radius_mm; }
+
+private:
+  PairQuantizer m_quantizer;
+  int m_reference_stride;
+  double m_radius_mm;
+  std::vector<Eigen::Vector3f> m_reference_points;
+  std::vector<Eigen::Isometry3f> m_to_local;
+  std::vector<Pair> m_pairs;          ///< grouped by reference
+  std::vector<std::size_t> m_offsets; ///< per reference, where its pairs start
+};
+
 /// The model's point pair table. Immutable after construction; vote() is thread-safe.
 class PointPairModel {
 public:
   /// Builds the table from the sampled model (model frame, mm). `distance_step_mm` quantizes the
-  /// pair distance (usually the sampling voxel), `angle_bins` the angles (bins per 2π; the normal
-  /// angles in [0, π] use half as many). Throws Error for fewer than 3 or more than 65535 points
-  /// or bad steps.
+  /// pair distance (usually the sampling voxel), `angle_bins` the angles (PairQuantizer). Throws
+  /// Error for fewer than 3 or more than 65535 points or bad steps.
   PointPairModel(OrientedPoints model, double distance_step_mm, int angle_bins = 30);
 
   /// Votes with the sampled scene (scene frame, mm) and returns the pose clusters, most votes
@@ -70,11 +145,18 @@ public:
   [[nodiscard]] std::vector<VotedPose> vote(const OrientedPoints& scene,
                                             const VotingOptions& options,
                                             const ProgressFn& progress = {}) const;
+  /// The same with the scene already paired (its stride replaces options.reference_stride): the
+  /// same poses as vote(scene, options) when `scene` was paired with this model's quantizer and at
+  /// least its diameter() as radius (only the pairs within the diameter vote). Throws Error
+  /// otherwise.
+  [[nodiscard]] std::vector<VotedPose> vote(const ScenePairs& scene, const VotingOptions& options,
+                                            const ProgressFn& progress = {}) const;
 
   [[nodiscard]] std::size_t pointCount() const { return m_model.points.size(); }
   [[nodiscard]] std::size_t pairCount() const { return m_table.size(); }
   /// Largest distance between two sampled model points (mm): the scene search radius.
   [[nodiscard]] double diameter() const { return m_diameter_mm; }
+  [[nodiscard]] const PairQuantizer& quantizer() const { return m_quantizer; }
 
 private:
   /// One model pair, 4 bytes so that the table streams through the cache while voting.
@@ -84,17 +166,10 @@ private:
     /// 2π / 65536 (fixedAngle): differences wrap by themselves.
     std::uint16_t alpha;
   };
-  [[nodiscard]] std::uint32_t key(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1,
-                                  const Eigen::Vector3f& p2, const Eigen::Vector3f& n2,
-                                  bool* valid) const;
 
   OrientedPoints m_model;
-  double m_distance_step_mm;
-  int m_angle_bins;
+  PairQuantizer m_quantizer;
   double m_diameter_mm = 0.0;
-  /// cos(k π / half) for k = 1 .. half - 1 (half = m_angle_bins / 2): an angle's bin is the number
-  /// of these its cosine does not exceed, without an arccosine per pair.
-  std::vector<float> m_bin_cosines;
   std::vector<Entry> m_table;           ///< grouped by key
   std::vector<std::uint32_t> m_offsets; ///< per key, where its entries start in m_table
   /// For each model point: the transform into its local frame (point at the origin, normal on +x).

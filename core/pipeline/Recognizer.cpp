@@ -92,6 +92,10 @@ void sortBestFirst(std::vector<Detection>& detections) {
                    [](const Detection& a, const Detection& b) { return a.score > b.score; });
 }
 
+/// The scene is paired within this much more than the diameter of the view that needs it first,
+/// so that the other views of a part (their diameters differ by a few per cent) share the pairing.
+constexpr double kPairingMargin = 1.1;
+
 /// A refined pose whose coverage is lower by less than this is still kept (keepsRefinedPose).
 constexpr double kIcpCoverageSlack = 0.01;
 
@@ -131,6 +135,9 @@ struct Recognizer::Cache {
   std::optional<PreKey> surface_scene_key;
   double surface_scene_sampling = 0.0;
   std::shared_ptr<const OrientedPoints> surface_scene;
+  /// The sampled scene paired (ScenePairs; key: surface_scene, stride and quantizer), shared by
+  /// the views whose diameter its radius covers. Two, for a view voting with its own stride.
+  std::vector<std::shared_ptr<const ScenePairs>> surface_pairs;
 };
 
 namespace {
@@ -142,22 +149,22 @@ using PoseRescue = std::function<void(Detection&)>;
 /// verifies best: as voted, fitted on the scene features it confirms, or (with `polish`, ICP)
 /// refined, or else `rescue`d; kept when the coverage reaches params.min_coverage. Best first.
 std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
-                                         const OrientedPoints& scene_points,
+                                         const ScenePairs& scene_pairs,
                                          const FeatureList& model_features,
                                          const std::vector<FeatureList>& object_features,
                                          const MatchingParams& params, double cluster_mm,
                                          const PoseVerifier& verify, const PosePolisher& polish,
                                          const PoseRescue& rescue, const ProgressFn& progress) {
   VotingOptions options;
-  options.reference_stride = params.surface_reference_stride;
   options.max_poses = params.surface_poses;
   options.cluster_distance_mm = cluster_mm;
   const auto t0 = Clock::now();
-  const std::vector<VotedPose> poses = model_pairs.vote(scene_points, options, progress);
-  logger()->debug("surface voting: {} model points ({} pairs), {} scene points, {} poses, "
-                  "{:.0f} ms",
-                  model_pairs.pointCount(), model_pairs.pairCount(), scene_points.points.size(),
-                  poses.size(), msSince(t0));
+  const std::vector<VotedPose> poses = model_pairs.vote(scene_pairs, options, progress);
+  logger()->debug(
+      "surface voting: {} model points ({} pairs, {:.1f} mm across), {} scene reference points, "
+      "{} poses, {:.0f} ms",
+      model_pairs.pointCount(), model_pairs.pairCount(), model_pairs.diameter(),
+      scene_pairs.referenceCount(), poses.size(), msSince(t0));
   FeatureList scene_features;
   for (const auto& f : object_features)
     scene_features.insert(scene_features.end(), f.begin(), f.end());
@@ -369,6 +376,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
                         params.matching.edge_tolerance_mm};
   const double sampling_mm = params.matching.surface_sampling_mm;
   const bool surface = verifying && sampling_mm > 0 && prep;
+  std::shared_ptr<const ScenePairs> scene_pairs;
   if (surface) {
     const auto t0 = Clock::now();
     if (cache.surface_scene_key != pre_key || cache.surface_scene_sampling != sampling_mm) {
@@ -376,7 +384,25 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
           sampleOriented(cache.scene_index->points(), cache.scene_index->normals(), sampling_mm));
       cache.surface_scene_key = pre_key;
       cache.surface_scene_sampling = sampling_mm;
+      cache.surface_pairs.clear();
     }
+    const PointPairModel& view = *prep->pairs;
+    const int stride = std::max(1, params.matching.surface_reference_stride);
+    const auto fits = [&](const std::shared_ptr<const ScenePairs>& p) {
+      return p->referenceStride() == stride && p->quantizer() == view.quantizer() &&
+             p->radius() >= view.diameter();
+    };
+    auto found = std::find_if(cache.surface_pairs.begin(), cache.surface_pairs.end(), fits);
+    if (found == cache.surface_pairs.end()) {
+      constexpr std::size_t kKeptPairings = 2;
+      if (cache.surface_pairs.size() >= kKeptPairings)
+        cache.surface_pairs.erase(cache.surface_pairs.begin());
+      cache.surface_pairs.push_back(std::make_shared<const ScenePairs>(
+          *cache.surface_scene, view.quantizer(), stride, kPairingMargin * view.diameter(),
+          subProgress(progress, 0.8, 0.8)));
+      found = std::prev(cache.surface_pairs.end());
+    }
+    scene_pairs = *found;
     result.timings.matching_ms += msSince(t0);
   }
   {
@@ -426,9 +452,9 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
         detail::takeTurn(d, *turn);
     };
   if (surface) {
-    for (auto& d : surfaceDetections(*prep->pairs, *cache.surface_scene, model->features,
-                                     *cache.features, params.matching, 0.1 * model->diameter_mm,
-                                     verify, polish, rescue, subProgress(progress, 0.95, 0.98)))
+    for (auto& d : surfaceDetections(*prep->pairs, *scene_pairs, model->features, *cache.features,
+                                     params.matching, 0.1 * model->diameter_mm, verify, polish,
+                                     rescue, subProgress(progress, 0.95, 0.98)))
       result.detections.push_back(std::move(d));
   }
   sortBestFirst(result.detections);

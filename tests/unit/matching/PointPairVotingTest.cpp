@@ -132,20 +132,16 @@ TEST(PointPairVoting, VotingAgainstItselfWithoutItsOwnNeighbourhoodFindsTheSymme
   EXPECT_LT(translationError(without_self.front().T_scene_model, half_turn), 2.0 * kSampling);
 }
 
-TEST(PointPairVoting, FindsEveryInstanceOfASceneAndIsRepeatable) {
-  const OrientedPoints part =
-      sampleOriented(bracket(1.0f).points, bracket(1.0f).normals, kSampling);
-  const PointPairModel model(part, kSampling);
-  const std::vector<Eigen::Isometry3f> truths = {pose(0.4f, {0, 0, 1}, {0, 0, 500}),
-                                                 pose(2.5f, {1, 1, 0}, {150, 20, 520}),
-                                                 pose(-1.2f, {0, 1, 1}, {-40, 160, 480})};
+namespace {
+
+/// Three brackets at `truths` above a floor-like plane with noisy normals, sampled.
+OrientedPoints bracketsOnAPlane(const std::vector<Eigen::Isometry3f>& truths) {
   OrientedPoints raw;
   for (const auto& T : truths) {
     const OrientedPoints one = transformed(bracket(1.0f), T);
     raw.points.insert(raw.points.end(), one.points.begin(), one.points.end());
     raw.normals.insert(raw.normals.end(), one.normals.begin(), one.normals.end());
   }
-  // A floor-like distractor plane with noise on the normals.
   std::mt19937 rng(7);
   std::normal_distribution<float> noise(0.0f, 0.02f);
   for (float x = -150; x <= 300; x += 2)
@@ -153,7 +149,21 @@ TEST(PointPairVoting, FindsEveryInstanceOfASceneAndIsRepeatable) {
       raw.points.emplace_back(x, y, 700);
       raw.normals.push_back(Eigen::Vector3f(noise(rng), noise(rng), -1).normalized());
     }
-  const OrientedPoints scene = sampleOriented(raw.points, raw.normals, kSampling);
+  return sampleOriented(raw.points, raw.normals, kSampling);
+}
+
+const std::vector<Eigen::Isometry3f> kTruths = {pose(0.4f, {0, 0, 1}, {0, 0, 500}),
+                                                pose(2.5f, {1, 1, 0}, {150, 20, 520}),
+                                                pose(-1.2f, {0, 1, 1}, {-40, 160, 480})};
+
+} // namespace
+
+TEST(PointPairVoting, FindsEveryInstanceOfASceneAndIsRepeatable) {
+  const OrientedPoints part =
+      sampleOriented(bracket(1.0f).points, bracket(1.0f).normals, kSampling);
+  const PointPairModel model(part, kSampling);
+  const std::vector<Eigen::Isometry3f>& truths = kTruths;
+  const OrientedPoints scene = bracketsOnAPlane(truths);
   VotingOptions options;
   options.reference_stride = 2;
   options.max_poses = 30;
@@ -183,4 +193,39 @@ TEST(PointPairVoting, RejectsTooFewPointsAndStopsWhenCancelled) {
   const PointPairModel model(part, kSampling);
   EXPECT_THROW(model.vote(part, VotingOptions{1}, [](double) { return false; }), Cancelled);
   EXPECT_TRUE(model.vote(OrientedPoints{}, VotingOptions{}).empty());
+}
+
+TEST(PointPairVoting, ViewsSharingOnePairedSceneVoteAsWithTheSceneItself) {
+  // Two views of different size: the scene is paired once, within more than either's diameter,
+  // and each view keeps the pairs within its own.
+  const OrientedPoints whole =
+      sampleOriented(bracket(1.0f).points, bracket(1.0f).normals, kSampling);
+  OrientedPoints leg_raw;
+  addBox(leg_raw, {0, 0, 0}, {60, 30, 5}, 1.0f, {1, 3, 5});
+  const OrientedPoints leg = sampleOriented(leg_raw.points, leg_raw.normals, kSampling);
+  const PointPairModel large(whole, kSampling), small(leg, kSampling);
+  ASSERT_LT(small.diameter(), large.diameter() - kSampling);
+  const OrientedPoints scene = bracketsOnAPlane(kTruths);
+  VotingOptions options;
+  options.reference_stride = 3;
+  options.max_poses = 20;
+  const ScenePairs paired(scene, large.quantizer(), options.reference_stride,
+                          1.3 * large.diameter());
+  for (const PointPairModel* view : {&large, &small}) {
+    const auto alone = view->vote(scene, options);
+    const auto shared = view->vote(paired, options);
+    ASSERT_FALSE(alone.empty());
+    ASSERT_EQ(shared.size(), alone.size());
+    for (std::size_t i = 0; i < alone.size(); ++i) {
+      EXPECT_EQ(shared[i].votes, alone[i].votes);
+      EXPECT_TRUE(shared[i].T_scene_model.isApprox(alone[i].T_scene_model, 0.0));
+    }
+  }
+  // Paired too narrowly, or with another quantization: refused, not voted wrongly.
+  const ScenePairs narrow(scene, large.quantizer(), options.reference_stride,
+                          0.9 * large.diameter());
+  EXPECT_THROW((void)large.vote(narrow, options), Error);
+  const ScenePairs coarser(scene, PairQuantizer(2.0 * kSampling, 30), options.reference_stride,
+                           2.0 * large.diameter());
+  EXPECT_THROW((void)large.vote(coarser, options), Error);
 }
