@@ -14,6 +14,9 @@ namespace scanpick::core {
 namespace {
 
 constexpr float kTwoPi = 6.28318530717958647692f;
+/// Cells of [-1, 1] for PairQuantizer's first guess of a cosine's bin (bin() corrects any guess;
+/// a close one saves it steps).
+constexpr int kGuessCells = 512;
 
 /// The frame in which `p` is the origin and `n` the +x axis.
 Eigen::Isometry3f localFrame(const Eigen::Vector3f& p, const Eigen::Vector3f& n) {
@@ -86,6 +89,27 @@ PairQuantizer::PairQuantizer(double distance_step_mm, int angle_bins)
   const int half = m_angle_bins / 2;
   for (int k = 1; k < half; ++k)
     m_bin_cosines.push_back(std::cos(float(k) * float(M_PI) / float(half)));
+  m_bin_guess.resize(kGuessCells);
+  for (int i = 0; i < kGuessCells; ++i) {
+    const float centre = -1.0f + (float(i) + 0.5f) * 2.0f / float(kGuessCells);
+    m_bin_guess[std::size_t(i)] = std::uint8_t(std::count_if(
+        m_bin_cosines.begin(), m_bin_cosines.end(), [&](float bound) { return centre <= bound; }));
+  }
+}
+
+int PairQuantizer::bin(float cosine) const {
+  if (std::isnan(cosine))
+    return 0;
+  const int cell =
+      std::clamp(int((cosine + 1.0f) * (0.5f * float(kGuessCells))), 0, kGuessCells - 1);
+  // The bounds decrease: the cosine does not exceed exactly the first `b` of them.
+  int b = m_bin_guess[std::size_t(cell)];
+  const int bounds = int(m_bin_cosines.size());
+  while (b < bounds && cosine <= m_bin_cosines[std::size_t(b)])
+    ++b;
+  while (b > 0 && cosine > m_bin_cosines[std::size_t(b - 1)])
+    --b;
+  return b;
 }
 
 std::uint32_t PairQuantizer::key(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1,
@@ -98,12 +122,6 @@ std::uint32_t PairQuantizer::key(const Eigen::Vector3f& p1, const Eigen::Vector3
     return 0;
   const Eigen::Vector3f u = d / distance;
   const int half = m_angle_bins / 2;
-  auto bin = [&](float cosine) {
-    int b = 0;
-    for (const float bound : m_bin_cosines)
-      b += cosine <= bound;
-    return b;
-  };
   const int a1 = bin(n1.dot(u)), a2 = bin(n2.dot(u)), a3 = bin(n1.dot(n2));
   // Two points of one plane (normals parallel, both across the joining line) tell nothing but
   // their distance, and flat parts have very many of them: such pairs are not used.

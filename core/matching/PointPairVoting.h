@@ -77,11 +77,16 @@ public:
   }
 
 private:
+  /// An angle's bin from its cosine, without an arccosine: the number of the bounds
+  /// cos(k π / half), k = 1 .. half - 1 (half = m_angle_bins / 2), that the cosine does not exceed.
+  [[nodiscard]] int bin(float cosine) const;
+
   double m_distance_step_mm;
   int m_angle_bins;
-  /// cos(k π / half) for k = 1 .. half - 1 (half = m_angle_bins / 2): an angle's bin is the number
-  /// of these its cosine does not exceed, without an arccosine per pair.
-  std::vector<float> m_bin_cosines;
+  std::vector<float> m_bin_cosines; ///< the bounds, decreasing
+  /// The bin at the centre of each of kGuessCells equal cells of [-1, 1]: bin() starts there and
+  /// steps over at most a bound or two.
+  std::vector<std::uint8_t> m_bin_guess;
 };
 
 /// The scene side of the voting: each reference point's local frame and the pairs it makes with

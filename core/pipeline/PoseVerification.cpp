@@ -124,8 +124,8 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     const Eigen::Vector3f& n_model = model.normals[k];
     // The camera sits at the scene origin.
     const bool turned_away = n_model.allFinite() && (T.linear() * n_model).dot(-p) <= 0.0f;
-    const std::int64_t near = index.nearest(p, tol_sq);
-    if (near >= 0 && !turned_away) {
+    const std::int64_t near = turned_away ? -1 : index.nearest(p, tol_sq);
+    if (near >= 0) {
       // A surface confirms a point only when it faces the same way: the far face of a thin plate
       // lies within tolerance of the near one's points but turned away.
       const Eigen::Vector3f& n_scene = index.normals()[static_cast<std::size_t>(near)];

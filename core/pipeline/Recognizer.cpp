@@ -353,6 +353,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       options.normal_radius_mm = params.keypoints.normal_radius_mm;
       cache.scene_index = std::make_shared<const SceneIndex>(*cache.pre, options);
       cache.index_key = pre_key;
+      logger()->debug("scene indexed for verification: {} points, {:.0f} ms",
+                      cache.scene_index->points().size(), msSince(t0));
     }
     const std::pair shadow_key{pre_key.scene, sensorHash(sensor)};
     if (cache.shadow_key != shadow_key || !cache.shadow) {
@@ -369,7 +371,10 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       all.points_mm.insert(all.points_mm.end(), k.points_mm.begin(), k.points_mm.end());
     all.width = static_cast<std::uint32_t>(all.points_mm.size());
     all.height = 1;
-    cache.edge_index = all.points_mm.empty() ? nullptr : std::make_shared<const SceneIndex>(all);
+    SceneIndexOptions nearest_only; // the edge check asks for the nearest keypoint only
+    nearest_only.estimate_normals = false;
+    cache.edge_index =
+        all.points_mm.empty() ? nullptr : std::make_shared<const SceneIndex>(all, nearest_only);
     cache.edge_key = keypoint_key;
   }
   const EdgeCheck edges{edge_check ? cache.edge_index.get() : nullptr,
@@ -423,6 +428,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     candidates[i] =
         matchFeatures(model->features, (*cache.features)[i], params.matching, {}, verify);
   });
+  logger()->debug("feature matching: {} model features, {:.0f} ms", model->features.size(),
+                  msSince(t_match));
   for (std::size_t i = 0; i < candidates.size(); ++i)
     for (const auto& c : candidates[i]) {
       Detection d;

@@ -133,6 +133,10 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
   const int w = options.pixel_half_window;
   const std::size_t k = static_cast<std::size_t>(options.neighbours);
 
+  if (!options.estimate_normals) {
+    reportProgress(progress, 1.0);
+    return;
+  }
   blockedParallel(indexed.size(), progress, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids(k);
     std::vector<float> dists(k);

@@ -31,6 +31,8 @@ struct SceneIndexOptions {
   int neighbours = 12;
   /// Use the cloud's own normals when it has them (re-oriented towards the viewpoint).
   bool use_cloud_normals = true;
+  /// False: no normals at all (normals() all NaN), for an index used for nearest points only.
+  bool estimate_normals = true;
 };
 
 /// The valid points of a cloud, their normals (NaN where too few neighbours), and a kd-tree.

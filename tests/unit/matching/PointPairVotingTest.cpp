@@ -229,3 +229,48 @@ TEST(PointPairVoting, ViewsSharingOnePairedSceneVoteAsWithTheSceneItself) {
                            2.0 * large.diameter());
   EXPECT_THROW((void)large.vote(coarser, options), Error);
 }
+
+TEST(PairQuantizer, KeysBinTheDistanceAndTheAnglesOfAPair) {
+  // The key against the angles' arccosines, away from the bin bounds (where rounding may go
+  // either way): ((distance bin · h + angle 1) · h + angle 2) · h + angle between, h = bins / 2.
+  for (const int bins : {30, 12, 90}) {
+    const PairQuantizer quantizer(2.0, bins);
+    const int half = bins / 2;
+    const double width = M_PI / half;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> coordinate(-40.0f, 40.0f);
+    int checked = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+      const Eigen::Vector3f p1(coordinate(rng), coordinate(rng), coordinate(rng));
+      const Eigen::Vector3f p2(coordinate(rng), coordinate(rng), coordinate(rng));
+      const Eigen::Vector3f n1 =
+          Eigen::Vector3f(coordinate(rng), coordinate(rng), coordinate(rng)).normalized();
+      const Eigen::Vector3f n2 =
+          Eigen::Vector3f(coordinate(rng), coordinate(rng), coordinate(rng)).normalized();
+      const Eigen::Vector3f u = (p2 - p1).normalized();
+      const double angles[3] = {std::acos(double(n1.dot(u))), std::acos(double(n2.dot(u))),
+                                std::acos(double(n1.dot(n2)))};
+      int a[3];
+      bool near_bound = false;
+      for (int k = 0; k < 3; ++k) {
+        const double in_bins = angles[k] / width;
+        near_bound |= std::abs(in_bins - std::round(in_bins)) < 1e-3;
+        a[k] = std::min(half - 1, int(in_bins));
+      }
+      if (near_bound || (a[2] == 0 && a[0] == half / 2 && a[1] == half / 2))
+        continue;
+      bool valid = false;
+      const std::uint32_t key = quantizer.key(p1, n1, p2, n2, &valid);
+      ASSERT_TRUE(valid);
+      const auto d_bin = std::uint32_t((p2 - p1).norm() / 2.0f);
+      EXPECT_EQ(key, ((d_bin * half + a[0]) * half + a[1]) * half + a[2]) << "bins " << bins;
+      ++checked;
+    }
+    EXPECT_GT(checked, 1900);
+  }
+  bool valid = true;
+  (void)PairQuantizer(2.0, 30).key({0, 0, 0}, {0, 0, 1}, {0.5f, 0, 0}, {0, 0, 1}, &valid);
+  EXPECT_FALSE(valid) << "closer than half a step";
+  EXPECT_THROW(PairQuantizer(0.0, 30), Error);
+  EXPECT_THROW(PairQuantizer(1.0, 2), Error);
+}

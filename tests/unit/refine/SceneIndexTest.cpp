@@ -50,6 +50,20 @@ TEST(SceneIndex, NearestRespectsTheDistanceBoundAndSurvivesAMove) {
   EXPECT_LT(moved.nearest(core::invalidPoint(), 1e9f), 0);
 }
 
+TEST(SceneIndex, WithoutNormalsItFindsTheSameNearestPoints) {
+  const auto cloud = core::dropInvalid(floorScan(0.3));
+  core::SceneIndexOptions nearest_only;
+  nearest_only.estimate_normals = false;
+  const core::SceneIndex full(cloud), bare(cloud, nearest_only);
+  ASSERT_EQ(bare.size(), full.size());
+  ASSERT_EQ(bare.normals().size(), bare.size());
+  for (std::size_t k = 0; k < bare.size(); k += 97) {
+    EXPECT_FALSE(bare.normals()[k].allFinite());
+    const Eigen::Vector3f query = bare.points()[k] + Eigen::Vector3f(0.3f, -0.2f, 0.5f);
+    EXPECT_EQ(bare.nearest(query, 4.0f), full.nearest(query, 4.0f));
+  }
+}
+
 TEST(SceneIndex, OwnNormalsAreUsedAndTurnedTowardsTheViewpoint) {
   auto cloud = core::dropInvalid(floorScan(0.0));
   cloud.normals.assign(cloud.size(), Eigen::Vector3f(0, 0, 1)); // pointing away from the camera
