@@ -92,8 +92,8 @@ void sortBestFirst(std::vector<Detection>& detections) {
                    [](const Detection& a, const Detection& b) { return a.score > b.score; });
 }
 
-/// The scene is paired within this much more than the diameter of the view that needs it first,
-/// so that the other views of a part (their diameters differ by a few per cent) share the pairing.
+/// The scene is paired within this much more than the diameter of the view that needs it, so that
+/// the other views of a part (their diameters differ by a few per cent) share the pairing.
 constexpr double kPairingMargin = 1.1;
 
 /// A refined pose whose coverage is lower by less than this is still kept (keepsRefinedPose).
@@ -135,9 +135,16 @@ struct Recognizer::Cache {
   std::optional<PreKey> surface_scene_key;
   double surface_scene_sampling = 0.0;
   std::shared_ptr<const OrientedPoints> surface_scene;
-  /// The sampled scene paired (ScenePairs; key: surface_scene, stride and quantizer), shared by
-  /// the views whose diameter its radius covers. Two, for a view voting with its own stride.
-  std::vector<std::shared_ptr<const ScenePairs>> surface_pairs;
+  /// How the views have voted with surface_scene: by stride and quantizer, and the scene paired
+  /// (ScenePairs) once a second view votes alike, shared by those whose diameter its radius
+  /// covers. Pairing keeps every pair's angle, which costs more than one view's voting finds in
+  /// a sparse table: a view voting with its own stride (the cup's bottom view) pairs as it votes.
+  struct SurfacePairing {
+    int stride = 0;
+    PairQuantizer quantizer;
+    std::shared_ptr<const ScenePairs> pairs; ///< null while one view has voted so
+  };
+  std::vector<SurfacePairing> surface_pairings;
 };
 
 namespace {
@@ -148,23 +155,25 @@ using PoseRescue = std::function<void(Detection&)>;
 /// Surface voting's poses as detections (cluster -1), each polished into the version that
 /// verifies best: as voted, fitted on the scene features it confirms, or (with `polish`, ICP)
 /// refined, or else `rescue`d; kept when the coverage reaches params.min_coverage. Best first.
-std::vector<Detection> surfaceDetections(const PointPairModel& model_pairs,
-                                         const ScenePairs& scene_pairs,
-                                         const FeatureList& model_features,
-                                         const std::vector<FeatureList>& object_features,
-                                         const MatchingParams& params, double cluster_mm,
-                                         const PoseVerifier& verify, const PosePolisher& polish,
-                                         const PoseRescue& rescue, const ProgressFn& progress) {
+std::vector<Detection>
+surfaceDetections(const PointPairModel& model_pairs, const OrientedPoints& scene_points,
+                  const ScenePairs* scene_pairs, const FeatureList& model_features,
+                  const std::vector<FeatureList>& object_features, const MatchingParams& params,
+                  double cluster_mm, const PoseVerifier& verify, const PosePolisher& polish,
+                  const PoseRescue& rescue, const ProgressFn& progress) {
   VotingOptions options;
+  options.reference_stride = params.surface_reference_stride;
   options.max_poses = params.surface_poses;
   options.cluster_distance_mm = cluster_mm;
   const auto t0 = Clock::now();
-  const std::vector<VotedPose> poses = model_pairs.vote(scene_pairs, options, progress);
-  logger()->debug(
-      "surface voting: {} model points ({} pairs, {:.1f} mm across), {} scene reference points, "
-      "{} poses, {:.0f} ms",
-      model_pairs.pointCount(), model_pairs.pairCount(), model_pairs.diameter(),
-      scene_pairs.referenceCount(), poses.size(), msSince(t0));
+  const std::vector<VotedPose> poses = scene_pairs
+                                           ? model_pairs.vote(*scene_pairs, options, progress)
+                                           : model_pairs.vote(scene_points, options, progress);
+  logger()->debug("surface voting: {} model points ({} pairs, {:.1f} mm across), {} scene points "
+                  "({}), {} poses, {:.0f} ms",
+                  model_pairs.pointCount(), model_pairs.pairCount(), model_pairs.diameter(),
+                  scene_points.points.size(), scene_pairs ? "paired before" : "paired now",
+                  poses.size(), msSince(t0));
   FeatureList scene_features;
   for (const auto& f : object_features)
     scene_features.insert(scene_features.end(), f.begin(), f.end());
@@ -389,25 +398,23 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
           sampleOriented(cache.scene_index->points(), cache.scene_index->normals(), sampling_mm));
       cache.surface_scene_key = pre_key;
       cache.surface_scene_sampling = sampling_mm;
-      cache.surface_pairs.clear();
+      cache.surface_pairings.clear();
     }
     const PointPairModel& view = *prep->pairs;
     const int stride = std::max(1, params.matching.surface_reference_stride);
-    const auto fits = [&](const std::shared_ptr<const ScenePairs>& p) {
-      return p->referenceStride() == stride && p->quantizer() == view.quantizer() &&
-             p->radius() >= view.diameter();
-    };
-    auto found = std::find_if(cache.surface_pairs.begin(), cache.surface_pairs.end(), fits);
-    if (found == cache.surface_pairs.end()) {
-      constexpr std::size_t kKeptPairings = 2;
-      if (cache.surface_pairs.size() >= kKeptPairings)
-        cache.surface_pairs.erase(cache.surface_pairs.begin());
-      cache.surface_pairs.push_back(std::make_shared<const ScenePairs>(
-          *cache.surface_scene, view.quantizer(), stride, kPairingMargin * view.diameter(),
-          subProgress(progress, 0.8, 0.8)));
-      found = std::prev(cache.surface_pairs.end());
+    auto pairing = std::find_if(cache.surface_pairings.begin(), cache.surface_pairings.end(),
+                                [&](const Cache::SurfacePairing& p) {
+                                  return p.stride == stride && p.quantizer == view.quantizer();
+                                });
+    if (pairing == cache.surface_pairings.end()) {
+      cache.surface_pairings.push_back({stride, view.quantizer(), nullptr});
+    } else {
+      if (!pairing->pairs || pairing->pairs->radius() < view.diameter())
+        pairing->pairs = std::make_shared<const ScenePairs>(
+            *cache.surface_scene, view.quantizer(), stride, kPairingMargin * view.diameter(),
+            subProgress(progress, 0.8, 0.8));
+      scene_pairs = pairing->pairs;
     }
-    scene_pairs = *found;
     result.timings.matching_ms += msSince(t0);
   }
   {
@@ -459,9 +466,10 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
         detail::takeTurn(d, *turn);
     };
   if (surface) {
-    for (auto& d : surfaceDetections(*prep->pairs, *scene_pairs, model->features, *cache.features,
-                                     params.matching, 0.1 * model->diameter_mm, verify, polish,
-                                     rescue, subProgress(progress, 0.95, 0.98)))
+    for (auto& d :
+         surfaceDetections(*prep->pairs, *cache.surface_scene, scene_pairs.get(), model->features,
+                           *cache.features, params.matching, 0.1 * model->diameter_mm, verify,
+                           polish, rescue, subProgress(progress, 0.95, 0.98)))
       result.detections.push_back(std::move(d));
   }
   sortBestFirst(result.detections);

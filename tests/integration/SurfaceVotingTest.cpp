@@ -72,6 +72,26 @@ TEST(SurfaceVoting, FindsMoreSupportsInBinsWithoutFalseDetections) {
     for (std::size_t i = 0; i < surface.detections.size(); ++i)
       EXPECT_TRUE(
           again.detections[i].T_scene_model.isApprox(surface.detections[i].T_scene_model, 0.0));
+
+    // The views after the first vote with the scene paired once (ScenePairs): each finds what it
+    // finds in a recognizer of its own, which pairs the scene as it votes.
+    if (seed != 21u)
+      continue;
+    Recognizer shared;
+    for (const auto& model : models) {
+      shared.setModel(model);
+      const RecognitionResult together =
+          shared.recognize(bin.render.cloud, bin.sensor, with_surface);
+      Recognizer own;
+      own.setModel(model);
+      const RecognitionResult alone = own.recognize(bin.render.cloud, bin.sensor, with_surface);
+      ASSERT_EQ(together.detections.size(), alone.detections.size());
+      for (std::size_t i = 0; i < alone.detections.size(); ++i) {
+        EXPECT_TRUE(
+            together.detections[i].T_scene_model.isApprox(alone.detections[i].T_scene_model, 0.0));
+        EXPECT_EQ(together.detections[i].coverage, alone.detections[i].coverage);
+      }
+    }
   }
   std::printf("instances found in three bins of ten: %zu by features, %zu with surface voting\n",
               total_features, total_surface);
