@@ -34,11 +34,28 @@ std::uint16_t planeAngle(const Eigen::Vector3f& local) {
   return static_cast<std::uint16_t>(std::lround(radians * (65536.0f / kTwoPi)) & 0xFFFF);
 }
 
-/// A voted pose before clustering (kept in reference order, so ties sort deterministically).
-struct RawPose {
-  Eigen::Isometry3f T;
-  int votes = 0;
-};
+/// The pairs of reference point `s` with its neighbours within `radius_sq` (mm²) in `tree`, in
+/// the reference's local frame `to_local`, appended to `out`: those whose key `wanted(key)` takes
+/// (their angle is computed only for those).
+template <typename Wanted>
+void pairReference(const OrientedPoints& scene, const PointKdTree& tree, std::size_t s,
+                   const Eigen::Isometry3f& to_local, const PairQuantizer& quantizer,
+                   float radius_sq, Wanted&& wanted, std::vector<ScenePairs::Pair>& out) {
+  const Eigen::Vector3f& p = scene.points[s];
+  const Eigen::Vector3f& n = scene.normals[s];
+  std::vector<std::pair<std::uint32_t, float>> neighbours;
+  // The votes are counts: the order in which the neighbours are visited does not matter.
+  tree.radiusSearch(p.data(), radius_sq, neighbours, nanoflann::SearchParams(32, 0.0f, false));
+  out.reserve(out.size() + neighbours.size());
+  for (const auto& [i, distance_sq] : neighbours) {
+    if (i == s)
+      continue;
+    bool valid = false;
+    const std::uint32_t k = quantizer.key(p, n, scene.points[i], scene.normals[i], &valid);
+    if (valid && wanted(k))
+      out.push_back({k, planeAngle(to_local * scene.points[i]), distance_sq});
+  }
+}
 
 } // namespace
 
@@ -156,24 +173,11 @@ ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantiz
       n_refs, progress,
       [&](std::size_t r) {
         const std::size_t s = r * stride;
-        const Eigen::Vector3f& p = scene.points[s];
-        const Eigen::Vector3f& n = scene.normals[s];
-        m_reference_points[r] = p;
-        m_to_local[r] = localFrame(p, n);
-        std::vector<std::pair<std::uint32_t, float>> neighbours;
-        // The votes are counts: the order in which the neighbours are visited does not matter.
-        tree.radiusSearch(p.data(), radius_sq, neighbours,
-                          nanoflann::SearchParams(32, 0.0f, false));
-        std::vector<Pair>& pairs = per_reference[r];
-        pairs.reserve(neighbours.size());
-        for (const auto& [i, distance_sq] : neighbours) {
-          if (i == s)
-            continue;
-          bool valid = false;
-          const std::uint32_t k = m_quantizer.key(p, n, scene.points[i], scene.normals[i], &valid);
-          if (valid)
-            pairs.push_back({k, planeAngle(m_to_local[r] * scene.points[i]), distance_sq});
-        }
+        m_reference_points[r] = scene.points[s];
+        m_to_local[r] = localFrame(scene.points[s], scene.normals[s]);
+        pairReference(
+            scene, tree, s, m_to_local[r], m_quantizer, radius_sq,
+            [](std::uint32_t) { return true; }, per_reference[r]);
       },
       64);
   for (std::size_t r = 0; r < n_refs; ++r)
@@ -230,12 +234,31 @@ PointPairModel::PointPairModel(OrientedPoints model, double distance_step_mm, in
 std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
                                             const VotingOptions& options,
                                             const ProgressFn& progress) const {
-  if (scene.points.size() < 2)
+  const std::size_t n_scene = scene.points.size();
+  if (n_scene < 2)
     return {};
-  // The pairing takes most of a vote without a table: half the progress each.
-  const ScenePairs pairs(scene, m_quantizer, options.reference_stride, m_diameter_mm,
-                         subProgress(progress, 0.0, 0.5));
-  return vote(pairs, options, subProgress(progress, 0.5, 1.0));
+  // Each reference is paired as it votes, with its pairs of keys in the table only: without a
+  // second view to share them (ScenePairs), most of a sparse table's pairs need no angle.
+  const auto stride = static_cast<std::size_t>(std::max(1, options.reference_stride));
+  PointVectorSource source{&scene.points};
+  PointKdTree tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  tree.buildIndex();
+  const auto radius_sq = static_cast<float>(m_diameter_mm * m_diameter_mm);
+  std::vector<ReferencePeak> peaks((n_scene + stride - 1) / stride);
+  parallelForWithProgress(
+      peaks.size(), progress,
+      [&](std::size_t r) {
+        const std::size_t s = r * stride;
+        const Eigen::Isometry3f to_local = localFrame(scene.points[s], scene.normals[s]);
+        std::vector<ScenePairs::Pair> pairs;
+        pairReference(
+            scene, tree, s, to_local, m_quantizer, radius_sq,
+            [&](std::uint32_t k) { return inTable(k); }, pairs);
+        peaks[r] =
+            peakOf(pairs.data(), pairs.data() + pairs.size(), scene.points[s], to_local, options);
+      },
+      64);
+  return clustered(std::move(peaks), options);
 }
 
 std::vector<VotedPose> PointPairModel::vote(const ScenePairs& scene, const VotingOptions& options,
@@ -243,56 +266,71 @@ std::vector<VotedPose> PointPairModel::vote(const ScenePairs& scene, const Votin
   if (!(scene.quantizer() == m_quantizer) || scene.radius() < m_diameter_mm)
     throw Error("point pair voting: the scene was paired with another quantization or within a "
                 "smaller radius than the model's diameter");
-  const std::size_t n_refs = scene.referenceCount();
-  std::vector<RawPose> raw(n_refs);
-  const auto radius_sq = static_cast<float>(m_diameter_mm * m_diameter_mm);
+  std::vector<ReferencePeak> peaks(scene.referenceCount());
+  parallelForWithProgress(
+      peaks.size(), progress,
+      [&](std::size_t r) {
+        peaks[r] = peakOf(scene.pairsBegin(r), scene.pairsEnd(r), scene.referencePoint(r),
+                          scene.toLocal(r), options);
+      },
+      64);
+  return clustered(std::move(peaks), options);
+}
+
+bool PointPairModel::inTable(std::uint32_t key) const {
+  return key + 1 < m_offsets.size() && m_offsets[key] != m_offsets[key + 1];
+}
+
+PointPairModel::ReferencePeak PointPairModel::peakOf(const ScenePairs::Pair* begin,
+                                                     const ScenePairs::Pair* end,
+                                                     const Eigen::Vector3f& reference,
+                                                     const Eigen::Isometry3f& to_local,
+                                                     const VotingOptions& options) const {
   const auto n_model = m_model.points.size();
   const auto bins = static_cast<std::size_t>(m_quantizer.angleBins());
-  const float alpha_step = kTwoPi / float(m_quantizer.angleBins());
-  const auto exclude_sq = static_cast<float>(options.exclude_self_mm * options.exclude_self_mm);
-  auto voteFrom = [&](std::size_t r) {
-    const Eigen::Vector3f& p = scene.referencePoint(r);
-    std::vector<std::uint16_t> accumulator(n_model * bins, 0);
-    // Self-voting: the model points near the reference, found once instead of per table entry.
-    std::vector<std::uint8_t> excluded;
-    if (exclude_sq > 0) {
-      excluded.resize(n_model);
-      for (std::size_t m = 0; m < n_model; ++m)
-        excluded[m] = (m_model.points[m] - p).squaredNorm() < exclude_sq;
-    }
-    for (const ScenePairs::Pair* pair = scene.pairsBegin(r); pair != scene.pairsEnd(r); ++pair) {
-      const std::uint32_t k = pair->key;
-      // Strictly within the diameter, as the radius search finds them.
-      if (pair->distance_sq >= radius_sq || k + 1 >= m_offsets.size() ||
-          m_offsets[k] == m_offsets[k + 1])
+  const auto radius_sq = static_cast<float>(m_diameter_mm * m_diameter_mm);
+  std::vector<std::uint16_t> accumulator(n_model * bins, 0);
+  // Self-voting: the model points near the reference, found once instead of per table entry.
+  std::vector<std::uint8_t> excluded;
+  if (options.exclude_self_mm > 0) {
+    const auto exclude_sq = static_cast<float>(options.exclude_self_mm * options.exclude_self_mm);
+    excluded.resize(n_model);
+    for (std::size_t m = 0; m < n_model; ++m)
+      excluded[m] = (m_model.points[m] - reference).squaredNorm() < exclude_sq;
+  }
+  for (const ScenePairs::Pair* pair = begin; pair != end; ++pair) {
+    // Strictly within the diameter, as the radius search finds them.
+    if (pair->distance_sq >= radius_sq || !inTable(pair->key))
+      continue;
+    const Entry* last = m_table.data() + m_offsets[pair->key + 1];
+    for (const Entry* e = m_table.data() + m_offsets[pair->key]; e != last; ++e) {
+      if (!excluded.empty() && excluded[e->model_point])
         continue;
-      const Entry* end = m_table.data() + m_offsets[k + 1];
-      for (const Entry* e = m_table.data() + m_offsets[k]; e != end; ++e) {
-        if (!excluded.empty() && excluded[e->model_point])
-          continue;
-        const auto alpha = static_cast<std::uint16_t>(e->alpha - pair->alpha); // modulo 2π
-        const std::size_t bin = (std::size_t{alpha} * bins) >> 16;
-        auto& cell = accumulator[e->model_point * bins + bin];
-        if (cell < 0xFFFF)
-          ++cell;
-      }
+      const auto alpha = static_cast<std::uint16_t>(e->alpha - pair->alpha); // modulo 2π
+      const std::size_t bin = (std::size_t{alpha} * bins) >> 16;
+      auto& cell = accumulator[e->model_point * bins + bin];
+      if (cell < 0xFFFF)
+        ++cell;
     }
-    const auto peak = std::max_element(accumulator.begin(), accumulator.end());
-    RawPose& out = raw[r];
-    out.votes = *peak;
-    if (out.votes == 0)
-      return;
-    const auto cell = static_cast<std::size_t>(peak - accumulator.begin());
-    const std::size_t m = cell / bins;
-    const float alpha = (float(cell % bins) + 0.5f) * alpha_step;
-    out.T = scene.toLocal(r).inverse() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) *
-            m_to_local[m];
-  };
-  parallelForWithProgress(n_refs, progress, voteFrom, 64);
+  }
+  const auto peak = std::max_element(accumulator.begin(), accumulator.end());
+  ReferencePeak out;
+  out.votes = *peak;
+  if (out.votes == 0)
+    return out;
+  const auto cell = static_cast<std::size_t>(peak - accumulator.begin());
+  const std::size_t m = cell / bins;
+  const float alpha = (float(cell % bins) + 0.5f) * (kTwoPi / float(bins));
+  out.T = to_local.inverse() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) * m_to_local[m];
+  return out;
+}
 
+std::vector<VotedPose> PointPairModel::clustered(std::vector<ReferencePeak> raw,
+                                                 const VotingOptions& options) {
   // Pose clustering: most votes first; each pose joins the first cluster whose seed pose is close.
-  std::stable_sort(raw.begin(), raw.end(),
-                   [](const RawPose& a, const RawPose& b) { return a.votes > b.votes; });
+  std::stable_sort(raw.begin(), raw.end(), [](const ReferencePeak& a, const ReferencePeak& b) {
+    return a.votes > b.votes;
+  });
   struct Cluster {
     Eigen::Isometry3f seed;
     Eigen::Vector3d t_sum = Eigen::Vector3d::Zero();

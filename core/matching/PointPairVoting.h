@@ -172,6 +172,21 @@ private:
     std::uint16_t alpha;
   };
 
+  /// One reference point's best (model point, angle) as a pose (float, as voted), and its votes.
+  struct ReferencePeak {
+    Eigen::Isometry3f T = Eigen::Isometry3f::Identity();
+    int votes = 0;
+  };
+  [[nodiscard]] bool inTable(std::uint32_t key) const;
+  /// The votes of one reference point's pairs (those within the diameter).
+  [[nodiscard]] ReferencePeak peakOf(const ScenePairs::Pair* begin, const ScenePairs::Pair* end,
+                                     const Eigen::Vector3f& reference,
+                                     const Eigen::Isometry3f& to_local,
+                                     const VotingOptions& options) const;
+  /// The peaks clustered into poses (kept in reference order, so ties sort deterministically).
+  [[nodiscard]] static std::vector<VotedPose> clustered(std::vector<ReferencePeak> peaks,
+                                                        const VotingOptions& options);
+
   OrientedPoints m_model;
   PairQuantizer m_quantizer;
   double m_diameter_mm = 0.0;
