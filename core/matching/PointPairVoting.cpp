@@ -159,7 +159,6 @@ ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantiz
     throw Error("scene pairs: points and normals differ in count");
   const auto stride = static_cast<std::size_t>(m_reference_stride);
   const std::size_t n_refs = n_scene < 2 ? 0 : (n_scene + stride - 1) / stride;
-  m_offsets.assign(n_refs + 1, 0);
   if (n_refs == 0)
     return;
   PointVectorSource source{&scene.points};
@@ -168,7 +167,7 @@ ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantiz
   const auto radius_sq = static_cast<float>(radius_mm * radius_mm);
   m_reference_points.resize(n_refs);
   m_to_local.resize(n_refs);
-  std::vector<std::vector<Pair>> per_reference(n_refs);
+  m_pairs.resize(n_refs);
   parallelForWithProgress(
       n_refs, progress,
       [&](std::size_t r) {
@@ -177,16 +176,9 @@ ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantiz
         m_to_local[r] = localFrame(scene.points[s], scene.normals[s]);
         pairReference(
             scene, tree, s, m_to_local[r], m_quantizer, radius_sq,
-            [](std::uint32_t) { return true; }, per_reference[r]);
+            [](std::uint32_t) { return true; }, m_pairs[r]);
       },
       64);
-  for (std::size_t r = 0; r < n_refs; ++r)
-    m_offsets[r + 1] = m_offsets[r] + per_reference[r].size();
-  m_pairs.reserve(m_offsets.back());
-  for (auto& pairs : per_reference) {
-    m_pairs.insert(m_pairs.end(), pairs.begin(), pairs.end());
-    std::vector<Pair>().swap(pairs);
-  }
 }
 
 PointPairModel::PointPairModel(OrientedPoints model, double distance_step_mm, int angle_bins)

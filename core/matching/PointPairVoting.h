@@ -115,13 +115,10 @@ public:
   /// The frame in which reference `r` is the origin and its normal the +x axis.
   [[nodiscard]] const Eigen::Isometry3f& toLocal(std::size_t r) const { return m_to_local[r]; }
   /// Reference `r`'s pairs: [begin, end).
-  [[nodiscard]] const Pair* pairsBegin(std::size_t r) const {
-    return m_pairs.data() + m_offsets[r];
-  }
+  [[nodiscard]] const Pair* pairsBegin(std::size_t r) const { return m_pairs[r].data(); }
   [[nodiscard]] const Pair* pairsEnd(std::size_t r) const {
-    return m_pairs.data() + m_offsets[r + 1];
+    return m_pairs[r].data() + m_pairs[r].size();
   }
-  [[nodiscard]] std::size_t pairCount() const { return m_pairs.size(); }
   [[nodiscard]] const PairQuantizer& quantizer() const { return m_quantizer; }
   [[nodiscard]] int referenceStride() const { return m_reference_stride; }
   [[nodiscard]] double radius() const { return m_radius_mm; }
@@ -132,8 +129,7 @@ private:
   double m_radius_mm;
   std::vector<Eigen::Vector3f> m_reference_points;
   std::vector<Eigen::Isometry3f> m_to_local;
-  std::vector<Pair> m_pairs;          ///< grouped by reference
-  std::vector<std::size_t> m_offsets; ///< per reference, where its pairs start
+  std::vector<std::vector<Pair>> m_pairs; ///< per reference
 };
 
 /// The model's point pair table. Immutable after construction; vote() is thread-safe.

@@ -137,8 +137,9 @@ struct Recognizer::Cache {
   std::shared_ptr<const OrientedPoints> surface_scene;
   /// How the views have voted with surface_scene: by stride and quantizer, and the scene paired
   /// (ScenePairs) once a second view votes alike, shared by those whose diameter its radius
-  /// covers. Pairing keeps every pair's angle, which costs more than one view's voting finds in
-  /// a sparse table: a view voting with its own stride (the cup's bottom view) pairs as it votes.
+  /// covers. Pairing computes every pair's angle, more than one view voting alone needs with a
+  /// sparse table: so the first view, and one voting with its own stride (the cup's bottom
+  /// view), pair as they vote.
   struct SurfacePairing {
     int stride = 0;
     PairQuantizer quantizer;
