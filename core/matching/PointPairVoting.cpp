@@ -152,12 +152,11 @@ std::uint32_t PairQuantizer::key(const Eigen::Vector3f& p1, const Eigen::Vector3
 
 ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantizer,
                        int reference_stride, double radius_mm, const ProgressFn& progress)
-    : m_quantizer(quantizer), m_reference_stride(std::max(1, reference_stride)),
-      m_radius_mm(radius_mm) {
+    : m_quantizer(quantizer), m_radius_mm(radius_mm) {
   const std::size_t n_scene = scene.points.size();
   if (scene.normals.size() != n_scene)
     throw Error("scene pairs: points and normals differ in count");
-  const auto stride = static_cast<std::size_t>(m_reference_stride);
+  const auto stride = static_cast<std::size_t>(std::max(1, reference_stride));
   const std::size_t n_refs = n_scene < 2 ? 0 : (n_scene + stride - 1) / stride;
   if (n_refs == 0)
     return;

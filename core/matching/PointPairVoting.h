@@ -70,7 +70,6 @@ public:
   [[nodiscard]] std::uint32_t key(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1,
                                   const Eigen::Vector3f& p2, const Eigen::Vector3f& n2,
                                   bool* valid) const;
-  [[nodiscard]] double distanceStep() const { return m_distance_step_mm; }
   [[nodiscard]] int angleBins() const { return m_angle_bins; }
   bool operator==(const PairQuantizer& other) const {
     return m_distance_step_mm == other.m_distance_step_mm && m_angle_bins == other.m_angle_bins;
@@ -84,8 +83,8 @@ private:
   double m_distance_step_mm;
   int m_angle_bins;
   std::vector<float> m_bin_cosines; ///< the bounds, decreasing
-  /// The bin at the centre of each of kGuessCells equal cells of [-1, 1]: bin() starts there and
-  /// steps over at most a bound or two.
+  /// The bin at the centre of each of 512 equal cells of [-1, 1]: bin() starts there and steps
+  /// over the bounds to the exact bin (none or one step for the default 30 bins).
   std::vector<std::uint8_t> m_bin_guess;
 };
 
@@ -104,7 +103,8 @@ public:
   /// One keyed pair of a reference point.
   struct Pair {
     std::uint32_t key;
-    /// The neighbour's rotation about the reference normal into the local plane (planeAngle).
+    /// The neighbour's rotation about the reference normal into the local plane, in turns of
+    /// 2π / 65536 (as PointPairModel's entries).
     std::uint16_t alpha;
     float distance_sq; ///< mm², to keep only the neighbours within a smaller radius
   };
@@ -120,12 +120,10 @@ public:
     return m_pairs[r].data() + m_pairs[r].size();
   }
   [[nodiscard]] const PairQuantizer& quantizer() const { return m_quantizer; }
-  [[nodiscard]] int referenceStride() const { return m_reference_stride; }
   [[nodiscard]] double radius() const { return m_radius_mm; }
 
 private:
   PairQuantizer m_quantizer;
-  int m_reference_stride;
   double m_radius_mm;
   std::vector<Eigen::Vector3f> m_reference_points;
   std::vector<Eigen::Isometry3f> m_to_local;
