@@ -112,6 +112,10 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
   const Eigen::Isometry3f T_model_scene = T.inverse();
   const Eigen::Vector3f camera_model = T_model_scene.translation();
   const Eigen::Vector3f projector_model = T_model_scene * sensor.projectorPosition().cast<float>();
+  const double slack = scene.pixel_slack;
+  const bool windowed = organized && slack >= 0.0 && slack <= 1.0 &&
+                        index.width() == sensor.width && index.height() == sensor.height;
+  const auto tolerance = static_cast<float>(tolerance_mm);
   PointTally tally;
   const auto look = [&](std::size_t k) {
     ++tally.points;
@@ -124,7 +128,21 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     const Eigen::Vector3f& n_model = model.normals[k];
     // The camera sits at the scene origin.
     const bool turned_away = n_model.allFinite() && (T.linear() * n_model).dot(-p) <= 0.0f;
-    const std::int64_t near = turned_away ? -1 : index.nearest(p, tol_sq);
+    std::int64_t near = -1;
+    if (!turned_away && windowed && p.z() > tolerance) {
+      // A scene point within the tolerance projects within `reach` pixels of the model point's
+      // pixel: the pinhole's slope over a sphere of that radius, the scan's slack and rounding.
+      const double z = p.z(), beyond = z - tolerance_mm;
+      const Eigen::Vector2d uv = sensor.project(p.cast<double>());
+      const double reach_u =
+          sensor.fx * tolerance_mm * (1.0 + std::abs(p.x()) / z) / beyond + 0.5 + slack;
+      const double reach_v =
+          sensor.fy * tolerance_mm * (1.0 + std::abs(p.y()) / z) / beyond + 0.5 + slack;
+      near = index.nearestInWindow(p, tol_sq, int(std::lround(uv.x())), int(std::lround(uv.y())),
+                                   int(reach_u), int(reach_v));
+    } else if (!turned_away) {
+      near = index.nearest(p, tol_sq);
+    }
     if (near >= 0) {
       // A surface confirms a point only when it faces the same way: the far face of a thin plate
       // lies within tolerance of the near one's points but turned away.
@@ -167,6 +185,26 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     for (std::size_t k = 0; k < model.points.size(); ++k)
       look(k);
   return tally;
+}
+
+float pixelWindowSlack(const SceneIndex& index, const SensorModel& sensor) {
+  if (index.pixelIndex().empty() || index.width() != sensor.width ||
+      index.height() != sensor.height || !(sensor.fx > 0) || !(sensor.fy > 0))
+    return -1.0f;
+  double slack = 0.0;
+  for (int v = 0; v < index.height(); ++v)
+    for (int u = 0; u < index.width(); ++u) {
+      const std::int32_t i =
+          index.pixelIndex()[std::size_t(v) * std::size_t(index.width()) + std::size_t(u)];
+      if (i < 0)
+        continue;
+      const Eigen::Vector3d p = index.points()[std::size_t(i)].cast<double>();
+      if (!(p.z() > 0))
+        return -1.0f;
+      const Eigen::Vector2d uv = sensor.project(p);
+      slack = std::max({slack, std::abs(uv.x() - u), std::abs(uv.y() - v)});
+    }
+  return float(slack);
 }
 
 double verifyPose(const VerifyModel& model, const VerifyScene& scene,

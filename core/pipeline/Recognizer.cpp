@@ -127,6 +127,9 @@ struct Recognizer::Cache {
   /// The scan's projector shadows (key: the scan's and the sensor's hashes).
   std::optional<std::pair<std::uint64_t, std::uint64_t>> shadow_key;
   std::shared_ptr<const ProjectorShadow> shadow;
+  /// pixelWindowSlack of scene_index and the sensor (key: index_key and the sensor's hash).
+  std::optional<std::pair<PreKey, std::uint64_t>> slack_key;
+  float pixel_slack = -1.0f;
   std::vector<std::shared_ptr<const ModelPrep>> model_preps;
   /// Every object's keypoints in one index (key: keypoint_key), for the edge check.
   std::optional<KeypointKey> edge_key;
@@ -371,6 +374,14 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       cache.shadow = std::make_shared<const ProjectorShadow>(scene_mm, sensor);
       cache.shadow_key = shadow_key;
     }
+    const std::pair slack_key{pre_key, sensorHash(sensor)};
+    if (cache.slack_key != slack_key) {
+      cache.pixel_slack = pixelWindowSlack(*cache.scene_index, sensor);
+      cache.slack_key = slack_key;
+      logger()->debug("the scan's points lie within {:.3f} px of where the sensor projects them "
+                      "(verification looks in pixel windows up to 1 px)",
+                      cache.pixel_slack);
+    }
     prep = detail::prepareModel(cache.model_preps, model, params);
     result.timings.matching_ms += msSince(t0);
   }
@@ -424,8 +435,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
 
   const auto t_match = Clock::now();
-  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane,
-                                 cache.shadow.get()};
+  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm,          &sensor,
+                                 cache.floor_plane,       cache.shadow.get(), cache.pixel_slack};
   PoseVerifier verify;
   if (verifying && prep)
     verify = [&](const Eigen::Isometry3d& T) {

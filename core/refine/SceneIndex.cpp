@@ -122,6 +122,12 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
                 "the scan loaded and that the crop or floor removal left points.");
   m_tree = std::make_unique<Tree>(std::move(valid));
   const std::vector<Eigen::Vector3f>& indexed = m_tree->points;
+  if (!pixel_to_index.empty() &&
+      indexed.size() < std::size_t(std::numeric_limits<std::int32_t>::max())) {
+    m_width = static_cast<int>(scene_mm.width);
+    m_height = static_cast<int>(scene_mm.height);
+    m_pixel_index.assign(pixel_to_index.begin(), pixel_to_index.end());
+  }
   reportProgress(progress, 0.1);
 
   m_normals.assign(indexed.size(), invalidPoint());
@@ -207,6 +213,32 @@ std::int64_t SceneIndex::nearest(const Eigen::Vector3f& query_mm, float max_dist
   if (distance_sq)
     *distance_sq = result.worstDist();
   return static_cast<std::int64_t>(result.index());
+}
+
+std::int64_t SceneIndex::nearestInWindow(const Eigen::Vector3f& query_mm, float max_distance_sq,
+                                         int u, int v, int half_u, int half_v) const {
+  if (m_pixel_index.empty() || !(max_distance_sq > 0) || !query_mm.allFinite())
+    return -1;
+  const std::vector<Eigen::Vector3f>& indexed = m_tree->points;
+  float best = max_distance_sq;
+  std::int64_t best_index = -1;
+  for (int r = std::max(0, v - half_v); r <= std::min(m_height - 1, v + half_v); ++r)
+    for (int c = std::max(0, u - half_u); c <= std::min(m_width - 1, u + half_u); ++c) {
+      const std::int32_t i = m_pixel_index[std::size_t(r) * std::size_t(m_width) + std::size_t(c)];
+      if (i < 0)
+        continue;
+      // Summed as the kd-tree's metric sums, so that both give the same distances.
+      float distance_sq = 0.0f;
+      for (int k = 0; k < 3; ++k) {
+        const float d = query_mm[k] - indexed[std::size_t(i)][k];
+        distance_sq += d * d;
+      }
+      if (distance_sq < best || (distance_sq == best && best_index >= 0 && i < best_index)) {
+        best = distance_sq;
+        best_index = i;
+      }
+    }
+  return best_index;
 }
 
 } // namespace scanpick::core

@@ -71,9 +71,23 @@ public:
   [[nodiscard]] std::int64_t nearest(const Eigen::Vector3f& query_mm, float max_distance_sq,
                                      float* distance_sq = nullptr) const;
 
+  /// Organized clouds: nearest() among the points of the pixels within `half_u` columns and
+  /// `half_v` rows of pixel (u, v) only, with the same distances and tie rule; -1 when none of them
+  /// is that close, or the cloud was not organized. It equals nearest() whenever every indexed
+  /// point that close lies in the window.
+  [[nodiscard]] std::int64_t nearestInWindow(const Eigen::Vector3f& query_mm, float max_distance_sq,
+                                             int u, int v, int half_u, int half_v) const;
+  /// Organized clouds: the index of each pixel's point (-1 where none), row by row; empty when the
+  /// cloud was not organized.
+  [[nodiscard]] const std::vector<std::int32_t>& pixelIndex() const { return m_pixel_index; }
+  [[nodiscard]] int width() const { return m_width; }   ///< of the organized cloud, else 0
+  [[nodiscard]] int height() const { return m_height; } ///< of the organized cloud, else 0
+
 private:
   struct Tree;
   SceneIndexOptions m_options;
+  std::vector<std::int32_t> m_pixel_index;
+  int m_width = 0, m_height = 0;
   std::vector<Eigen::Vector3f> m_normals;
   std::vector<float> m_variation;
   float m_typical_variation = 0.0f;

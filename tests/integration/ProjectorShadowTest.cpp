@@ -1,7 +1,8 @@
 // Projector shadows (beyond the thesis): where a structured-light scan has no point because
 // measured surface kept the projector's light off (a cup's inside behind its rim, the floor beside
 // a part), verification counts the model neither confirmed nor missing there; so also where the
-// part's own body, as a view of a surface of revolution stands for it, hides it.
+// part's own body, as a view of a surface of revolution stands for it, hides it. And the same
+// verification looking for scene points in pixel windows of the organized scan.
 #include "core/pipeline/ModelPrep.h"
 #include "tests/integration/SynthTeach.h"
 
@@ -74,6 +75,41 @@ TEST(ProjectorShadow, ShadowedPointsAreNeitherConfirmedNorExpected) {
   EXPECT_EQ(t_knowing.confirmed, t_blind.confirmed); // the shadow takes only unmeasured points
   EXPECT_EQ(t_knowing.violations, t_blind.violations);
   EXPECT_GE(q_knowing, q_blind);
+}
+
+TEST(ProjectorShadow, PixelWindowsVerifyAsTheKdTreeDoes) {
+  // On an organized scan whose points lie where the sensor projects them, verification looks for
+  // a model point's scene neighbours in the pixel window that must hold them: the same tallies.
+  const RecognitionParams params = test::bundledPreset("phoxi-bin");
+  const test::VerifyCase c = test::verifyCase("cup", params, 5, 9, 0);
+  const float slack = pixelWindowSlack(*c.index, c.scan.sensor);
+  EXPECT_GE(slack, 0.0f);
+  EXPECT_LT(slack, 0.01f) << "the renderer puts each point on its pixel's ray";
+  const ProjectorShadow shadow(c.scan.render.cloud, c.scan.sensor);
+  const VerifyScene tree{c.index.get(), &c.scan.render.cloud, &c.scan.sensor, std::nullopt,
+                         &shadow};
+  VerifyScene windows = tree;
+  windows.pixel_slack = slack;
+  const double tolerance = params.matching.verify_tolerance_mm;
+  std::size_t confirmed = 0;
+  for (const double shift_mm : {0.0, 0.4, 0.9, 3.0}) {
+    Eigen::Isometry3d T = c.T_true;
+    T.translation() += Eigen::Vector3d(shift_mm, -0.5 * shift_mm, 0.3 * shift_mm);
+    T.linear() = T.linear() * Eigen::AngleAxisd(0.01 * shift_mm, Eigen::Vector3d::UnitX());
+    const PointTally a = tallyPoints(*c.view, tree, T, tolerance);
+    const PointTally b = tallyPoints(*c.view, windows, T, tolerance);
+    EXPECT_EQ(b.confirmed, a.confirmed) << "shifted " << shift_mm << " mm";
+    EXPECT_EQ(b.violations, a.violations);
+    EXPECT_EQ(b.hidden, a.hidden);
+    EXPECT_EQ(b.shadowed, a.shadowed);
+    confirmed += a.confirmed;
+  }
+  EXPECT_GT(confirmed, c.view->points.size()) << "poses the scan confirms in part";
+  // An unorganized index, or a sensor of another size: no windows.
+  EXPECT_LT(pixelWindowSlack(SceneIndex(dropInvalid(c.floor.remaining)), c.scan.sensor), 0.0f);
+  SensorModel other = c.scan.sensor;
+  other.width /= 2;
+  EXPECT_LT(pixelWindowSlack(*c.index, other), 0.0f);
 }
 
 TEST(ProjectorShadow, AnUprightCupsBodyHidesPartOfItsInside) {

@@ -64,6 +64,32 @@ TEST(SceneIndex, WithoutNormalsItFindsTheSameNearestPoints) {
   }
 }
 
+TEST(SceneIndex, APixelWindowFindsWhatTheTreeFindsWithinIt) {
+  // f 500 px at 600 mm: 1.2 mm per pixel, so points within 1 mm of a query lie within two
+  // pixels of its own.
+  const auto scan = floorScan(0.3);
+  const core::SceneIndex index(scan);
+  ASSERT_EQ(index.width(), 200);
+  ASSERT_EQ(index.pixelIndex().size(), scan.size());
+  std::size_t found = 0;
+  for (std::size_t pixel = 0; pixel < scan.size(); pixel += 37) {
+    const std::int32_t k = index.pixelIndex()[pixel];
+    if (k < 0)
+      continue;
+    const int u = int(pixel % 200), v = int(pixel / 200);
+    const Eigen::Vector3f query =
+        index.points()[std::size_t(k)] + Eigen::Vector3f(0.5f, 0.4f, 0.3f);
+    const std::int64_t near = index.nearest(query, 1.0f);
+    EXPECT_EQ(index.nearestInWindow(query, 1.0f, u, v, 2, 2), near);
+    found += near >= 0;
+    EXPECT_LT(index.nearestInWindow(query, 1.0f, u + 10, v, 2, 2), 0) << "window elsewhere";
+  }
+  EXPECT_GT(found, 500u);
+  const core::SceneIndex unorganized(core::dropInvalid(scan));
+  EXPECT_TRUE(unorganized.pixelIndex().empty());
+  EXPECT_LT(unorganized.nearestInWindow(unorganized.points()[0], 1.0f, 0, 0, 2, 2), 0);
+}
+
 TEST(SceneIndex, OwnNormalsAreUsedAndTurnedTowardsTheViewpoint) {
   auto cloud = core::dropInvalid(floorScan(0.0));
   cloud.normals.assign(cloud.size(), Eigen::Vector3f(0, 0, 1)); // pointing away from the camera
