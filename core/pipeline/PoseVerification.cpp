@@ -133,11 +133,12 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
       // A scene point within the tolerance projects within `reach` pixels of the model point's
       // pixel: the pinhole's slope over a sphere of that radius, the scan's slack and rounding.
       const double z = p.z(), beyond = z - tolerance_mm;
-      const Eigen::Vector2d uv = sensor.project(p.cast<double>());
-      const double reach_u =
-          sensor.fx * tolerance_mm * (1.0 + std::abs(p.x()) / z) / beyond + 0.5 + slack;
-      const double reach_v =
-          sensor.fy * tolerance_mm * (1.0 + std::abs(p.y()) / z) / beyond + 0.5 + slack;
+      // Clamped, so that a point just in front of the camera cannot overflow an int.
+      const Eigen::Vector2d uv = sensor.project(p.cast<double>()).cwiseMax(-1e6).cwiseMin(1e6);
+      const double reach_u = std::min(
+          1e6, sensor.fx * tolerance_mm * (1.0 + std::abs(p.x()) / z) / beyond + 0.5 + slack);
+      const double reach_v = std::min(
+          1e6, sensor.fy * tolerance_mm * (1.0 + std::abs(p.y()) / z) / beyond + 0.5 + slack);
       near = index.nearestInWindow(p, tol_sq, int(std::lround(uv.x())), int(std::lround(uv.y())),
                                    int(reach_u), int(reach_v));
     } else if (!turned_away) {
