@@ -34,18 +34,28 @@ std::uint16_t planeAngle(const Eigen::Vector3f& local) {
   return static_cast<std::uint16_t>(std::lround(radians * (65536.0f / kTwoPi)) & 0xFFFF);
 }
 
+/// The sampled scene's points in a kd-tree, for the radius searches of the pairing.
+struct SceneTree {
+  explicit SceneTree(const std::vector<Eigen::Vector3f>& points)
+      : source{&points}, tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
+    tree.buildIndex();
+  }
+  PointVectorSource source;
+  PointKdTree tree;
+};
+
 /// The pairs of reference point `s` with its neighbours within `radius_sq` (mm²) in `tree`, in
 /// the reference's local frame `to_local`, appended to `out`: those whose key `wanted(key)` takes
 /// (their angle is computed only for those).
 template <typename Wanted>
-void pairReference(const OrientedPoints& scene, const PointKdTree& tree, std::size_t s,
+void pairReference(const OrientedPoints& scene, const SceneTree& tree, std::size_t s,
                    const Eigen::Isometry3f& to_local, const PairQuantizer& quantizer,
                    float radius_sq, Wanted&& wanted, std::vector<ScenePairs::Pair>& out) {
   const Eigen::Vector3f& p = scene.points[s];
   const Eigen::Vector3f& n = scene.normals[s];
   std::vector<std::pair<std::uint32_t, float>> neighbours;
   // The votes are counts: the order in which the neighbours are visited does not matter.
-  tree.radiusSearch(p.data(), radius_sq, neighbours, nanoflann::SearchParams(32, 0.0f, false));
+  tree.tree.radiusSearch(p.data(), radius_sq, neighbours, nanoflann::SearchParams(32, 0.0f, false));
   out.reserve(out.size() + neighbours.size());
   for (const auto& [i, distance_sq] : neighbours) {
     if (i == s)
@@ -160,9 +170,7 @@ ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantiz
   const std::size_t n_refs = n_scene < 2 ? 0 : (n_scene + stride - 1) / stride;
   if (n_refs == 0)
     return;
-  PointVectorSource source{&scene.points};
-  PointKdTree tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10));
-  tree.buildIndex();
+  const SceneTree tree(scene.points);
   const auto radius_sq = static_cast<float>(radius_mm * radius_mm);
   m_reference_points.resize(n_refs);
   m_to_local.resize(n_refs);
@@ -231,9 +239,7 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
   // Each reference is paired as it votes, with its pairs of keys in the table only: without a
   // second view to share them (ScenePairs), most of a sparse table's pairs need no angle.
   const auto stride = static_cast<std::size_t>(std::max(1, options.reference_stride));
-  PointVectorSource source{&scene.points};
-  PointKdTree tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10));
-  tree.buildIndex();
+  const SceneTree tree(scene.points);
   const auto radius_sq = static_cast<float>(m_diameter_mm * m_diameter_mm);
   std::vector<ReferencePeak> peaks((n_scene + stride - 1) / stride);
   parallelForWithProgress(

@@ -113,7 +113,7 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
   const Eigen::Vector3f camera_model = T_model_scene.translation();
   const Eigen::Vector3f projector_model = T_model_scene * sensor.projectorPosition().cast<float>();
   const double slack = scene.pixel_slack;
-  const bool windowed = organized && slack >= 0.0 && slack <= 1.0 &&
+  const bool windowed = organized && slack >= 0.0 && slack <= kMaxPixelWindowSlack &&
                         index.width() == sensor.width && index.height() == sensor.height;
   const auto tolerance = static_cast<float>(tolerance_mm);
   PointTally tally;

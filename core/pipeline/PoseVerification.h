@@ -87,11 +87,16 @@ struct VerifyScene {
   std::optional<Eigen::Vector4f> floor_plane;
   /// The scan's projector shadows; none: unmeasured points are expected like any other.
   const ProjectorShadow* shadow = nullptr;
-  /// pixelWindowSlack of `index` and `sensor`: from 0 to 1, a model point's scene neighbour is
-  /// looked for in the pixel window that must hold it (SceneIndex::nearestInWindow) instead of
-  /// the kd-tree, with the same answers; negative (or larger): by the kd-tree.
+  /// pixelWindowSlack of `index` and `sensor`: from 0 to kMaxPixelWindowSlack, a model point's
+  /// scene neighbour is looked for in the pixel window that must hold it
+  /// (SceneIndex::nearestInWindow) instead of the kd-tree, with the same answers; negative (or
+  /// larger): by the kd-tree.
   float pixel_slack = -1.0f;
 };
+
+/// Largest pixelWindowSlack (px) at which verification looks in pixel windows: beyond it the
+/// scan and the sensor model disagree, and the windows would grow.
+inline constexpr float kMaxPixelWindowSlack = 1.0f;
 
 /// How far (pixels) the points of an index of an organized scan lie from where `sensor` projects
 /// them at most; negative when the index is not of an organized scan of the sensor's size (or a

@@ -379,8 +379,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
       cache.pixel_slack = pixelWindowSlack(*cache.scene_index, sensor);
       cache.slack_key = slack_key;
       logger()->debug("the scan's points lie within {:.3f} px of where the sensor projects them "
-                      "(verification looks in pixel windows up to 1 px)",
-                      cache.pixel_slack);
+                      "(verification looks in pixel windows up to {} px)",
+                      cache.pixel_slack, kMaxPixelWindowSlack);
     }
     prep = detail::prepareModel(cache.model_preps, model, params);
     result.timings.matching_ms += msSince(t0);
