@@ -5,6 +5,7 @@
 #include "app/cli/Commands.h"
 #include "core/common/Error.h"
 #include "core/eval/Evaluator.h"
+#include "core/eval/RenderCheck.h"
 #include "core/eval/ReportFormat.h"
 
 #include <iostream>
@@ -18,6 +19,7 @@ struct EvalOptions {
   std::vector<std::string> teach_truths;
   core::eval::Tolerances tolerances;
   bool details = false;
+  double render_check_mm = 0.0;
 };
 
 int runEval(const EvalOptions& o) {
@@ -29,9 +31,17 @@ int runEval(const EvalOptions& o) {
                                                        o.teach_truths.end());
   const auto teach = core::eval::loadTeachTruths(teach_paths, o.suite);
 
-  const core::eval::EvalReport report =
+  core::eval::EvalReport report =
       o.suite.empty() ? core::eval::evaluateFiles(o.truth, o.results, teach, o.tolerances)
                       : core::eval::evaluateSuite(o.suite, o.results, teach, o.tolerances);
+  if (o.render_check_mm > 0)
+    report = core::eval::withRenderCheck(
+        std::move(report),
+        [&](const std::string& scene) {
+          return o.suite.empty() ? std::filesystem::path(o.truth)
+                                 : std::filesystem::path(o.suite) / (scene + ".gt.json");
+        },
+        o.render_check_mm);
   std::cout << core::eval::reportToTable(report, o.details);
   if (!o.json.empty()) {
     core::eval::saveReportJson(o.json, report);
@@ -78,6 +88,12 @@ void registerEvalCommand(CLI::App& app) {
                 "part's turn about that axis) up to a turn about it, and one that reports "
                 "alternative_poses (turns its scan cannot tell apart) by the best of them; "
                 "default: strictly");
+  sub->add_option("--render-check", o->render_check_mm,
+                  "Also render each scene's ground truth again (noise-free) with each detection's "
+                  "part at its pose instead of the nearest instance's, and report the share of "
+                  "that instance's pixels whose depth then differs by more than this many mm: "
+                  "near 0 when the scan cannot tell the pose from the truth (built-in parts only)")
+      ->check(CLI::NonNegativeNumber);
   sub->add_flag("--details", o->details,
                 "Also list each detection (one scene) or each scene (suite)");
 }

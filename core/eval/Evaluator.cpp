@@ -125,6 +125,7 @@ SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& resul
     DetectionOutcome outcome;
     outcome.detection_id = detection.id;
     outcome.score = detection.score;
+    outcome.T_scene_part = detection.T_scene_model * T_model_part[detection.model];
     // Reported alternative poses are scored as poses of this detection too (the best one counts).
     std::vector<Estimate> estimates{estimate(detection.T_scene_model, detection.free_turn_axis)};
     if (tolerances.accept_free_turns)
@@ -181,7 +182,7 @@ Summary summarize(const std::vector<SceneEvaluation>& scenes, const std::string&
     bool tp, recall;
   };
   std::vector<Pooled> pooled;
-  std::vector<double> translation, rotation, grip, time;
+  std::vector<double> translation, rotation, grip, time, render_tp, render_fp;
   for (const auto& scene : scenes) {
     ++s.scenes;
     s.instances += scene.instances;
@@ -191,6 +192,8 @@ Summary summarize(const std::vector<SceneEvaluation>& scenes, const std::string&
     for (const auto& o : scene.outcomes) {
       ++s.detections;
       pooled.push_back({o.score, o.true_positive, o.counts_for_recall});
+      if (o.render_difference)
+        (o.true_positive ? render_tp : render_fp).push_back(*o.render_difference);
       if (!o.true_positive)
         continue;
       ++s.true_positives;
@@ -239,6 +242,8 @@ Summary summarize(const std::vector<SceneEvaluation>& scenes, const std::string&
   s.rotation_deg = computeStats(std::move(rotation));
   s.grip_mm = computeStats(std::move(grip));
   s.time_ms = computeStats(std::move(time));
+  s.render_difference_tp = computeStats(std::move(render_tp));
+  s.render_difference_fp = computeStats(std::move(render_fp));
   return s;
 }
 

@@ -27,6 +27,11 @@ struct DetectionOutcome {
   /// scene holds no instance of the part.
   std::optional<PoseError> error;
   int nearest_instance_id = -1;
+  /// The detection's own part pose (scene frame, mm): T_scene_model · T_model_part.
+  Eigen::Isometry3d T_scene_part = Eigen::Isometry3d::Identity();
+  /// The render check (RenderCheck.h), when it was run: the share of the pixels of the instance
+  /// the detection lies on that a scan would see differently with the part at T_scene_part.
+  std::optional<double> render_difference;
 };
 
 /// One scene's evaluation.
@@ -62,6 +67,8 @@ struct Summary {
   double average_precision = 0.0; ///< area under the interpolated precision-recall curve
   Stats translation_mm, rotation_deg, grip_mm; ///< over true positives
   Stats time_ms;                               ///< per scene with timings
+  /// The render check's differing shares of true and of false positives (empty when not run).
+  Stats render_difference_tp, render_difference_fp;
 };
 
 /// Metrics over `scenes` (label names the group).

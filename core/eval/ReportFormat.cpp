@@ -21,23 +21,28 @@ Json statsToJson(const Stats& s) {
 }
 
 Json summaryToJson(const Summary& s) {
-  return {{"label", s.label},
-          {"scenes", s.scenes},
-          {"detections", s.detections},
-          {"true_positives", s.true_positives},
-          {"false_positives", s.detections - s.true_positives},
-          {"instances", s.instances},
-          {"visible_instances", s.visible_instances},
-          {"recalled_visible_instances", s.recalled_visible},
-          {"precision", optionalToJson(s.precision)},
-          {"recall", optionalToJson(s.recall)},
-          {"recall_at_99_precision", s.recall_at_99_precision},
-          {"threshold_at_99_precision", optionalToJson(s.threshold_at_99_precision)},
-          {"average_precision", s.average_precision},
-          {"translation_error_mm", statsToJson(s.translation_mm)},
-          {"rotation_error_deg", statsToJson(s.rotation_deg)},
-          {"grip_error_mm", statsToJson(s.grip_mm)},
-          {"time_per_scene_ms", statsToJson(s.time_ms)}};
+  Json out{{"label", s.label},
+           {"scenes", s.scenes},
+           {"detections", s.detections},
+           {"true_positives", s.true_positives},
+           {"false_positives", s.detections - s.true_positives},
+           {"instances", s.instances},
+           {"visible_instances", s.visible_instances},
+           {"recalled_visible_instances", s.recalled_visible},
+           {"precision", optionalToJson(s.precision)},
+           {"recall", optionalToJson(s.recall)},
+           {"recall_at_99_precision", s.recall_at_99_precision},
+           {"threshold_at_99_precision", optionalToJson(s.threshold_at_99_precision)},
+           {"average_precision", s.average_precision},
+           {"translation_error_mm", statsToJson(s.translation_mm)},
+           {"rotation_error_deg", statsToJson(s.rotation_deg)},
+           {"grip_error_mm", statsToJson(s.grip_mm)},
+           {"time_per_scene_ms", statsToJson(s.time_ms)}};
+  if (s.render_difference_tp.count + s.render_difference_fp.count > 0) {
+    out["render_difference_true_positives"] = statsToJson(s.render_difference_tp);
+    out["render_difference_false_positives"] = statsToJson(s.render_difference_fp);
+  }
+  return out;
 }
 
 std::string format(const char* pattern, double value) {
@@ -96,6 +101,8 @@ nlohmann::ordered_json reportToJson(const EvalReport& report) {
         d["rotation_error_deg"] = o.error->rotation_deg;
         d["grip_error_mm"] = o.error->grip_mm;
       }
+      if (o.render_difference)
+        d["render_difference"] = *o.render_difference;
       detections.push_back(std::move(d));
     }
     doc["scenes"].push_back({{"name", scene.name},
@@ -139,19 +146,25 @@ std::string reportToTable(const EvalReport& report, bool details) {
     writeStatsRow(out, "rotation (deg)", s->rotation_deg);
     writeStatsRow(out, "at grip points (mm)", s->grip_mm);
     writeStatsRow(out, "time per scene (ms)", s->time_ms);
+    if (s->render_difference_tp.count + s->render_difference_fp.count > 0) {
+      out << "render check (" << s->label << "): share of pixels seen differently\n";
+      writeStatsRow(out, "true positives", s->render_difference_tp);
+      writeStatsRow(out, "false positives", s->render_difference_fp);
+    }
   }
 
   if (details) {
     out << "\n";
     if (report.scenes.size() == 1) {
       out << pad("detection", 10) << pad("score", 8) << pad("result", 8) << pad("instance", 10)
-          << pad("t err mm", 10) << pad("r err deg", 11) << "\n";
+          << pad("t err mm", 10) << pad("r err deg", 11) << pad("render", 8) << "\n";
       for (const auto& o : report.scenes.front().outcomes)
         out << pad(std::to_string(o.detection_id), 10) << pad(format("%.3f", o.score), 8)
             << pad(o.true_positive ? "TP" : "FP", 8)
             << pad(o.error ? std::to_string(o.nearest_instance_id) : "-", 10)
             << pad(o.error ? format("%.3f", o.error->translation_mm) : "-", 10)
-            << pad(o.error ? format("%.2f", o.error->rotation_deg) : "-", 11) << "\n";
+            << pad(o.error ? format("%.2f", o.error->rotation_deg) : "-", 11)
+            << pad(o.render_difference ? format("%.3f", *o.render_difference) : "-", 8) << "\n";
     } else {
       out << pad("scene", 18, true) << pad("part", 18, true) << pad("det", 5) << pad("TP", 5)
           << pad("visible", 9) << pad("ms", 10) << "\n";

@@ -73,9 +73,15 @@ TEST(CliRepeatability, TwoRecognizeRunsWriteTheSameResults) {
                 "--name", "support", "--out", quoted(d / (std::string(view) + ".spmodel"))}),
         0);
   // A view's own matching parameters are stored in its model; one out of range writes nothing.
-  const std::vector<std::string> teach_own{"teach", "--scan", quoted(d / "support-teach.pcd"),
-                                           "--crop-from-truth", quoted(d / "support-teach.gt.json"),
-                                           "--preset", preset, "--out", quoted(d / "own.spmodel"),
+  const std::vector<std::string> teach_own{"teach",
+                                           "--scan",
+                                           quoted(d / "support-teach.pcd"),
+                                           "--crop-from-truth",
+                                           quoted(d / "support-teach.gt.json"),
+                                           "--preset",
+                                           preset,
+                                           "--out",
+                                           quoted(d / "own.spmodel"),
                                            "--view-set"};
   std::vector<std::string> outside = teach_own;
   outside.push_back("matching.min_coverage=1.5");
@@ -159,6 +165,32 @@ TEST(CliDemo, TeachesRecognizesAndWritesResultsAndPicture) {
   EXPECT_EQ(std::string(magic + 1, 3), "PNG");
   // A bad preset fails with a non-zero exit code instead of writing anything misleading.
   EXPECT_NE(runCli({"demo", "--out", quoted(dir.path() / "bad"), "--preset", "no-such-preset"}), 0);
+
+  // Scored with the render check: each found support lies where the scan cannot tell it from
+  // the truth (measured: at most 0.034 of its pixels differ by more than 1 mm).
+  const std::vector<std::string> eval{"eval",
+                                      "--truth",
+                                      quoted(d / "demo-bin.gt.json"),
+                                      "--results",
+                                      quoted(d / "demo-results.json"),
+                                      "--teach-truth",
+                                      quoted(d / "support-teach.gt.json"),
+                                      "--teach-truth",
+                                      quoted(d / "support-teach-side1.gt.json"),
+                                      "--render-check",
+                                      "1",
+                                      "--json",
+                                      quoted(d / "eval.json")};
+  ASSERT_EQ(runCli(eval), 0);
+  std::ifstream report_in(d / "eval.json");
+  const nlohmann::json report = nlohmann::json::parse(report_in);
+  const auto& scored = report.at("scenes").at(0).at("detections");
+  ASSERT_EQ(scored.size(), results.at("detections").size());
+  for (const auto& detection : scored) {
+    EXPECT_TRUE(detection.at("true_positive").get<bool>());
+    EXPECT_LT(detection.at("render_difference").get<double>(), 0.1);
+  }
+  EXPECT_EQ(report.at("overall").at("render_difference_true_positives").at("count"), scored.size());
 }
 
 TEST(CliSynth, OpenMeshIsRefusedUnlessItsHolesAreClosed) {
@@ -182,6 +214,9 @@ TEST(CliSynth, OpenMeshIsRefusedUnlessItsHolesAreClosed) {
             0);
   EXPECT_EQ(scanpick::core::openEdgeCount(scanpick::core::loadMesh(closed)), 0u);
   // --close-holes belongs to a mesh file.
-  EXPECT_NE(runCli({"synth", "--part", "support", "--close-holes", "--out", quoted(dir.path() / "t")}, log), 0);
+  EXPECT_NE(
+      runCli({"synth", "--part", "support", "--close-holes", "--out", quoted(dir.path() / "t")},
+             log),
+      0);
   EXPECT_NE(readText(log).find("--mesh"), std::string::npos) << readText(log);
 }

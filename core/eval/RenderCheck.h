@@ -1,0 +1,73 @@
+#pragma once
+/// @file RenderCheck.h
+/// Whether a scan could tell a pose from the truth at all: the virtual scanner renders a scene's
+/// ground truth, noise-free, once as it is and once with one instance moved to an estimated pose,
+/// and the two depth images are compared where that instance is seen in either. A detection whose
+/// pose the scan cannot tell from the truth (a turn about an axis whose detail is hidden, a flip
+/// whose differing side faces away) changes almost no pixel; a wrong pose changes many.
+
+#include "core/common/Progress.h"
+#include "core/eval/Evaluator.h"
+#include "core/eval/GroundTruth.h"
+#include "core/sim/Scene.h"
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace scanpick::core::eval {
+
+/// Pixels of one instance in either render, and those where the two renders differ.
+struct RenderDifference {
+  std::size_t pixels = 0;    ///< pixels where the instance is seen in either render
+  std::size_t differing = 0; ///< of those, measured in one render only or > tolerance apart
+  /// differing / pixels, [0, 1]; 1 when the instance is seen in neither render (nothing to tell).
+  [[nodiscard]] double fraction() const {
+    return pixels ? static_cast<double>(differing) / static_cast<double>(pixels) : 1.0;
+  }
+};
+
+/// Renders the instances of a scene's ground truth (built-in parts by name, no bin or floor, no
+/// sensor noise) with its sensor preset, and compares it with the same scene with one instance
+/// moved. The environment is left out: it only shades the parts near the bin walls.
+class TruthRenderer {
+public:
+  /// Throws Error when the truth names no sensor preset or a part that is not built in.
+  explicit TruthRenderer(const GroundTruth& truth);
+
+  /// The scene rendered with instance `instance_id` at `T_scene_part` (part frame → scene, mm)
+  /// compared with the truth: a pixel differs when it is measured in one render only or its depths
+  /// differ by more than `tolerance_mm` (> 0). Throws Error for an unknown instance id or a
+  /// tolerance <= 0.
+  [[nodiscard]] RenderDifference difference(int instance_id, const Eigen::Isometry3d& T_scene_part,
+                                            double tolerance_mm) const;
+
+  /// The id of the instance of `part` whose centre (the middle of the part's bounding box) lies
+  /// nearest to the centre of a part at `T_scene_part`: the instance a detection lies on, even
+  /// one turned end over end; -1 when the scene holds no instance of `part`.
+  [[nodiscard]] int instanceAt(const std::string& part,
+                               const Eigen::Isometry3d& T_scene_part) const;
+
+private:
+  Scene m_scene; ///< the renderer's instance k is the truth's instance m_truth_ids[k]
+  std::vector<int> m_truth_ids;
+  SensorModel m_sensor;
+  std::vector<float> m_depth_mm;      ///< per pixel, NaN where nothing is measured
+  std::vector<std::int32_t> m_labels; ///< per pixel, the instance id seen (RenderResult)
+};
+
+/// `report` with the render check run on every detection (its own pose, not an alternative it
+/// reports) against the instance it matched, or for a false positive the instance it lies on
+/// (TruthRenderer::instanceAt), and its summaries made again. `truth_path` gives each
+/// scene's ground-truth file by the scene's name. Throws Error as TruthRenderer and
+/// loadGroundTruth do.
+EvalReport
+withRenderCheck(EvalReport report,
+                const std::function<std::filesystem::path(const std::string&)>& truth_path,
+                double tolerance_mm, const ProgressFn& progress = {});
+
+} // namespace scanpick::core::eval
