@@ -15,20 +15,46 @@ constexpr double kMinExpectedShare = 0.75;
 /// cos 60°: model and scene normals closer than this agree.
 constexpr float kMinNormalAgreement = 0.5f;
 
+/// The nearest point of `index` within sqrt(max_distance_sq) (scene frame, mm) of `p`: for an index
+/// of an organized scan of `sensor` whose points lie within `slack` (0 to kMaxPixelWindowSlack)
+/// pixels of where the sensor projects them, among the pixels that can hold a point within
+/// `radius_mm` (the pinhole's slope over that sphere, the slack and the rounding); else by the
+/// kd-tree. Both give the same answer.
+std::int64_t nearestPoint(const SceneIndex& index, const SensorModel& sensor, float slack,
+                          const Eigen::Vector3f& p, float max_distance_sq, double radius_mm) {
+  const bool windowed = slack >= 0.0f && slack <= kMaxPixelWindowSlack &&
+                        !index.pixelIndex().empty() && index.width() == sensor.width &&
+                        index.height() == sensor.height && sensor.fx > 0 && sensor.fy > 0;
+  if (!windowed || !(p.z() > radius_mm))
+    return index.nearest(p, max_distance_sq);
+  const double z = p.z(), beyond = z - radius_mm;
+  // Clamped, so that a point just in front of the camera cannot overflow an int.
+  const Eigen::Vector2d uv = sensor.project(p.cast<double>()).cwiseMax(-1e6).cwiseMin(1e6);
+  const double reach_u =
+      std::min(1e6, sensor.fx * radius_mm * (1.0 + std::abs(p.x()) / z) / beyond + 0.5 + slack);
+  const double reach_v =
+      std::min(1e6, sensor.fy * radius_mm * (1.0 + std::abs(p.y()) / z) / beyond + 0.5 + slack);
+  return index.nearestInWindow(p, max_distance_sq, int(std::lround(uv.x())),
+                               int(std::lround(uv.y())), int(reach_u), int(reach_v));
+}
+
 /// Share of the model's keypoints lying on confirmed scene surface that also have a scene keypoint
 /// within the edge tolerance (1 when off or when fewer than 10 lie on surface).
-double edgeAgreement(const VerifyModel& model, const SceneIndex& index, const Eigen::Isometry3f& T,
-                     float surface_tol_sq, const EdgeCheck& edges) {
+double edgeAgreement(const VerifyModel& model, const VerifyScene& scene, const Eigen::Isometry3f& T,
+                     double tolerance_mm, const EdgeCheck& edges) {
   if (!edges.scene_keypoints || edges.tolerance_mm <= 0)
     return 1.0;
+  const auto surface_tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
   const auto edge_tol_sq = static_cast<float>(edges.tolerance_mm * edges.tolerance_mm);
   std::size_t on_surface = 0, on_edge = 0;
   for (const auto& k : model.keypoints) {
     const Eigen::Vector3f p = T * k;
-    if (index.nearest(p, 4.0f * surface_tol_sq) < 0)
+    if (nearestPoint(*scene.index, *scene.sensor, scene.pixel_slack, p, 4.0f * surface_tol_sq,
+                     2.0 * tolerance_mm) < 0)
       continue;
     ++on_surface;
-    if (edges.scene_keypoints->nearest(p, edge_tol_sq) >= 0)
+    if (nearestPoint(*edges.scene_keypoints, *scene.sensor, edges.pixel_slack, p, edge_tol_sq,
+                     edges.tolerance_mm) >= 0)
       ++on_edge;
   }
   return on_surface < 10 ? 1.0 : double(on_edge) / double(on_surface);
@@ -112,10 +138,6 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
   const Eigen::Isometry3f T_model_scene = T.inverse();
   const Eigen::Vector3f camera_model = T_model_scene.translation();
   const Eigen::Vector3f projector_model = T_model_scene * sensor.projectorPosition().cast<float>();
-  const double slack = scene.pixel_slack;
-  const bool windowed = organized && slack >= 0.0 && slack <= kMaxPixelWindowSlack &&
-                        index.width() == sensor.width && index.height() == sensor.height;
-  const auto tolerance = static_cast<float>(tolerance_mm);
   PointTally tally;
   const auto look = [&](std::size_t k) {
     ++tally.points;
@@ -128,22 +150,8 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     const Eigen::Vector3f& n_model = model.normals[k];
     // The camera sits at the scene origin.
     const bool turned_away = n_model.allFinite() && (T.linear() * n_model).dot(-p) <= 0.0f;
-    std::int64_t near = -1;
-    if (!turned_away && windowed && p.z() > tolerance) {
-      // A scene point within the tolerance projects within `reach` pixels of the model point's
-      // pixel: the pinhole's slope over a sphere of that radius, the scan's slack and rounding.
-      const double z = p.z(), beyond = z - tolerance_mm;
-      // Clamped, so that a point just in front of the camera cannot overflow an int.
-      const Eigen::Vector2d uv = sensor.project(p.cast<double>()).cwiseMax(-1e6).cwiseMin(1e6);
-      const double reach_u = std::min(
-          1e6, sensor.fx * tolerance_mm * (1.0 + std::abs(p.x()) / z) / beyond + 0.5 + slack);
-      const double reach_v = std::min(
-          1e6, sensor.fy * tolerance_mm * (1.0 + std::abs(p.y()) / z) / beyond + 0.5 + slack);
-      near = index.nearestInWindow(p, tol_sq, int(std::lround(uv.x())), int(std::lround(uv.y())),
-                                   int(reach_u), int(reach_v));
-    } else if (!turned_away) {
-      near = index.nearest(p, tol_sq);
-    }
+    const std::int64_t near =
+        turned_away ? -1 : nearestPoint(index, sensor, scene.pixel_slack, p, tol_sq, tolerance_mm);
     if (near >= 0) {
       // A surface confirms a point only when it faces the same way: the far face of a thin plate
       // lies within tolerance of the near one's points but turned away.
@@ -188,6 +196,33 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
   return tally;
 }
 
+PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const SensorModel& sensor) {
+  PointCloud image;
+  if (sensor.width > 0 && sensor.height > 0 && sensor.fx > 0 && sensor.fy > 0) {
+    image.width = static_cast<std::uint32_t>(sensor.width);
+    image.height = static_cast<std::uint32_t>(sensor.height);
+    image.points_mm.assign(std::size_t(image.width) * image.height, invalidPoint());
+  }
+  PointCloud list;
+  for (const auto& k : keypoints)
+    list.points_mm.insert(list.points_mm.end(), k.points_mm.begin(), k.points_mm.end());
+  list.width = static_cast<std::uint32_t>(list.points_mm.size());
+  list.height = 1;
+  for (const auto& p : list.points_mm) {
+    if (image.points_mm.empty() || !(p.z() > 0))
+      return list;
+    const Eigen::Vector2d uv = sensor.project(p.cast<double>());
+    const long u = std::lround(uv.x()), v = std::lround(uv.y());
+    if (u < 0 || v < 0 || u >= sensor.width || v >= sensor.height)
+      return list;
+    Eigen::Vector3f& pixel = image.points_mm[std::size_t(v) * image.width + std::size_t(u)];
+    if (isValid(pixel) && pixel != p)
+      return list;
+    pixel = p;
+  }
+  return image;
+}
+
 float pixelWindowSlack(const SceneIndex& index, const SensorModel& sensor) {
   if (index.pixelIndex().empty() || index.width() != sensor.width ||
       index.height() != sensor.height || !(sensor.fx > 0) || !(sensor.fy > 0))
@@ -219,9 +254,8 @@ double verifyPose(const VerifyModel& model, const VerifyScene& scene,
   if (expected <= 0.0)
     return 0.0;
   const double q = (double(t.confirmed) - double(t.violations)) / expected;
-  const auto tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
   return std::clamp(q, 0.0, 1.0) *
-         edgeAgreement(model, *scene.index, T_scene_model.cast<float>(), tol_sq, edges);
+         edgeAgreement(model, scene, T_scene_model.cast<float>(), tolerance_mm, edges);
 }
 
 } // namespace scanpick::core

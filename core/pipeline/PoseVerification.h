@@ -5,6 +5,7 @@
 
 #include "core/cloud/PointCloud.h"
 #include "core/cloud/Sensor.h"
+#include "core/keypoints/Keypoints.h"
 #include "core/matching/RevolutionAxis.h"
 #include "core/model/TaughtModel.h"
 #include "core/refine/SceneIndex.h"
@@ -38,7 +39,16 @@ std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int
 struct EdgeCheck {
   const SceneIndex* scene_keypoints = nullptr; ///< null: no edge check
   double tolerance_mm = 0.0;
+  /// pixelWindowSlack of `scene_keypoints` (indexed as an organized cloud of the sensor's size):
+  /// as VerifyScene::pixel_slack, whether its nearest keypoints are looked for in pixel windows.
+  float pixel_slack = -1.0f;
 };
+
+/// Every object's keypoints in one cloud, for EdgeCheck::scene_keypoints. Keypoints are scan
+/// points: when each projects into its own pixel of `sensor` (a point found twice counted once),
+/// the cloud is organized as the sensor's image with them at their pixels, so that the edge check
+/// looks in pixel windows (pixelWindowSlack); otherwise it is a plain list.
+PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const SensorModel& sensor);
 
 /// What the scan says about a set of model points at one pose.
 struct PointTally {

@@ -134,6 +134,7 @@ struct Recognizer::Cache {
   /// Every object's keypoints in one index (key: keypoint_key), for the edge check.
   std::optional<KeypointKey> edge_key;
   std::shared_ptr<const SceneIndex> edge_index;
+  float edge_slack = -1.0f; ///< pixelWindowSlack of edge_index
   /// Surface voting: the sampled scene (key: pre_key and the sampling).
   std::optional<PreKey> surface_scene_key;
   double surface_scene_sampling = 0.0;
@@ -387,19 +388,20 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   const bool edge_check = verifying && params.matching.edge_tolerance_mm > 0;
   if (edge_check && (cache.edge_key != keypoint_key || !cache.edge_index)) {
-    PointCloud all;
-    for (const auto& k : *cache.keypoints)
-      all.points_mm.insert(all.points_mm.end(), k.points_mm.begin(), k.points_mm.end());
-    all.width = static_cast<std::uint32_t>(all.points_mm.size());
-    all.height = 1;
+    const PointCloud all = edgeKeypointCloud(*cache.keypoints, sensor);
     SceneIndexOptions nearest_only; // the edge check asks for the nearest keypoint only
     nearest_only.estimate_normals = false;
     cache.edge_index =
-        all.points_mm.empty() ? nullptr : std::make_shared<const SceneIndex>(all, nearest_only);
+        all.validCount() == 0 ? nullptr : std::make_shared<const SceneIndex>(all, nearest_only);
+    cache.edge_slack = cache.edge_index ? pixelWindowSlack(*cache.edge_index, sensor) : -1.0f;
+    logger()->debug("edge check: {} keypoints indexed, {} (slack {:.3f} px)",
+                    cache.edge_index ? cache.edge_index->size() : 0,
+                    cache.edge_index && cache.edge_index->width() > 0 ? "by pixel" : "as a list",
+                    cache.edge_slack);
     cache.edge_key = keypoint_key;
   }
   const EdgeCheck edges{edge_check ? cache.edge_index.get() : nullptr,
-                        params.matching.edge_tolerance_mm};
+                        params.matching.edge_tolerance_mm, cache.edge_slack};
   const double sampling_mm = params.matching.surface_sampling_mm;
   const bool surface = verifying && sampling_mm > 0 && prep;
   std::shared_ptr<const ScenePairs> scene_pairs;

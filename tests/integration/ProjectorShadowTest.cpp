@@ -3,6 +3,7 @@
 // a part), verification counts the model neither confirmed nor missing there; so also where the
 // part's own body, as a view of a surface of revolution stands for it, hides it. And the same
 // verification looking for scene points in pixel windows of the organized scan.
+#include "core/keypoints/Keypoints.h"
 #include "core/pipeline/ModelPrep.h"
 #include "tests/integration/SynthTeach.h"
 
@@ -110,6 +111,44 @@ TEST(ProjectorShadow, PixelWindowsVerifyAsTheKdTreeDoes) {
   SensorModel other = c.scan.sensor;
   other.width /= 2;
   EXPECT_LT(pixelWindowSlack(*c.index, other), 0.0f);
+}
+
+TEST(ProjectorShadow, TheEdgeCheckLooksInPixelWindowsAsInTheKdTree) {
+  // The scene's keypoints put at their pixels (edgeKeypointCloud) let the edge check look in pixel
+  // windows too: the same scores as with them in a list and the kd-tree.
+  const RecognitionParams params = test::bundledPreset("phoxi-bin");
+  ASSERT_GT(params.matching.edge_tolerance_mm, 0.0);
+  const test::VerifyCase c = test::verifyCase("support", params, 5, 9, 0);
+  const Keypoints keypoints = extractKeypoints(dropInvalid(c.floor.remaining), params.keypoints);
+  ASSERT_GT(keypoints.points_mm.size(), 100u);
+  const PointCloud image = edgeKeypointCloud({keypoints, keypoints}, c.scan.sensor);
+  ASSERT_EQ(int(image.width), c.scan.sensor.width) << "each keypoint in its own pixel";
+  ASSERT_EQ(image.validCount(), keypoints.points_mm.size()) << "found twice, counted once";
+  PointCloud list = PointCloud::fromPoints(keypoints.points_mm);
+  SceneIndexOptions nearest_only;
+  nearest_only.estimate_normals = false;
+  const SceneIndex by_pixel(image, nearest_only), as_list(list, nearest_only);
+  const float slack = pixelWindowSlack(by_pixel, c.scan.sensor);
+  EXPECT_GE(slack, 0.0f);
+  EXPECT_LT(slack, 0.01f);
+  const double tolerance = params.matching.verify_tolerance_mm;
+  const EdgeCheck tree{&as_list, params.matching.edge_tolerance_mm};
+  const EdgeCheck windows{&by_pixel, params.matching.edge_tolerance_mm, slack};
+  VerifyScene scene{c.index.get(), &c.scan.render.cloud, &c.scan.sensor};
+  scene.pixel_slack = pixelWindowSlack(*c.index, c.scan.sensor);
+  bool edges_decide = false;
+  for (const double shift_mm : {0.0, 0.8, 1.6, 3.0}) {
+    Eigen::Isometry3d T = c.T_true;
+    T.translation() += Eigen::Vector3d(shift_mm, 0.5 * shift_mm, -0.2 * shift_mm);
+    const double a = verifyPose(*c.view, scene, T, tolerance, tree);
+    EXPECT_EQ(verifyPose(*c.view, scene, T, tolerance, windows), a) << "shifted " << shift_mm;
+    edges_decide = edges_decide || a != verifyPose(*c.view, scene, T, tolerance, {});
+  }
+  EXPECT_TRUE(edges_decide) << "the edge check lowers the score of a shifted pose";
+  // Points that share a pixel cannot be put at their pixels: a list then.
+  PointCloud doubled = list;
+  doubled.points_mm.push_back(list.points_mm.front() + Eigen::Vector3f(0.01f, 0.0f, 0.0f));
+  EXPECT_EQ(edgeKeypointCloud({Keypoints{doubled.points_mm}}, c.scan.sensor).height, 1u);
 }
 
 TEST(ProjectorShadow, AnUprightCupsBodyHidesPartOfItsInside) {
