@@ -15,29 +15,6 @@ constexpr double kMinExpectedShare = 0.75;
 /// cos 60°: model and scene normals closer than this agree.
 constexpr float kMinNormalAgreement = 0.5f;
 
-/// The nearest point of `index` within sqrt(max_distance_sq) (scene frame, mm) of `p`: for an index
-/// of an organized scan of `sensor` whose points lie within `slack` (0 to kMaxPixelWindowSlack)
-/// pixels of where the sensor projects them, among the pixels that can hold a point within
-/// `radius_mm` (the pinhole's slope over that sphere, the slack and the rounding); else by the
-/// kd-tree. Both give the same answer.
-std::int64_t nearestPoint(const SceneIndex& index, const SensorModel& sensor, float slack,
-                          const Eigen::Vector3f& p, float max_distance_sq, double radius_mm) {
-  const bool windowed = slack >= 0.0f && slack <= kMaxPixelWindowSlack &&
-                        !index.pixelIndex().empty() && index.width() == sensor.width &&
-                        index.height() == sensor.height && sensor.fx > 0 && sensor.fy > 0;
-  if (!windowed || !(p.z() > radius_mm))
-    return index.nearest(p, max_distance_sq);
-  const double z = p.z(), beyond = z - radius_mm;
-  // Clamped, so that a point just in front of the camera cannot overflow an int.
-  const Eigen::Vector2d uv = sensor.project(p.cast<double>()).cwiseMax(-1e6).cwiseMin(1e6);
-  const double reach_u =
-      std::min(1e6, sensor.fx * radius_mm * (1.0 + std::abs(p.x()) / z) / beyond + 0.5 + slack);
-  const double reach_v =
-      std::min(1e6, sensor.fy * radius_mm * (1.0 + std::abs(p.y()) / z) / beyond + 0.5 + slack);
-  return index.nearestInWindow(p, max_distance_sq, int(std::lround(uv.x())),
-                               int(std::lround(uv.y())), int(reach_u), int(reach_v));
-}
-
 /// Share of the model's keypoints lying on confirmed scene surface that also have a scene keypoint
 /// within the edge tolerance (1 when off or when fewer than 10 lie on surface).
 double edgeAgreement(const VerifyModel& model, const VerifyScene& scene, const Eigen::Isometry3f& T,
@@ -49,12 +26,10 @@ double edgeAgreement(const VerifyModel& model, const VerifyScene& scene, const E
   std::size_t on_surface = 0, on_edge = 0;
   for (const auto& k : model.keypoints) {
     const Eigen::Vector3f p = T * k;
-    if (nearestPoint(*scene.index, *scene.sensor, scene.pixel_slack, p, 4.0f * surface_tol_sq,
-                     2.0 * tolerance_mm) < 0)
+    if (scene.index->nearest(p, 4.0f * surface_tol_sq) < 0)
       continue;
     ++on_surface;
-    if (nearestPoint(*edges.scene_keypoints, *scene.sensor, edges.pixel_slack, p, edge_tol_sq,
-                     edges.tolerance_mm) >= 0)
+    if (edges.scene_keypoints->nearest(p, edge_tol_sq) >= 0)
       ++on_edge;
   }
   return on_surface < 10 ? 1.0 : double(on_edge) / double(on_surface);
@@ -150,8 +125,7 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     const Eigen::Vector3f& n_model = model.normals[k];
     // The camera sits at the scene origin.
     const bool turned_away = n_model.allFinite() && (T.linear() * n_model).dot(-p) <= 0.0f;
-    const std::int64_t near =
-        turned_away ? -1 : nearestPoint(index, sensor, scene.pixel_slack, p, tol_sq, tolerance_mm);
+    const std::int64_t near = turned_away ? -1 : index.nearest(p, tol_sq);
     if (near >= 0) {
       // A surface confirms a point only when it faces the same way: the far face of a thin plate
       // lies within tolerance of the near one's points but turned away.
@@ -221,26 +195,6 @@ PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const Sens
     pixel = p;
   }
   return image;
-}
-
-float pixelWindowSlack(const SceneIndex& index, const SensorModel& sensor) {
-  if (index.pixelIndex().empty() || index.width() != sensor.width ||
-      index.height() != sensor.height || !(sensor.fx > 0) || !(sensor.fy > 0))
-    return -1.0f;
-  double slack = 0.0;
-  for (int v = 0; v < index.height(); ++v)
-    for (int u = 0; u < index.width(); ++u) {
-      const std::int32_t i =
-          index.pixelIndex()[std::size_t(v) * std::size_t(index.width()) + std::size_t(u)];
-      if (i < 0)
-        continue;
-      const Eigen::Vector3d p = index.points()[std::size_t(i)].cast<double>();
-      if (!(p.z() > 0))
-        return -1.0f;
-      const Eigen::Vector2d uv = sensor.project(p);
-      slack = std::max({slack, std::abs(uv.x() - u), std::abs(uv.y() - v)});
-    }
-  return float(slack);
 }
 
 double verifyPose(const VerifyModel& model, const VerifyScene& scene,

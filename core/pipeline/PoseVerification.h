@@ -39,15 +39,13 @@ std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int
 struct EdgeCheck {
   const SceneIndex* scene_keypoints = nullptr; ///< null: no edge check
   double tolerance_mm = 0.0;
-  /// pixelWindowSlack of `scene_keypoints` (indexed as an organized cloud of the sensor's size):
-  /// as VerifyScene::pixel_slack, whether its nearest keypoints are looked for in pixel windows.
-  float pixel_slack = -1.0f;
 };
 
 /// Every object's keypoints in one cloud, for EdgeCheck::scene_keypoints. Keypoints are scan
 /// points: when each projects into its own pixel of `sensor` (a point found twice counted once),
 /// the cloud is organized as the sensor's image with them at their pixels, so that the edge check
-/// looks in pixel windows (pixelWindowSlack); otherwise it is a plain list.
+/// looks in pixel windows when it is indexed with the sensor (SceneIndexOptions::sensor);
+/// otherwise it is a plain list.
 PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const SensorModel& sensor);
 
 /// What the scan says about a set of model points at one pose.
@@ -97,21 +95,7 @@ struct VerifyScene {
   std::optional<Eigen::Vector4f> floor_plane;
   /// The scan's projector shadows; none: unmeasured points are expected like any other.
   const ProjectorShadow* shadow = nullptr;
-  /// pixelWindowSlack of `index` and `sensor`: from 0 to kMaxPixelWindowSlack, a model point's
-  /// scene neighbour is looked for in the pixel window that must hold it
-  /// (SceneIndex::nearestInWindow) instead of the kd-tree, with the same answers; negative (or
-  /// larger): by the kd-tree.
-  float pixel_slack = -1.0f;
 };
-
-/// Largest pixelWindowSlack (px) at which verification looks in pixel windows: beyond it the
-/// scan and the sensor model disagree, and the windows would grow.
-inline constexpr float kMaxPixelWindowSlack = 1.0f;
-
-/// How far (pixels) the points of an index of an organized scan lie from where `sensor` projects
-/// them at most; negative when the index is not of an organized scan of the sensor's size (or a
-/// point lies behind the camera).
-float pixelWindowSlack(const SceneIndex& index, const SensorModel& sensor);
 
 /// Tallies the model points listed in `subset` (indices into model.points; all when null) at pose
 /// `T_scene_model`. A point is confirmed when a scene point whose normal agrees within 60° lies

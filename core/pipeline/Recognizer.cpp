@@ -120,21 +120,18 @@ struct Recognizer::Cache {
   std::shared_ptr<const std::vector<Keypoints>> keypoints;
   std::optional<FeatureKey> feature_key;
   std::shared_ptr<const std::vector<FeatureList>> features;
-  /// Verification and refinement: the preprocessed scene indexed (key: pre_key), and the
-  /// preparation of the last few models searched (views alternate from scene to scene).
-  std::optional<PreKey> index_key;
+  /// Verification and refinement: the preprocessed scene indexed with the sensor (key: pre_key and
+  /// the sensor's hash), and the preparation of the last few models searched (views alternate
+  /// from scene to scene).
+  std::optional<std::pair<PreKey, std::uint64_t>> index_key;
   std::shared_ptr<const SceneIndex> scene_index;
   /// The scan's projector shadows (key: the scan's and the sensor's hashes).
   std::optional<std::pair<std::uint64_t, std::uint64_t>> shadow_key;
   std::shared_ptr<const ProjectorShadow> shadow;
-  /// pixelWindowSlack of scene_index and the sensor (key: index_key and the sensor's hash).
-  std::optional<std::pair<PreKey, std::uint64_t>> slack_key;
-  float pixel_slack = -1.0f;
   std::vector<std::shared_ptr<const ModelPrep>> model_preps;
   /// Every object's keypoints in one index (key: keypoint_key), for the edge check.
   std::optional<KeypointKey> edge_key;
   std::shared_ptr<const SceneIndex> edge_index;
-  float edge_slack = -1.0f; ///< pixelWindowSlack of edge_index
   /// Surface voting: the sampled scene (key: pre_key and the sampling).
   std::optional<PreKey> surface_scene_key;
   double surface_scene_sampling = 0.0;
@@ -362,26 +359,23 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   std::shared_ptr<const ModelPrep> prep;
   if (detail::needsModelPrep(params) && cache.pre && cache.pre->validCount() > 0) {
     const auto t0 = Clock::now();
-    if (cache.index_key != pre_key || !cache.scene_index) {
+    const std::pair index_key{pre_key, sensorHash(sensor)};
+    if (cache.index_key != index_key || !cache.scene_index) {
       SceneIndexOptions options;
       options.normal_radius_mm = params.keypoints.normal_radius_mm;
+      options.sensor = sensor;
       cache.scene_index = std::make_shared<const SceneIndex>(*cache.pre, options);
-      cache.index_key = pre_key;
-      logger()->debug("scene indexed for verification: {} points, {:.0f} ms",
-                      cache.scene_index->points().size(), msSince(t0));
+      cache.index_key = index_key;
+      logger()->debug("scene indexed for verification: {} points, {:.0f} ms; they lie within "
+                      "{:.3f} px of where the sensor projects them (nearest points are looked "
+                      "for in pixel windows up to {} px)",
+                      cache.scene_index->points().size(), msSince(t0),
+                      cache.scene_index->pixelSlack(), kMaxPixelWindowSlack);
     }
     const std::pair shadow_key{pre_key.scene, sensorHash(sensor)};
     if (cache.shadow_key != shadow_key || !cache.shadow) {
       cache.shadow = std::make_shared<const ProjectorShadow>(scene_mm, sensor);
       cache.shadow_key = shadow_key;
-    }
-    const std::pair slack_key{pre_key, sensorHash(sensor)};
-    if (cache.slack_key != slack_key) {
-      cache.pixel_slack = pixelWindowSlack(*cache.scene_index, sensor);
-      cache.slack_key = slack_key;
-      logger()->debug("the scan's points lie within {:.3f} px of where the sensor projects them "
-                      "(verification looks in pixel windows up to {} px)",
-                      cache.pixel_slack, kMaxPixelWindowSlack);
     }
     prep = detail::prepareModel(cache.model_preps, model, params);
     result.timings.matching_ms += msSince(t0);
@@ -391,17 +385,17 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     const PointCloud all = edgeKeypointCloud(*cache.keypoints, sensor);
     SceneIndexOptions nearest_only; // the edge check asks for the nearest keypoint only
     nearest_only.estimate_normals = false;
+    nearest_only.sensor = sensor;
     cache.edge_index =
         all.validCount() == 0 ? nullptr : std::make_shared<const SceneIndex>(all, nearest_only);
-    cache.edge_slack = cache.edge_index ? pixelWindowSlack(*cache.edge_index, sensor) : -1.0f;
     logger()->debug("edge check: {} keypoints indexed, {} (slack {:.3f} px)",
                     cache.edge_index ? cache.edge_index->size() : 0,
                     cache.edge_index && cache.edge_index->width() > 0 ? "by pixel" : "as a list",
-                    cache.edge_slack);
+                    cache.edge_index ? cache.edge_index->pixelSlack() : -1.0f);
     cache.edge_key = keypoint_key;
   }
   const EdgeCheck edges{edge_check ? cache.edge_index.get() : nullptr,
-                        params.matching.edge_tolerance_mm, cache.edge_slack};
+                        params.matching.edge_tolerance_mm};
   const double sampling_mm = params.matching.surface_sampling_mm;
   const bool surface = verifying && sampling_mm > 0 && prep;
   std::shared_ptr<const ScenePairs> scene_pairs;
@@ -437,8 +431,8 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
 
   const auto t_match = Clock::now();
-  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm,          &sensor,
-                                 cache.floor_plane,       cache.shadow.get(), cache.pixel_slack};
+  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane,
+                                 cache.shadow.get()};
   PoseVerifier verify;
   if (verifying && prep)
     verify = [&](const Eigen::Isometry3d& T) {

@@ -127,6 +127,8 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
     m_width = static_cast<int>(scene_mm.width);
     m_height = static_cast<int>(scene_mm.height);
     m_pixel_index.assign(pixel_to_index.begin(), pixel_to_index.end());
+    if (options.sensor)
+      m_pixel_slack = measurePixelSlack(*options.sensor);
   }
   reportProgress(progress, 0.1);
 
@@ -202,10 +204,47 @@ SceneIndex::~SceneIndex() = default;
 SceneIndex::SceneIndex(SceneIndex&&) noexcept = default;
 SceneIndex& SceneIndex::operator=(SceneIndex&&) noexcept = default;
 
+float SceneIndex::measurePixelSlack(const SensorModel& sensor) const {
+  if (m_pixel_index.empty() || m_width != sensor.width || m_height != sensor.height ||
+      !(sensor.fx > 0) || !(sensor.fy > 0))
+    return -1.0f;
+  double slack = 0.0;
+  for (int v = 0; v < m_height; ++v)
+    for (int u = 0; u < m_width; ++u) {
+      const std::int32_t i = m_pixel_index[std::size_t(v) * std::size_t(m_width) + std::size_t(u)];
+      if (i < 0)
+        continue;
+      const Eigen::Vector3d p = m_tree->points[std::size_t(i)].cast<double>();
+      if (!(p.z() > 0))
+        return -1.0f;
+      const Eigen::Vector2d uv = sensor.project(p);
+      slack = std::max({slack, std::abs(uv.x() - u), std::abs(uv.y() - v)});
+    }
+  return float(slack);
+}
+
 std::int64_t SceneIndex::nearest(const Eigen::Vector3f& query_mm, float max_distance_sq,
                                  float* distance_sq) const {
   if (!m_tree || !(max_distance_sq > 0) || !query_mm.allFinite())
     return -1;
+  if (m_pixel_slack >= 0.0f && m_pixel_slack <= kMaxPixelWindowSlack) {
+    // A point within the radius projects within `reach` pixels of the query's pixel.
+    const SensorModel& sensor = *m_options.sensor;
+    const double radius = std::sqrt(double(max_distance_sq)), z = query_mm.z();
+    if (z > 2.0 * radius) {
+      const double beyond = z - radius;
+      const double reach_u =
+          sensor.fx * radius * (1.0 + std::abs(query_mm.x()) / z) / beyond + 0.5 + m_pixel_slack;
+      const double reach_v =
+          sensor.fy * radius * (1.0 + std::abs(query_mm.y()) / z) / beyond + 0.5 + m_pixel_slack;
+      if (reach_u < kMaxWindowReach && reach_v < kMaxWindowReach) {
+        const Eigen::Vector2d uv = sensor.project(query_mm.cast<double>());
+        if (uv.allFinite() && std::abs(uv.x()) < 1e6 && std::abs(uv.y()) < 1e6)
+          return nearestInWindow(query_mm, max_distance_sq, int(std::lround(uv.x())),
+                                 int(std::lround(uv.y())), int(reach_u), int(reach_v), distance_sq);
+      }
+    }
+  }
   NearestResult result(max_distance_sq);
   m_tree->tree.findNeighbors(result, query_mm.data(), nanoflann::SearchParams(32, 0.0f, false));
   if (result.index() == NearestResult::kNone)
@@ -216,7 +255,8 @@ std::int64_t SceneIndex::nearest(const Eigen::Vector3f& query_mm, float max_dist
 }
 
 std::int64_t SceneIndex::nearestInWindow(const Eigen::Vector3f& query_mm, float max_distance_sq,
-                                         int u, int v, int half_u, int half_v) const {
+                                         int u, int v, int half_u, int half_v,
+                                         float* distance_sq) const {
   if (m_pixel_index.empty() || !(max_distance_sq > 0) || !query_mm.allFinite())
     return -1;
   const std::vector<Eigen::Vector3f>& indexed = m_tree->points;
@@ -228,16 +268,18 @@ std::int64_t SceneIndex::nearestInWindow(const Eigen::Vector3f& query_mm, float 
       if (i < 0)
         continue;
       // Summed as the kd-tree's metric sums, so that both give the same distances.
-      float distance_sq = 0.0f;
+      float d_sq = 0.0f;
       for (int k = 0; k < 3; ++k) {
         const float d = query_mm[k] - indexed[std::size_t(i)][k];
-        distance_sq += d * d;
+        d_sq += d * d;
       }
-      if (distance_sq < best || (distance_sq == best && best_index >= 0 && i < best_index)) {
-        best = distance_sq;
+      if (d_sq < best || (d_sq == best && (best_index < 0 || i < best_index))) {
+        best = d_sq;
         best_index = i;
       }
     }
+  if (best_index >= 0 && distance_sq)
+    *distance_sq = best;
   return best_index;
 }
 

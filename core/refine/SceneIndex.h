@@ -4,11 +4,13 @@
 /// the refinement and verification of every detection in that scene.
 
 #include "core/cloud/PointCloud.h"
+#include "core/cloud/Sensor.h"
 #include "core/common/Progress.h"
 
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace scanpick::core {
@@ -33,7 +35,15 @@ struct SceneIndexOptions {
   bool use_cloud_normals = true;
   /// False: no normals at all (normals() all NaN), for an index used for nearest points only.
   bool estimate_normals = true;
+  /// The sensor that took an organized cloud of its size: when the cloud's points lie within
+  /// kMaxPixelWindowSlack pixels of where it projects them (pixelSlack()), nearest() looks in the
+  /// pixel window that must hold the answer instead of the kd-tree, with the same answers.
+  std::optional<SensorModel> sensor;
 };
+
+/// Largest pixelSlack() (px) at which SceneIndex::nearest looks in pixel windows: beyond it the
+/// cloud and the sensor model disagree, and the windows would grow.
+inline constexpr float kMaxPixelWindowSlack = 1.0f;
 
 /// The valid points of a cloud, their normals (NaN where too few neighbours), and a kd-tree.
 /// Immutable after construction: queries are safe from many threads at once.
@@ -67,7 +77,9 @@ public:
 
   /// Nearest indexed point to `query_mm` no farther than sqrt(max_distance_sq) (mm²). Returns
   /// its index, or -1 when there is none that close. Exact (no approximate search), so
-  /// deterministic; ties go to the lower index.
+  /// deterministic; ties go to the lower index. With the options' sensor and a pixelSlack() of at
+  /// most kMaxPixelWindowSlack, a small sphere (a window of up to 9 x 9 pixels) is searched in the
+  /// pixels that can hold it: the pinhole's slope over the sphere, the slack and the rounding.
   [[nodiscard]] std::int64_t nearest(const Eigen::Vector3f& query_mm, float max_distance_sq,
                                      float* distance_sq = nullptr) const;
 
@@ -76,18 +88,27 @@ public:
   /// is that close, or the cloud was not organized. It equals nearest() whenever every indexed
   /// point that close lies in the window.
   [[nodiscard]] std::int64_t nearestInWindow(const Eigen::Vector3f& query_mm, float max_distance_sq,
-                                             int u, int v, int half_u, int half_v) const;
+                                             int u, int v, int half_u, int half_v,
+                                             float* distance_sq = nullptr) const;
   /// Organized clouds: the index of each pixel's point (-1 where none), row by row; empty when the
   /// cloud was not organized.
   [[nodiscard]] const std::vector<std::int32_t>& pixelIndex() const { return m_pixel_index; }
   [[nodiscard]] int width() const { return m_width; }   ///< of the organized cloud, else 0
   [[nodiscard]] int height() const { return m_height; } ///< of the organized cloud, else 0
+  /// How far (pixels) the indexed points lie from where the options' sensor projects them at
+  /// most; negative without a sensor, for a cloud not organized at the sensor's size, or with a
+  /// point behind the camera.
+  [[nodiscard]] float pixelSlack() const { return m_pixel_slack; }
 
 private:
   struct Tree;
+  /// Largest half window (pixels, exclusive) nearest() searches; wider spheres go to the tree.
+  static constexpr double kMaxWindowReach = 5.0;
+  [[nodiscard]] float measurePixelSlack(const SensorModel& sensor) const;
   SceneIndexOptions m_options;
   std::vector<std::int32_t> m_pixel_index;
   int m_width = 0, m_height = 0;
+  float m_pixel_slack = -1.0f;
   std::vector<Eigen::Vector3f> m_normals;
   std::vector<float> m_variation;
   float m_typical_variation = 0.0f;

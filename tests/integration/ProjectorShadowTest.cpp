@@ -5,6 +5,7 @@
 // verification looking for scene points in pixel windows of the organized scan.
 #include "core/keypoints/Keypoints.h"
 #include "core/pipeline/ModelPrep.h"
+#include "core/refine/PoseRefinement.h"
 #include "tests/integration/SynthTeach.h"
 
 #include <algorithm>
@@ -83,14 +84,16 @@ TEST(ProjectorShadow, PixelWindowsVerifyAsTheKdTreeDoes) {
   // a model point's scene neighbours in the pixel window that must hold them: the same tallies.
   const RecognitionParams params = test::bundledPreset("phoxi-bin");
   const test::VerifyCase c = test::verifyCase("cup", params, 5, 9, 0);
-  const float slack = pixelWindowSlack(*c.index, c.scan.sensor);
-  EXPECT_GE(slack, 0.0f);
-  EXPECT_LT(slack, 0.01f) << "the renderer puts each point on its pixel's ray";
+  SceneIndexOptions with_sensor;
+  with_sensor.sensor = c.scan.sensor;
+  const SceneIndex windowed(c.floor.remaining, with_sensor);
+  EXPECT_GE(windowed.pixelSlack(), 0.0f);
+  EXPECT_LT(windowed.pixelSlack(), 0.01f) << "the renderer puts each point on its pixel's ray";
   const ProjectorShadow shadow(c.scan.render.cloud, c.scan.sensor);
   const VerifyScene tree{c.index.get(), &c.scan.render.cloud, &c.scan.sensor, std::nullopt,
                          &shadow};
   VerifyScene windows = tree;
-  windows.pixel_slack = slack;
+  windows.index = &windowed;
   const double tolerance = params.matching.verify_tolerance_mm;
   std::size_t confirmed = 0;
   for (const double shift_mm : {0.0, 0.4, 0.9, 3.0}) {
@@ -106,11 +109,18 @@ TEST(ProjectorShadow, PixelWindowsVerifyAsTheKdTreeDoes) {
     confirmed += a.confirmed;
   }
   EXPECT_GT(confirmed, c.view->points.size()) << "poses the scan confirms in part";
-  // An unorganized index, or a sensor of another size: no windows.
-  EXPECT_LT(pixelWindowSlack(SceneIndex(dropInvalid(c.floor.remaining)), c.scan.sensor), 0.0f);
-  SensorModel other = c.scan.sensor;
-  other.width /= 2;
-  EXPECT_LT(pixelWindowSlack(*c.index, other), 0.0f);
+  // ICP's nearest points come from the same windows: bitwise the same refinement.
+  Eigen::Isometry3d start = c.T_true;
+  start.translation() += Eigen::Vector3d(1.5, -1.0, 0.5);
+  const RefinementResult by_tree =
+      refinePose(c.taught.model->cloud_mm, *c.index, start, params.refine);
+  const RefinementResult by_windows =
+      refinePose(c.taught.model->cloud_mm, windowed, start, params.refine);
+  EXPECT_TRUE(by_tree.T_scene_model.isApprox(by_windows.T_scene_model, 0.0));
+  EXPECT_EQ(by_tree.iterations, by_windows.iterations);
+  EXPECT_EQ(by_tree.rmse_mm, by_windows.rmse_mm);
+  EXPECT_LT((by_tree.T_scene_model.translation() - c.T_true.translation()).norm(), 0.5)
+      << "ICP comes back from 1.9 mm";
 }
 
 TEST(ProjectorShadow, TheEdgeCheckLooksInPixelWindowsAsInTheKdTree) {
@@ -127,15 +137,18 @@ TEST(ProjectorShadow, TheEdgeCheckLooksInPixelWindowsAsInTheKdTree) {
   PointCloud list = PointCloud::fromPoints(keypoints.points_mm);
   SceneIndexOptions nearest_only;
   nearest_only.estimate_normals = false;
-  const SceneIndex by_pixel(image, nearest_only), as_list(list, nearest_only);
-  const float slack = pixelWindowSlack(by_pixel, c.scan.sensor);
-  EXPECT_GE(slack, 0.0f);
-  EXPECT_LT(slack, 0.01f);
+  const SceneIndex as_list(list, nearest_only);
+  nearest_only.sensor = c.scan.sensor;
+  const SceneIndex by_pixel(image, nearest_only);
+  EXPECT_GE(by_pixel.pixelSlack(), 0.0f);
+  EXPECT_LT(by_pixel.pixelSlack(), 0.01f);
   const double tolerance = params.matching.verify_tolerance_mm;
   const EdgeCheck tree{&as_list, params.matching.edge_tolerance_mm};
-  const EdgeCheck windows{&by_pixel, params.matching.edge_tolerance_mm, slack};
-  VerifyScene scene{c.index.get(), &c.scan.render.cloud, &c.scan.sensor};
-  scene.pixel_slack = pixelWindowSlack(*c.index, c.scan.sensor);
+  const EdgeCheck windows{&by_pixel, params.matching.edge_tolerance_mm};
+  SceneIndexOptions with_sensor;
+  with_sensor.sensor = c.scan.sensor;
+  const SceneIndex windowed(c.floor.remaining, with_sensor);
+  const VerifyScene scene{&windowed, &c.scan.render.cloud, &c.scan.sensor};
   bool edges_decide = false;
   for (const double shift_mm : {0.0, 0.8, 1.6, 3.0}) {
     Eigen::Isometry3d T = c.T_true;

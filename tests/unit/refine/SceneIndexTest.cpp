@@ -90,6 +90,44 @@ TEST(SceneIndex, APixelWindowFindsWhatTheTreeFindsWithinIt) {
   EXPECT_LT(unorganized.nearestInWindow(unorganized.points()[0], 1.0f, 0, 0, 2, 2), 0);
 }
 
+TEST(SceneIndex, WithItsSensorNearestLooksInPixelWindowsWithTheSameAnswers) {
+  // The floor's camera as a sensor: each point lies on its pixel's ray (depth noise moves it
+  // along the ray), so nearest() looks in pixel windows for small spheres, the tree otherwise.
+  const auto scan = floorScan(0.3);
+  core::SensorModel sensor;
+  sensor.width = 200;
+  sensor.height = 150;
+  sensor.fx = sensor.fy = 500;
+  sensor.cx = (200 - 1) / 2.0;
+  sensor.cy = (150 - 1) / 2.0;
+  core::SceneIndexOptions options;
+  options.sensor = sensor;
+  const core::SceneIndex windows(scan, options), tree(scan);
+  EXPECT_GE(windows.pixelSlack(), 0.0f);
+  EXPECT_LT(windows.pixelSlack(), 1e-3f);
+  EXPECT_LT(tree.pixelSlack(), 0.0f) << "no sensor, no windows";
+  std::size_t found = 0;
+  for (std::size_t k = 0; k < tree.size(); k += 29)
+    for (const float radius : {0.5f, 1.0f, 2.5f, 8.0f}) {
+      const Eigen::Vector3f query = tree.points()[k] + Eigen::Vector3f(0.6f, -0.7f, 0.4f);
+      float d_tree = -1.0f, d_windows = -2.0f;
+      const std::int64_t near = tree.nearest(query, radius * radius, &d_tree);
+      ASSERT_EQ(windows.nearest(query, radius * radius, &d_windows), near) << radius;
+      if (near >= 0) {
+        EXPECT_EQ(d_windows, d_tree);
+        ++found;
+      }
+    }
+  EXPECT_GT(found, 1500u);
+  // A sensor of another size, or a cloud not organized: no windows.
+  core::SensorModel other = sensor;
+  other.width = 100;
+  options.sensor = other;
+  EXPECT_LT(core::SceneIndex(scan, options).pixelSlack(), 0.0f);
+  options.sensor = sensor;
+  EXPECT_LT(core::SceneIndex(core::dropInvalid(scan), options).pixelSlack(), 0.0f);
+}
+
 TEST(SceneIndex, OwnNormalsAreUsedAndTurnedTowardsTheViewpoint) {
   auto cloud = core::dropInvalid(floorScan(0.0));
   cloud.normals.assign(cloud.size(), Eigen::Vector3f(0, 0, 1)); // pointing away from the camera
