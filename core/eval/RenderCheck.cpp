@@ -28,7 +28,6 @@ TruthRenderer::TruthRenderer(const GroundTruth& truth) {
   if (truth.sensor_preset.empty())
     throw Error(truth.source + ": names no sensor preset, so its scan cannot be rendered again");
   m_sensor = sensorPreset(truth.sensor_preset);
-  m_scene.layout = LayoutKind::Bin;
   std::map<std::string, std::size_t> part_index;
   for (const auto& instance : truth.instances) {
     auto [it, added] = part_index.try_emplace(instance.part, m_scene.parts.size());

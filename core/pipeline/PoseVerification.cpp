@@ -17,7 +17,7 @@ constexpr float kMinNormalAgreement = 0.5f;
 
 /// Share of the model's keypoints lying on confirmed scene surface that also have a scene keypoint
 /// within the edge tolerance (1 when off or when fewer than 10 lie on surface).
-double edgeAgreement(const VerifyModel& model, const VerifyScene& scene, const Eigen::Isometry3f& T,
+double edgeAgreement(const VerifyModel& model, const SceneIndex& index, const Eigen::Isometry3f& T,
                      double tolerance_mm, const EdgeCheck& edges) {
   if (!edges.scene_keypoints || edges.tolerance_mm <= 0)
     return 1.0;
@@ -26,7 +26,7 @@ double edgeAgreement(const VerifyModel& model, const VerifyScene& scene, const E
   std::size_t on_surface = 0, on_edge = 0;
   for (const auto& k : model.keypoints) {
     const Eigen::Vector3f p = T * k;
-    if (scene.index->nearest(p, 4.0f * surface_tol_sq) < 0)
+    if (index.nearest(p, 4.0f * surface_tol_sq) < 0)
       continue;
     ++on_surface;
     if (edges.scene_keypoints->nearest(p, edge_tol_sq) >= 0)
@@ -209,7 +209,7 @@ double verifyPose(const VerifyModel& model, const VerifyScene& scene,
     return 0.0;
   const double q = (double(t.confirmed) - double(t.violations)) / expected;
   return std::clamp(q, 0.0, 1.0) *
-         edgeAgreement(model, scene, T_scene_model.cast<float>(), tolerance_mm, edges);
+         edgeAgreement(model, *scene.index, T_scene_model.cast<float>(), tolerance_mm, edges);
 }
 
 } // namespace scanpick::core
