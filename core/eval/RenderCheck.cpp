@@ -31,8 +31,14 @@ TruthRenderer::TruthRenderer(const GroundTruth& truth) {
   std::map<std::string, std::size_t> part_index;
   for (const auto& instance : truth.instances) {
     auto [it, added] = part_index.try_emplace(instance.part, m_scene.parts.size());
-    if (added)
+    if (added) {
+      const auto names = builtInPartNames();
+      if (std::find(names.begin(), names.end(), instance.part) == names.end())
+        throw Error(truth.source + ": part '" + instance.part +
+                    "' is not a built-in part, and the render check renders built-in parts only: "
+                    "run eval without --render-check");
       m_scene.parts.push_back(builtInPart(instance.part));
+    }
     // The scene frame is the camera frame: the world is taken to be it. The renderer labels
     // instances by their index.
     m_scene.instances.push_back(
