@@ -308,8 +308,11 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
         removeFloor(scene_mm, params.floor, params.seed, subProgress(progress, 0.0, 0.1));
     cache.floor_removed = floor.removed_points;
     cache.floor_plane = floor.planes.empty() ? std::nullopt : std::optional(floor.planes.front());
+    // Without a voxel size the scan stays as it is: moved, not copied (a PhoXi scan is 9 MB).
     cache.pre = std::make_shared<const PointCloud>(
-        voxelDownsample(floor.remaining, params.downsample.voxel_mm));
+        params.downsample.voxel_mm > 0
+            ? voxelDownsample(floor.remaining, params.downsample.voxel_mm)
+            : std::move(floor.remaining));
     cache.pre_key = pre_key;
     cache.split_key.reset();
     result.timings.preprocess_ms = msSince(t0);
