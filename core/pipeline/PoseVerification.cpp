@@ -171,19 +171,18 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
 }
 
 PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const SensorModel& sensor) {
-  PointCloud image;
-  if (sensor.width > 0 && sensor.height > 0 && sensor.fx > 0 && sensor.fy > 0) {
-    image.width = static_cast<std::uint32_t>(sensor.width);
-    image.height = static_cast<std::uint32_t>(sensor.height);
-    image.points_mm.assign(std::size_t(image.width) * image.height, invalidPoint());
-  }
-  PointCloud list;
+  std::vector<Eigen::Vector3f> points;
   for (const auto& k : keypoints)
-    list.points_mm.insert(list.points_mm.end(), k.points_mm.begin(), k.points_mm.end());
-  list.width = static_cast<std::uint32_t>(list.points_mm.size());
-  list.height = 1;
+    points.insert(points.end(), k.points_mm.begin(), k.points_mm.end());
+  PointCloud list = PointCloud::fromPoints(std::move(points));
+  if (sensor.width <= 0 || sensor.height <= 0 || !(sensor.fx > 0) || !(sensor.fy > 0))
+    return list;
+  PointCloud image;
+  image.width = static_cast<std::uint32_t>(sensor.width);
+  image.height = static_cast<std::uint32_t>(sensor.height);
+  image.points_mm.assign(std::size_t(image.width) * image.height, invalidPoint());
   for (const auto& p : list.points_mm) {
-    if (image.points_mm.empty() || !(p.z() > 0))
+    if (!(p.z() > 0))
       return list;
     const Eigen::Vector2d uv = sensor.project(p.cast<double>());
     const long u = std::lround(uv.x()), v = std::lround(uv.y());
