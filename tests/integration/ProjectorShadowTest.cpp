@@ -148,7 +148,10 @@ TEST(ProjectorShadow, TheEdgeCheckLooksInPixelWindowsAsInTheKdTree) {
   SceneIndexOptions with_sensor;
   with_sensor.sensor = c.scan.sensor;
   const SceneIndex windowed(c.floor.remaining, with_sensor);
-  const VerifyScene scene{&windowed, &c.scan.render.cloud, &c.scan.sensor};
+  VerifyScene scene;
+  scene.index = &windowed;
+  scene.scan = &c.scan.render.cloud;
+  scene.sensor = &c.scan.sensor;
   bool edges_decide = false;
   for (const double shift_mm : {0.0, 0.8, 1.6, 3.0}) {
     Eigen::Isometry3d T = c.T_true;
@@ -161,7 +164,9 @@ TEST(ProjectorShadow, TheEdgeCheckLooksInPixelWindowsAsInTheKdTree) {
   // Points that share a pixel cannot be put at their pixels: a list then.
   PointCloud doubled = list;
   doubled.points_mm.push_back(list.points_mm.front() + Eigen::Vector3f(0.01f, 0.0f, 0.0f));
-  EXPECT_EQ(edgeKeypointCloud({Keypoints{doubled.points_mm}}, c.scan.sensor).height, 1u);
+  Keypoints doubled_keypoints;
+  doubled_keypoints.points_mm = doubled.points_mm;
+  EXPECT_EQ(edgeKeypointCloud({doubled_keypoints}, c.scan.sensor).height, 1u);
 }
 
 TEST(ProjectorShadow, AnUprightCupsBodyHidesPartOfItsInside) {
