@@ -35,13 +35,7 @@ int runEval(const EvalOptions& o) {
       o.suite.empty() ? core::eval::evaluateFiles(o.truth, o.results, teach, o.tolerances)
                       : core::eval::evaluateSuite(o.suite, o.results, teach, o.tolerances);
   if (o.render_check_mm > 0)
-    report = core::eval::withRenderCheck(
-        std::move(report),
-        [&](const std::string& scene) {
-          return o.suite.empty() ? std::filesystem::path(o.truth)
-                                 : std::filesystem::path(o.suite) / (scene + ".gt.json");
-        },
-        o.render_check_mm);
+    report = core::eval::withRenderCheck(std::move(report), o.render_check_mm);
   std::cout << core::eval::reportToTable(report, o.details);
   if (!o.json.empty()) {
     core::eval::saveReportJson(o.json, report);

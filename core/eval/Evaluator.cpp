@@ -82,6 +82,7 @@ SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& resul
   scene.name = name;
   scene.part = taught.part;
   scene.total_ms = results.total_ms;
+  scene.truth = std::make_shared<const GroundTruth>(truth);
   std::vector<std::size_t> targets;
   for (std::size_t i = 0; i < truth.instances.size(); ++i) {
     if (truth.instances[i].part != taught.part)

@@ -10,6 +10,7 @@
 #include "core/eval/ResultsFile.h"
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,6 +43,9 @@ struct SceneEvaluation {
   int visible_instances = 0; ///< of those, at least Tolerances::min_visible_fraction visible
   std::vector<DetectionOutcome> outcomes; ///< in matching order (score descending)
   std::optional<double> total_ms;         ///< results' timings_ms.total
+  /// The ground truth the scene was evaluated against (kept for the render check; not part of
+  /// the report's JSON).
+  std::shared_ptr<const GroundTruth> truth;
 };
 
 /// Median, 95th percentile (linear interpolation between order statistics) and maximum.

@@ -32,12 +32,13 @@ TruthRenderer::TruthRenderer(const GroundTruth& truth) {
   for (const auto& instance : truth.instances) {
     auto [it, added] = part_index.try_emplace(instance.part, m_scene.parts.size());
     if (added) {
-      const auto names = builtInPartNames();
-      if (std::find(names.begin(), names.end(), instance.part) == names.end())
-        throw Error(truth.source + ": part '" + instance.part +
-                    "' is not a built-in part, and the render check renders built-in parts only: "
-                    "run eval without --render-check");
-      m_scene.parts.push_back(builtInPart(instance.part));
+      try {
+        m_scene.parts.push_back(builtInPart(instance.part));
+      } catch (const Error& e) {
+        throw Error(truth.source + ": " + e.what() +
+                    ", and the render check renders built-in parts only: run eval without "
+                    "--render-check");
+      }
     }
     // The scene frame is the camera frame: the world is taken to be it. The renderer labels
     // instances by their index.
@@ -93,14 +94,13 @@ int TruthRenderer::instanceAt(const std::string& part,
   return best;
 }
 
-EvalReport
-withRenderCheck(EvalReport report,
-                const std::function<std::filesystem::path(const std::string&)>& truth_path,
-                double tolerance_mm, const ProgressFn& progress) {
+EvalReport withRenderCheck(EvalReport report, double tolerance_mm, const ProgressFn& progress) {
   for (std::size_t k = 0; k < report.scenes.size(); ++k) {
     reportProgress(progress, static_cast<double>(k) / static_cast<double>(report.scenes.size()));
     SceneEvaluation& scene = report.scenes[k];
-    const TruthRenderer renderer(loadGroundTruth(truth_path(scene.name)));
+    if (!scene.truth)
+      throw Error("render check: scene " + scene.name + " keeps no ground truth to render");
+    const TruthRenderer renderer(*scene.truth);
     for (auto& o : scene.outcomes) {
       const int instance =
           o.true_positive ? o.instance_id : renderer.instanceAt(scene.part, o.T_scene_part);

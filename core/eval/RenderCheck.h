@@ -14,8 +14,6 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -62,12 +60,9 @@ private:
 
 /// `report` with the render check run on every detection (its own pose, not an alternative it
 /// reports) against the instance it matched, or for a false positive the instance it lies on
-/// (TruthRenderer::instanceAt), and its summaries made again. `truth_path` gives each
-/// scene's ground-truth file by the scene's name. Throws Error as TruthRenderer and
-/// loadGroundTruth do.
-EvalReport
-withRenderCheck(EvalReport report,
-                const std::function<std::filesystem::path(const std::string&)>& truth_path,
-                double tolerance_mm, const ProgressFn& progress = {});
+/// (TruthRenderer::instanceAt), and its summaries made again. Each scene is rendered from the
+/// ground truth it was evaluated against (SceneEvaluation::truth). Throws Error as
+/// TruthRenderer does, and for a scene that keeps no ground truth.
+EvalReport withRenderCheck(EvalReport report, double tolerance_mm, const ProgressFn& progress = {});
 
 } // namespace scanpick::core::eval

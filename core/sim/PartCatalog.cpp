@@ -142,7 +142,7 @@ Part builtInPart(const std::string& name) {
   std::string known;
   for (const auto& n : builtInPartNames())
     known += (known.empty() ? "" : ", ") + n;
-  throw Error("unknown part '" + name + "': use one of " + known + ", or --mesh FILE");
+  throw Error("unknown part '" + name + "': the built-in parts are " + known);
 }
 
 Part partFromMeshFile(const std::filesystem::path& path, bool close_holes) {

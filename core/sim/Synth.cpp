@@ -51,8 +51,13 @@ void validateRequest(const SynthRequest& r) {
   if (r.noise_sigma_mm && !(*r.noise_sigma_mm >= 0 && *r.noise_sigma_mm <= 50))
     throw Error("--noise-sigma must be between 0 and 50 mm");
   for (const auto& name : r.parts)
-    if (r.mesh_path.empty())
-      (void)builtInPart(name);
+    if (r.mesh_path.empty()) {
+      try {
+        (void)builtInPart(name);
+      } catch (const Error& e) {
+        throw Error(std::string(e.what()) + "; or give a part's mesh with --mesh FILE");
+      }
+    }
 }
 
 SynthScene synthesize(const SynthRequest& request, const ProgressFn& progress) {

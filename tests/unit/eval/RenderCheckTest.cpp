@@ -81,5 +81,12 @@ TEST(RenderCheck, FindsTheInstanceADetectionLiesOnAndRejectsBadInput) {
   EXPECT_THROW(core::eval::TruthRenderer{unnamed}, core::Error);
   auto unknown = truth;
   unknown.instances[0].part = "teapot";
-  EXPECT_THROW(core::eval::TruthRenderer{unknown}, core::Error);
+  try {
+    core::eval::TruthRenderer{unknown};
+    ADD_FAILURE() << "a part that is not built in is refused";
+  } catch (const core::Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("'teapot'"), std::string::npos) << message;
+    EXPECT_NE(message.find("without --render-check"), std::string::npos) << message;
+  }
 }

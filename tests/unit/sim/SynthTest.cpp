@@ -133,6 +133,12 @@ TEST(Synth, BadInputThrowsAndWritesNothing) {
   r = smallKinectBin();
   r.parts = {"teapot"};
   expectNothing(r);
+  try {
+    validateRequest(r);
+    ADD_FAILURE() << "an unknown part is refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--mesh FILE"), std::string::npos) << e.what();
+  }
   r = smallKinectBin();
   r.mesh_path = dir / "missing.stl";
   expectNothing(r);
