@@ -9,7 +9,6 @@
 
 #include <nlohmann/json.hpp>
 
-
 namespace scanpick::core {
 namespace {
 
@@ -22,7 +21,9 @@ json matrixJson(const Eigen::Matrix4d& m) {
   return rows;
 }
 
-json vectorJson(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+json vectorJson(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 std::vector<Part> requestedParts(const SynthRequest& r) {
   if (!r.mesh_path.empty())
@@ -36,7 +37,7 @@ std::vector<Part> requestedParts(const SynthRequest& r) {
 } // namespace
 
 void validateRequest(const SynthRequest& r) {
-  (void)sensorPreset(r.sensor);  // throws for an unknown sensor
+  (void)sensorPreset(r.sensor); // throws for an unknown sensor
   if (r.mesh_path.empty() && r.parts.empty())
     throw Error("no part given: use --part NAME or --mesh FILE");
   if (r.count < 1)
@@ -65,9 +66,9 @@ SynthScene synthesize(const SynthRequest& request, const ProgressFn& progress) {
   SynthScene out;
   out.sensor = sensorPreset(request.sensor);
   out.seed = request.seed;
-  out.noise = request.noiseless ? SensorNoise::none()
-      : request.noise_sigma_mm   ? SensorNoise::withSigma(out.sensor, *request.noise_sigma_mm)
-                                 : SensorNoise::typical(out.sensor);
+  out.noise = request.noiseless        ? SensorNoise::none()
+              : request.noise_sigma_mm ? SensorNoise::withSigma(out.sensor, *request.noise_sigma_mm)
+                                       : SensorNoise::typical(out.sensor);
   SceneSpec spec;
   spec.layout = request.layout;
   out.parts = requestedParts(request);
@@ -81,7 +82,7 @@ SynthScene synthesize(const SynthRequest& request, const ProgressFn& progress) {
                                         hashMix(request.seed, static_cast<std::uint64_t>(k), 102)));
   }
   spec.count = request.count;
-  spec.seed = hashMix(request.seed, 0, 100);  // physics and rendering draw from separate streams
+  spec.seed = hashMix(request.seed, 0, 100); // physics and rendering draw from separate streams
   spec.camera_height_mm = request.camera_height_mm;
   spec.teach_side = request.teach_side;
   out.scene = buildScene(spec, out.sensor, subProgress(progress, 0.0, 0.4));
@@ -90,21 +91,30 @@ SynthScene synthesize(const SynthRequest& request, const ProgressFn& progress) {
   return out;
 }
 
-std::string groundTruthJson(const SynthScene& s, const std::string& cloud_file, const std::string& picture_file) {
+std::string groundTruthJson(const SynthScene& s, const std::string& cloud_file,
+                            const std::string& picture_file) {
   const Scene& scene = s.scene;
   json j;
   j["format"] = "scanpick-ground-truth";
   j["version"] = 1;
   j["units"] = "mm";
-  j["scene"] = {{"kind", layoutName(scene.layout)}, {"seed", s.seed}, {"cloud", cloud_file},
+  j["scene"] = {{"kind", layoutName(scene.layout)},
+                {"seed", s.seed},
+                {"cloud", cloud_file},
                 {"picture", picture_file}};
   Eigen::Isometry3d T_camera_projector = s.sensor.T_camera_projector;
-  j["sensor"] = {{"preset", s.sensor.preset}, {"width", s.sensor.width}, {"height", s.sensor.height},
-                 {"fx", s.sensor.fx}, {"fy", s.sensor.fy}, {"cx", s.sensor.cx}, {"cy", s.sensor.cy},
+  j["sensor"] = {{"preset", s.sensor.preset},
+                 {"width", s.sensor.width},
+                 {"height", s.sensor.height},
+                 {"fx", s.sensor.fx},
+                 {"fy", s.sensor.fy},
+                 {"cx", s.sensor.cx},
+                 {"cy", s.sensor.cy},
                  {"T_scene_camera", matrixJson(Eigen::Matrix4d::Identity())},
                  {"T_scene_projector", matrixJson(T_camera_projector.matrix())},
                  {"T_scene_world", matrixJson(scene.T_camera_world.matrix())},
-                 {"min_range_mm", s.sensor.min_range_mm}, {"max_range_mm", s.sensor.max_range_mm},
+                 {"min_range_mm", s.sensor.min_range_mm},
+                 {"max_range_mm", s.sensor.max_range_mm},
                  {"noise_sigma_mm", s.noise.z_sigma_mm},
                  {"disparity_step_px", s.noise.disparity_step_px},
                  {"disparity_sigma_px", s.noise.disparity_sigma_px},
@@ -122,7 +132,8 @@ std::string groundTruthJson(const SynthScene& s, const std::string& cloud_file, 
     if (p.symmetry.continuous_axis)
       axis = {{"point_mm", vectorJson(p.symmetry.continuous_axis->point_mm)},
               {"direction", vectorJson(p.symmetry.continuous_axis->direction)}};
-    parts[p.name] = {{"diameter_mm", p.diameter_mm()}, {"center_mm", vectorJson(p.center_mm())},
+    parts[p.name] = {{"diameter_mm", p.diameter_mm()},
+                     {"center_mm", vectorJson(p.center_mm())},
                      {"grip_points", grips},
                      {"symmetry", {{"continuous_axis", axis}, {"discrete", discrete}}}};
   }
@@ -135,7 +146,9 @@ std::string groundTruthJson(const SynthScene& s, const std::string& cloud_file, 
     for (const auto& g : p.grip_points)
       grips.push_back({{"name", g.name}, {"position_mm", vectorJson(T * g.position_mm)}});
     const auto id = static_cast<std::size_t>(inst.id);
-    instances.push_back({{"id", inst.id}, {"part", p.name}, {"T_scene_part", matrixJson(T.matrix())},
+    instances.push_back({{"id", inst.id},
+                         {"part", p.name},
+                         {"T_scene_part", matrixJson(T.matrix())},
                          {"visible_fraction", s.render.visible_fraction[id]},
                          {"visible_points", s.render.visible_points[id]},
                          {"lit_pixels", s.render.lit_pixels[id]},
@@ -151,12 +164,15 @@ std::string groundTruthJson(const SynthScene& s, const std::string& cloud_file, 
   return j.dump(2) + "\n";
 }
 
-std::vector<std::filesystem::path> writeSynthScene(const std::filesystem::path& prefix, const SynthScene& s) {
+std::vector<std::filesystem::path> writeSynthScene(const std::filesystem::path& prefix,
+                                                   const SynthScene& s) {
   namespace fs = std::filesystem;
   if (prefix.filename().empty())
-    throw Error("the output prefix '" + prefix.string() + "' names a folder: add a file name, e.g. out/scene");
+    throw Error("the output prefix '" + prefix.string() +
+                "' names a folder: add a file name, e.g. out/scene");
   const std::string base = prefix.filename().string();
-  const std::vector<fs::path> finals = {fs::path(prefix.string() + ".pcd"), fs::path(prefix.string() + ".png"),
+  const std::vector<fs::path> finals = {fs::path(prefix.string() + ".pcd"),
+                                        fs::path(prefix.string() + ".png"),
                                         fs::path(prefix.string() + ".gt.json")};
   // Encode in memory first: nothing touches the disk until all content exists.
   const std::string png = depthPngBytes(s.render.cloud);
@@ -175,7 +191,8 @@ std::vector<std::filesystem::path> writeSynthScene(const std::filesystem::path& 
       std::error_code ec;
       fs::create_directories(prefix.parent_path(), ec);
       if (ec)
-        throw Error("cannot create the folder '" + prefix.parent_path().string() + "': " + ec.message());
+        throw Error("cannot create the folder '" + prefix.parent_path().string() +
+                    "': " + ec.message());
     }
     saveCloudPcd(temps[0], s.render.cloud);
     writeFileAtomic(temps[1], png);
@@ -190,7 +207,7 @@ std::vector<std::filesystem::path> writeSynthScene(const std::filesystem::path& 
   } catch (...) {
     cleanup();
     std::error_code ec;
-    for (std::size_t i = 0; i < renamed; ++i)  // a failed rename must not leave half a scene
+    for (std::size_t i = 0; i < renamed; ++i) // a failed rename must not leave half a scene
       fs::remove(finals[i], ec);
     throw;
   }

@@ -1,10 +1,11 @@
 // Scene files: complete ground truth, byte-identical for identical seeds, nothing written on error.
+#include "core/sim/Synth.h"
+
 #include "core/cloud/CloudIo.h"
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 #include "core/sim/MeshBuilder.h"
 #include "core/sim/MeshIo.h"
-#include "core/sim/Synth.h"
 #include "tests/support/TempDir.h"
 
 #include <gtest/gtest.h>
@@ -19,7 +20,7 @@ SynthRequest smallKinectBin() {
   SynthRequest r;
   r.parts = {"cup"};
   r.count = 4;
-  r.sensor = "kinect-v1";  // the smallest preset keeps the test fast
+  r.sensor = "kinect-v1"; // the smallest preset keeps the test fast
   r.seed = 5;
   return r;
 }
@@ -39,7 +40,7 @@ TEST(Synth, WritesCloudPictureAndGroundTruth) {
   const SynthScene s = synthesize(smallKinectBin());
   const auto files = writeSynthScene(dir / "scene", s);
   ASSERT_EQ(files.size(), 3u);
-  EXPECT_EQ(scanpick::test::fileCount(dir.path()), 3u);  // no temporary file left
+  EXPECT_EQ(scanpick::test::fileCount(dir.path()), 3u); // no temporary file left
 
   const LoadedCloud cloud = loadCloud(dir / "scene.pcd", LengthUnit::Millimetres);
   EXPECT_EQ(cloud.cloud.width, 640u);
@@ -59,8 +60,12 @@ TEST(Synth, WritesCloudPictureAndGroundTruth) {
   for (const auto& inst : gt["instances"]) {
     const Eigen::Matrix4d T = matrixFrom(inst["T_scene_part"]);
     // A rigid transform, and the grip point in the scene is that transform of the part's one.
-    EXPECT_LT((T.topLeftCorner<3, 3>() * T.topLeftCorner<3, 3>().transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-9);
-    const Eigen::Vector4d g(grip["position_mm"][0], grip["position_mm"][1], grip["position_mm"][2], 1.0);
+    EXPECT_LT((T.topLeftCorner<3, 3>() * T.topLeftCorner<3, 3>().transpose() -
+               Eigen::Matrix3d::Identity())
+                  .norm(),
+              1e-9);
+    const Eigen::Vector4d g(grip["position_mm"][0], grip["position_mm"][1], grip["position_mm"][2],
+                            1.0);
     const Eigen::Vector4d expected = T * g;
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(inst["grip_points"][0]["position_mm"][k].get<double>(), expected[k], 1e-9);
@@ -103,19 +108,22 @@ TEST(Synth, TeachSceneCarriesTheCropBox) {
   EXPECT_EQ(gt["scene"]["kind"], "teach");
   // The crop box, taken back to the scene frame, holds the instance's visible points.
   const Eigen::Matrix4d T_scene_box = matrixFrom(gt["crop_box"]["T_scene_box"]);
-  const Eigen::Vector3d lo(gt["crop_box"]["min_mm"][0], gt["crop_box"]["min_mm"][1], gt["crop_box"]["min_mm"][2]);
-  const Eigen::Vector3d hi(gt["crop_box"]["max_mm"][0], gt["crop_box"]["max_mm"][1], gt["crop_box"]["max_mm"][2]);
+  const Eigen::Vector3d lo(gt["crop_box"]["min_mm"][0], gt["crop_box"]["min_mm"][1],
+                           gt["crop_box"]["min_mm"][2]);
+  const Eigen::Vector3d hi(gt["crop_box"]["max_mm"][0], gt["crop_box"]["max_mm"][1],
+                           gt["crop_box"]["max_mm"][2]);
   const Eigen::Matrix4d T_box_scene = T_scene_box.inverse();
   std::size_t inside = 0, on_part = 0;
   for (std::size_t i = 0; i < s.render.cloud.size(); ++i) {
     if (s.render.labels[i] != 0 || !isValid(s.render.cloud.points_mm[i]))
       continue;
     ++on_part;
-    const Eigen::Vector3d p = (T_box_scene * s.render.cloud.points_mm[i].cast<double>().homogeneous()).head<3>();
+    const Eigen::Vector3d p =
+        (T_box_scene * s.render.cloud.points_mm[i].cast<double>().homogeneous()).head<3>();
     inside += (p.array() >= lo.array() - 30).all() && (p.array() <= hi.array() + 30).all();
   }
   EXPECT_GT(on_part, 100u);
-  EXPECT_GE(inside, on_part * 95 / 100);  // flying pixels and Kinect steps may stray a little
+  EXPECT_GE(inside, on_part * 95 / 100); // flying pixels and Kinect steps may stray a little
 }
 
 TEST(Synth, BadInputThrowsAndWritesNothing) {
@@ -150,10 +158,11 @@ TEST(Synth, BadInputThrowsAndWritesNothing) {
   saveMeshPly(dir / "open.ply", open);
   r.mesh_path = dir / "open.ply";
   expectNothing(r);
-  writeFileAtomic(dir / "empty.ply", "ply\nformat ascii 1.0\nelement vertex 0\nelement face 0\nend_header\n");
+  writeFileAtomic(dir / "empty.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 0\nelement face 0\nend_header\n");
   r.mesh_path = dir / "empty.ply";
   expectNothing(r);
-  EXPECT_EQ(scanpick::test::fileCount(dir.path()), 3u);  // only the three inputs made above
+  EXPECT_EQ(scanpick::test::fileCount(dir.path()), 3u); // only the three inputs made above
 }
 
 TEST(Synth, MeshFilePartIsSimulated) {
