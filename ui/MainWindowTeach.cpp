@@ -212,7 +212,7 @@ bool MainWindow::applyCrop() {
   }
   auto cropped =
       std::make_shared<const core::PointCloud>(core::cropToOrientedBox(*m_part, cropBox()));
-  if (cropped->validCount() == 0) {
+  if (!cropped->hasValidPoint()) {
     showError(tr("Crop"), tr("The crop box holds no point: move or enlarge it."));
     return false;
   }

@@ -169,7 +169,7 @@ LoadedCloud loadCloud(const fs::path& path, LengthUnit units) {
 
   LoadedCloud loaded;
   PointCloud in_file_units = fromBlob(blob, 1.0f);
-  if (in_file_units.validCount() == 0)
+  if (!in_file_units.hasValidPoint())
     throw Error("'" + path.string() + "' has no valid point (empty or all NaN): capture again or "
                 "pick another file");
   loaded.units_warning = unitsSanityWarning(in_file_units, units);

@@ -11,6 +11,10 @@ std::size_t PointCloud::validCount() const {
       std::count_if(points_mm.begin(), points_mm.end(), [](const auto& p) { return isValid(p); }));
 }
 
+bool PointCloud::hasValidPoint() const {
+  return std::any_of(points_mm.begin(), points_mm.end(), [](const auto& p) { return isValid(p); });
+}
+
 PointCloud PointCloud::fromPoints(std::vector<Eigen::Vector3f> points) {
   PointCloud cloud;
   cloud.width = static_cast<std::uint32_t>(points.size());

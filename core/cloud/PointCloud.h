@@ -18,13 +18,13 @@ namespace scanpick::core {
 /// row-major (`index = row * width + column`). Unorganized clouds have `height == 1`.
 /// Optional channels are either empty or the same size as `points_mm`.
 struct PointCloud {
-  std::uint32_t width = 0;  ///< columns (organized) or number of points (unorganized)
-  std::uint32_t height = 1; ///< rows; 1 for an unorganized cloud
-  std::vector<Eigen::Vector3f> points_mm;           ///< positions, millimetres
-  std::vector<Eigen::Vector3f> normals;             ///< unit normals, optional
-  std::vector<std::array<std::uint8_t, 3>> colors;  ///< RGB, optional
-  std::vector<float> intensity;                     ///< sensor intensity, optional
-  std::vector<std::uint8_t> confidence;             ///< 0 = invalid, optional
+  std::uint32_t width = 0;                ///< columns (organized) or number of points (unorganized)
+  std::uint32_t height = 1;               ///< rows; 1 for an unorganized cloud
+  std::vector<Eigen::Vector3f> points_mm; ///< positions, millimetres
+  std::vector<Eigen::Vector3f> normals;   ///< unit normals, optional
+  std::vector<std::array<std::uint8_t, 3>> colors; ///< RGB, optional
+  std::vector<float> intensity;                    ///< sensor intensity, optional
+  std::vector<std::uint8_t> confidence;            ///< 0 = invalid, optional
 
   /// True when the cloud keeps a sensor grid (height > 1).
   [[nodiscard]] bool isOrganized() const { return height > 1; }
@@ -33,6 +33,8 @@ struct PointCloud {
   [[nodiscard]] bool empty() const { return points_mm.empty(); }
   /// Number of points with finite coordinates.
   [[nodiscard]] std::size_t validCount() const;
+  /// Whether any point is valid: stops at the first one, where validCount() visits them all.
+  [[nodiscard]] bool hasValidPoint() const;
   /// Makes an unorganized cloud from `points` (width = size, height = 1).
   static PointCloud fromPoints(std::vector<Eigen::Vector3f> points);
   /// Checks the size invariants; throws Error naming the broken one.
@@ -44,7 +46,9 @@ inline Eigen::Vector3f invalidPoint() {
   return Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
 }
 /// True when all three coordinates are finite.
-inline bool isValid(const Eigen::Vector3f& p) { return p.allFinite(); }
+inline bool isValid(const Eigen::Vector3f& p) {
+  return p.allFinite();
+}
 
 /// Axis-aligned bounding box of the valid points (empty box if none).
 Eigen::AlignedBox3f boundingBox(const PointCloud& cloud);

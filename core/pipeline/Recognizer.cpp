@@ -296,7 +296,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   const auto model = snapshot(cache, "recognize");
   const RecognitionParams params = withViewParams(requested, model->view_params);
   scene_mm.validate();
-  if (scene_mm.validCount() == 0)
+  if (!scene_mm.hasValidPoint())
     throw Error("the scene has no valid point (empty or all NaN): check the scan file or the "
                 "camera capture");
   RecognitionResult result;
@@ -360,7 +360,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   const bool verifying = params.matching.verify_tolerance_mm > 0;
   std::shared_ptr<const ModelPrep> prep;
-  if (detail::needsModelPrep(params) && cache.pre && cache.pre->validCount() > 0) {
+  if (detail::needsModelPrep(params) && cache.pre && cache.pre->hasValidPoint()) {
     const auto t0 = Clock::now();
     const std::pair index_key{pre_key, sensorHash(sensor)};
     if (cache.index_key != index_key || !cache.scene_index) {
@@ -390,7 +390,7 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     nearest_only.estimate_normals = false;
     nearest_only.sensor = sensor;
     cache.edge_index =
-        all.validCount() == 0 ? nullptr : std::make_shared<const SceneIndex>(all, nearest_only);
+        !all.hasValidPoint() ? nullptr : std::make_shared<const SceneIndex>(all, nearest_only);
     logger()->debug("edge check: {} keypoints indexed, {} (slack {:.3f} px)",
                     cache.edge_index ? cache.edge_index->size() : 0,
                     cache.edge_index && cache.edge_index->width() > 0 ? "by pixel" : "as a list",

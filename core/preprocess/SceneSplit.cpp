@@ -154,7 +154,7 @@ SceneSplit splitIntoObjects(const PointCloud& scene_mm, const SensorModel& senso
     for (std::size_t i = 0; i < scene_mm.size(); ++i)
       if (isValid(scene_mm.points_mm[i]))
         split.point_labels[i] = 0;
-    if (scene_mm.validCount() > 0)
+    if (scene_mm.hasValidPoint())
       split.objects.push_back(scene_mm);
     return split;
   }

@@ -57,7 +57,7 @@ RefineModel::RefineModel(const PointCloud& model_mm, int max_points,
   if (max_points < 3)
     throw Error("The refinement needs at least 3 model points (refine.model_points is " +
                 std::to_string(max_points) + ").");
-  if (model_mm.validCount() == 0)
+  if (!model_mm.hasValidPoint())
     throw Error("The model cloud to refine has no valid point (empty or all NaN): teach the model "
                 "again from a crop that holds the part.");
   SceneIndexOptions options;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -84,15 +85,25 @@ void blockedParallel(std::size_t n, const ProgressFn& progress, Body&& body) {
 
 } // namespace
 
-// The tree owns the points: it lives on the heap, so the adaptor's pointer survives moves of
-// the SceneIndex.
+// The points and their kd-tree live on the heap, so the adaptor's pointer survives moves of the
+// SceneIndex. The tree is built on its first search: a scan searched in pixel windows only
+// never needs it.
 struct SceneIndex::Tree {
   std::vector<Eigen::Vector3f> points;
   PointVectorSource source;
-  PointKdTree tree;
   explicit Tree(std::vector<Eigen::Vector3f> points_mm)
-      : points(std::move(points_mm)), source{&points},
-        tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {}
+      : points(std::move(points_mm)), source{&points} {}
+  const PointKdTree& kdTree() {
+    std::call_once(m_built, [this] {
+      m_tree =
+          std::make_unique<PointKdTree>(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+    });
+    return *m_tree;
+  }
+
+private:
+  std::once_flag m_built;
+  std::unique_ptr<PointKdTree> m_tree;
 };
 
 SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& options,
@@ -174,7 +185,7 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
             }
         });
       } else {
-        const std::size_t found = m_tree->tree.knnSearch(p.data(), k, ids.data(), dists.data());
+        const std::size_t found = m_tree->kdTree().knnSearch(p.data(), k, ids.data(), dists.data());
         m_normals[i] = planeNormal(p, viewpoint, m_variation[i], [&](auto&& add) {
           for (std::size_t j = 0; j < found; ++j)
             if (dists[j] <= radius_sq)
@@ -246,7 +257,7 @@ std::int64_t SceneIndex::nearest(const Eigen::Vector3f& query_mm, float max_dist
     }
   }
   NearestResult result(max_distance_sq);
-  m_tree->tree.findNeighbors(result, query_mm.data(), nanoflann::SearchParams(32, 0.0f, false));
+  m_tree->kdTree().findNeighbors(result, query_mm.data(), nanoflann::SearchParams(32, 0.0f, false));
   if (result.index() == NearestResult::kNone)
     return -1;
   if (distance_sq)

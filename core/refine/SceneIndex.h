@@ -45,7 +45,8 @@ struct SceneIndexOptions {
 /// cloud and the sensor model disagree, and the windows would grow.
 inline constexpr float kMaxPixelWindowSlack = 1.0f;
 
-/// The valid points of a cloud, their normals (NaN where too few neighbours), and a kd-tree.
+/// The valid points of a cloud, their normals (NaN where too few neighbours), and a kd-tree
+/// (built on the first search that needs it).
 /// Immutable after construction: queries are safe from many threads at once.
 class SceneIndex {
 public:
@@ -78,8 +79,8 @@ public:
   /// Nearest indexed point to `query_mm` no farther than sqrt(max_distance_sq) (mm²). Returns
   /// its index, or -1 when there is none that close. Exact (no approximate search), so
   /// deterministic; ties go to the lower index. With the options' sensor and a pixelSlack() of at
-  /// most kMaxPixelWindowSlack, a small sphere (a window of up to 9 x 9 pixels) is searched in the
-  /// pixels that can hold it: the pinhole's slope over the sphere, the slack and the rounding.
+  /// most kMaxPixelWindowSlack, a small sphere (a window of up to 17 x 17 pixels) is searched in
+  /// the pixels that can hold it: the pinhole's slope over the sphere, the slack and the rounding.
   [[nodiscard]] std::int64_t nearest(const Eigen::Vector3f& query_mm, float max_distance_sq,
                                      float* distance_sq = nullptr) const;
 
@@ -103,7 +104,7 @@ public:
 private:
   struct Tree;
   /// Largest half window (pixels, exclusive) nearest() searches; wider spheres go to the tree.
-  static constexpr double kMaxWindowReach = 5.0;
+  static constexpr double kMaxWindowReach = 9.0;
   [[nodiscard]] float measurePixelSlack(const SensorModel& sensor) const;
   SceneIndexOptions m_options;
   std::vector<std::int32_t> m_pixel_index;

@@ -1,4 +1,5 @@
 #include "core/cloud/CloudIo.h"
+
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 #include "tests/support/TempDir.h"
@@ -33,6 +34,20 @@ TEST(CloudIo, PcdRoundTripKeepsOrganizationAndNaN) {
   EXPECT_TRUE(loaded.units_warning.empty()) << loaded.units_warning;
 }
 
+TEST(PointCloud, CountsAndFindsValidPoints) {
+  core::PointCloud cloud = organizedGrid();
+  EXPECT_EQ(cloud.validCount(), 11u);
+  EXPECT_TRUE(cloud.hasValidPoint());
+  for (std::size_t i = 0; i + 1 < cloud.size(); ++i)
+    cloud.points_mm[i] = core::invalidPoint();
+  EXPECT_EQ(cloud.validCount(), 1u);
+  EXPECT_TRUE(cloud.hasValidPoint()) << "the last point is still valid";
+  cloud.points_mm.back() = core::invalidPoint();
+  EXPECT_EQ(cloud.validCount(), 0u);
+  EXPECT_FALSE(cloud.hasValidPoint());
+  EXPECT_FALSE(core::PointCloud{}.hasValidPoint());
+}
+
 TEST(CloudIo, MetresAreConvertedAndWrongUnitsWarned) {
   test::TempDir dir;
   auto cloud = organizedGrid();
@@ -42,7 +57,8 @@ TEST(CloudIo, MetresAreConvertedAndWrongUnitsWarned) {
   const auto as_m = core::loadCloud(dir / "grid_m.ply", core::LengthUnit::Metres);
   EXPECT_NEAR(as_m.cloud.points_mm[6].z(), 503.0f, 1e-3f);
   EXPECT_TRUE(as_m.units_warning.empty());
-  // Declaring millimetres for a cloud that spans 0.05 units must produce a warning naming --units m.
+  // Declaring millimetres for a cloud that spans 0.05 units must produce a warning naming --units
+  // m.
   const auto as_mm = core::loadCloud(dir / "grid_m.ply", core::LengthUnit::Millimetres);
   EXPECT_NE(as_mm.units_warning.find("--units m"), std::string::npos) << as_mm.units_warning;
 }

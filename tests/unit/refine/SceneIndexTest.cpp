@@ -108,7 +108,7 @@ TEST(SceneIndex, WithItsSensorNearestLooksInPixelWindowsWithTheSameAnswers) {
   EXPECT_LT(tree.pixelSlack(), 0.0f) << "no sensor, no windows";
   std::size_t found = 0;
   for (std::size_t k = 0; k < tree.size(); k += 29)
-    for (const float radius : {0.5f, 1.0f, 2.5f, 8.0f}) {
+    for (const float radius : {0.5f, 1.0f, 2.5f, 5.0f, 8.0f, 12.0f}) {
       const Eigen::Vector3f query = tree.points()[k] + Eigen::Vector3f(0.6f, -0.7f, 0.4f);
       float d_tree = -1.0f, d_windows = -2.0f;
       const std::int64_t near = tree.nearest(query, radius * radius, &d_tree);
