@@ -19,6 +19,7 @@
 #include <functional>
 #include <optional>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 namespace scanpick::core {
 namespace {
@@ -319,6 +320,36 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   reportProgress(progress, 0.1);
 
+  // Verification's scene index (the scan's normals) and projector shadows depend on the
+  // preprocessed scan alone: they are built in a task while the scene is split and its features
+  // found, which use both cores only in part. Each is the same whichever thread builds it.
+  const bool preparing = detail::needsModelPrep(params) && cache.pre && cache.pre->hasValidPoint();
+  const std::pair index_key{pre_key, sensorHash(sensor)};
+  const std::pair shadow_key{pre_key.scene, sensorHash(sensor)};
+  tbb::task_group scene_tasks;
+  if (preparing && (cache.index_key != index_key || !cache.scene_index)) {
+    cache.scene_index.reset();
+    scene_tasks.run([&, scene = cache.pre] {
+      const auto t0 = Clock::now();
+      SceneIndexOptions options;
+      options.normal_radius_mm = params.keypoints.normal_radius_mm;
+      options.sensor = sensor;
+      cache.scene_index = std::make_shared<const SceneIndex>(*scene, options);
+      logger()->debug("scene indexed for verification: {} points, {:.0f} ms; they lie within "
+                      "{:.3f} px of where the sensor projects them (nearest points are looked "
+                      "for in pixel windows up to {} px)",
+                      cache.scene_index->points().size(), msSince(t0),
+                      cache.scene_index->pixelSlack(), kMaxPixelWindowSlack);
+    });
+    cache.index_key = index_key;
+  }
+  if (preparing && (cache.shadow_key != shadow_key || !cache.shadow)) {
+    cache.shadow.reset();
+    scene_tasks.run(
+        [&] { cache.shadow = std::make_shared<const ProjectorShadow>(scene_mm, sensor); });
+    cache.shadow_key = shadow_key;
+  }
+
   const SplitKey split_key{pre_key, params.clustering, sensorHash(sensor)};
   if (cache.split_key != split_key) {
     const auto t0 = Clock::now();
@@ -360,26 +391,9 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   const bool verifying = params.matching.verify_tolerance_mm > 0;
   std::shared_ptr<const ModelPrep> prep;
-  if (detail::needsModelPrep(params) && cache.pre && cache.pre->hasValidPoint()) {
-    const auto t0 = Clock::now();
-    const std::pair index_key{pre_key, sensorHash(sensor)};
-    if (cache.index_key != index_key || !cache.scene_index) {
-      SceneIndexOptions options;
-      options.normal_radius_mm = params.keypoints.normal_radius_mm;
-      options.sensor = sensor;
-      cache.scene_index = std::make_shared<const SceneIndex>(*cache.pre, options);
-      cache.index_key = index_key;
-      logger()->debug("scene indexed for verification: {} points, {:.0f} ms; they lie within "
-                      "{:.3f} px of where the sensor projects them (nearest points are looked "
-                      "for in pixel windows up to {} px)",
-                      cache.scene_index->points().size(), msSince(t0),
-                      cache.scene_index->pixelSlack(), kMaxPixelWindowSlack);
-    }
-    const std::pair shadow_key{pre_key.scene, sensorHash(sensor)};
-    if (cache.shadow_key != shadow_key || !cache.shadow) {
-      cache.shadow = std::make_shared<const ProjectorShadow>(scene_mm, sensor);
-      cache.shadow_key = shadow_key;
-    }
+  if (preparing) {
+    const auto t0 = Clock::now(); // what the scene tasks still need is matching's time
+    scene_tasks.wait();
     prep = detail::prepareModel(cache.model_preps, model, params);
     result.timings.matching_ms += msSince(t0);
   }

@@ -1,8 +1,9 @@
+#include "core/pipeline/Recognizer.h"
+
 #include "core/cloud/Sensor.h"
 #include "core/common/Error.h"
 #include "core/eval/ResultsFile.h"
 #include "core/pipeline/OverlayPicture.h"
-#include "core/pipeline/Recognizer.h"
 #include "core/pipeline/ResultsJson.h"
 #include "tests/support/TempDir.h"
 #include "tests/unit/pipeline/IdealScene.h"
@@ -51,14 +52,45 @@ TEST(Recognizer, ChangingAMatchingToleranceReusesTheKeypoints) {
   const auto first = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
   params.matching.position_tolerance_mm = 3.0;
   const auto second = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
-  EXPECT_EQ(first.object_keypoints, second.object_keypoints);  // same cached object
+  EXPECT_EQ(first.object_keypoints, second.object_keypoints); // same cached object
   EXPECT_EQ(first.object_features, second.object_features);
   EXPECT_EQ(second.timings.keypoints_ms, 0.0);
   EXPECT_EQ(second.detections.size(), 3u);
-  params.keypoints.neighbourhood_radius_mm = 4.0;  // invalidates keypoints and later
+  params.keypoints.neighbourhood_radius_mm = 4.0; // invalidates keypoints and later
   const auto third = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
   EXPECT_NE(third.object_keypoints, second.object_keypoints);
   EXPECT_EQ(third.preprocessed, second.preprocessed);
+}
+
+TEST(Recognizer, CancellingWhileTheSceneIsIndexedKeepsTheRecognizerUsable) {
+  // With verification the scene's index is built in a task beside the clustering; a cancel
+  // there must wait for that task, and the next recognition must not see half a cache.
+  Recognizer recognizer(idealModel());
+  const PointCloud scene = threeCopies(0.3);
+  auto params = test::idealParams(0.5);
+  params.matching.verify_tolerance_mm = 1.0;
+  params.matching.min_coverage = 0.3;
+  const auto fresh =
+      Recognizer(idealModel()).recognize(scene, sensorPreset("phoxi-m-1032"), params);
+  ASSERT_EQ(fresh.detections.size(), 3u);
+  double cancelled_at = 0.0; // the first report past the preprocessing, in the clustering
+  EXPECT_THROW(recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params,
+                                    [&](double fraction) {
+                                      if (fraction <= 0.1)
+                                        return true;
+                                      cancelled_at = fraction;
+                                      return false;
+                                    }),
+               Cancelled);
+  EXPECT_GT(cancelled_at, 0.1);
+  EXPECT_LT(cancelled_at, 0.3);
+  const auto again = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
+  ASSERT_EQ(again.detections.size(), fresh.detections.size());
+  for (std::size_t i = 0; i < again.detections.size(); ++i) {
+    EXPECT_EQ(again.detections[i].T_scene_model.matrix(),
+              fresh.detections[i].T_scene_model.matrix());
+    EXPECT_EQ(again.detections[i].coverage, fresh.detections[i].coverage);
+  }
 }
 
 TEST(Recognizer, GripPointsFollowThePose) {
@@ -68,7 +100,10 @@ TEST(Recognizer, GripPointsFollowThePose) {
   ASSERT_FALSE(r.detections.empty());
   for (const auto& d : r.detections) {
     ASSERT_EQ(d.grip_points_scene.size(), 1u);
-    EXPECT_LT((d.grip_points_scene[0].position_mm - d.T_scene_model * model->grip_points[0].position_mm).norm(), 1e-9);
+    EXPECT_LT(
+        (d.grip_points_scene[0].position_mm - d.T_scene_model * model->grip_points[0].position_mm)
+            .norm(),
+        1e-9);
   }
 }
 
@@ -83,14 +118,16 @@ TEST(Recognizer, BadScenesAreErrors) {
 TEST(Recognizer, ResultsFileAndPictureAreWritten) {
   const auto model = idealModel();
   const PointCloud scene = threeCopies(0.0);
-  const auto r = Recognizer(model).recognize(scene, sensorPreset("phoxi-m-1032"), test::idealParams(0.001));
+  const auto r =
+      Recognizer(model).recognize(scene, sensorPreset("phoxi-m-1032"), test::idealParams(0.001));
   test::TempDir dir;
   saveResults(dir / "result.json", r, *model, "scene.pcd", "part.spmodel");
   const auto back = eval::loadResults(dir / "result.json");
   ASSERT_EQ(back.detections.size(), r.detections.size());
   EXPECT_TRUE(back.detections[0].T_scene_model.isApprox(r.detections[0].T_scene_model, 1e-9));
   EXPECT_TRUE(back.T_teach_model.isApprox(model->T_teach_model, 1e-12));
-  writeOverlayPng(dir / "overlay.png", scene, model->cloud_mm, r.detections, sensorPreset("phoxi-m-1032"));
+  writeOverlayPng(dir / "overlay.png", scene, model->cloud_mm, r.detections,
+                  sensorPreset("phoxi-m-1032"));
   EXPECT_GT(std::filesystem::file_size(dir / "overlay.png"), 1000u);
 }
 
@@ -115,16 +152,19 @@ TEST(Recognizer, PooledSearchFindsEveryCopyInOneUnsplitScene) {
   params.matching.pool_size = 200;
   const auto poses = test::idealCopyPoses();
   const auto model = idealModel();
-  const auto r = Recognizer(model).recognize(threeCopies(0.0), sensorPreset("phoxi-m-1032"), params);
+  const auto r =
+      Recognizer(model).recognize(threeCopies(0.0), sensorPreset("phoxi-m-1032"), params);
   ASSERT_EQ(r.detections.size(), 3u);
   // Each copy is found once, at its model origin (the teach scan had the part moved by 700 mm
   // along z).
-  const Eigen::Vector3d origin_part = model->T_teach_model.translation() - Eigen::Vector3d(0, 0, 700);
+  const Eigen::Vector3d origin_part =
+      model->T_teach_model.translation() - Eigen::Vector3d(0, 0, 700);
   for (std::size_t i = 0; i < 3; ++i) {
     const Eigen::Vector3d where = poses[i] * origin_part;
-    const auto hits = std::count_if(r.detections.begin(), r.detections.end(), [&](const Detection& d) {
-      return (d.T_scene_model.translation() - where).norm() < 0.5;
-    });
+    const auto hits =
+        std::count_if(r.detections.begin(), r.detections.end(), [&](const Detection& d) {
+          return (d.T_scene_model.translation() - where).norm() < 0.5;
+        });
     EXPECT_EQ(hits, 1) << "copy " << i;
   }
 }
@@ -137,13 +177,16 @@ TEST(Recognizer, ViewsAreMergedWithoutDuplicatesAndNamedInTheResults) {
   const auto params = test::idealParams(0.001);
   Recognizer recognizer;
   const auto single = Recognizer(view0).recognize(scene, sensorPreset("phoxi-m-1032"), params);
-  const auto merged = recognizeViews(recognizer, {view0, view1}, scene, sensorPreset("phoxi-m-1032"), params);
+  const auto merged =
+      recognizeViews(recognizer, {view0, view1}, scene, sensorPreset("phoxi-m-1032"), params);
   // The same instances seen through both (identical) views are reported once.
   ASSERT_EQ(merged.detections.size(), single.detections.size());
   for (std::size_t i = 0; i < merged.detections.size(); ++i)
-    EXPECT_TRUE(merged.detections[i].T_scene_model.isApprox(single.detections[i].T_scene_model, 1e-9));
+    EXPECT_TRUE(
+        merged.detections[i].T_scene_model.isApprox(single.detections[i].T_scene_model, 1e-9));
   test::TempDir dir;
-  saveResults(dir / "result.json", merged, {{view0.get(), "a.spmodel"}, {view1.get(), "b.spmodel"}}, "scene.pcd");
+  saveResults(dir / "result.json", merged, {{view0.get(), "a.spmodel"}, {view1.get(), "b.spmodel"}},
+              "scene.pcd");
   const auto back = eval::loadResults(dir / "result.json");
   ASSERT_EQ(back.models.size(), 2u);
   EXPECT_EQ(back.models[1].teach_scan, "side.pcd");
@@ -173,11 +216,14 @@ TEST(Recognizer, AViewsOwnParametersReplaceTheRecognitionParameters) {
     EXPECT_GE(d.score, strict->view_params["matching.min_coverage"]);
   // ...and a lower one keeps all three where the parameters alone would not.
   params.matching.min_coverage = strict->view_params["matching.min_coverage"];
-  EXPECT_EQ(Recognizer(taught).recognize(scene, sensorPreset("phoxi-m-1032"), params).detections.size(),
-            fewer.detections.size());
+  EXPECT_EQ(
+      Recognizer(taught).recognize(scene, sensorPreset("phoxi-m-1032"), params).detections.size(),
+      fewer.detections.size());
   auto lenient = std::make_shared<TaughtModel>(*taught);
   lenient->view_params["matching.min_coverage"] = 0.0;
-  EXPECT_EQ(Recognizer(lenient).recognize(scene, sensorPreset("phoxi-m-1032"), params).detections.size(), 3u);
+  EXPECT_EQ(
+      Recognizer(lenient).recognize(scene, sensorPreset("phoxi-m-1032"), params).detections.size(),
+      3u);
 }
 
 TEST(Recognizer, PreparedViewsGiveTheSameDetectionsAndAreKept) {
@@ -190,17 +236,20 @@ TEST(Recognizer, PreparedViewsGiveTheSameDetectionsAndAreKept) {
   params.matching.verify_tolerance_mm = 0.5;
   params.matching.min_coverage = 0.5;
   Recognizer fresh;
-  const auto expected = recognizeViews(fresh, {view0, view1}, scene, sensorPreset("phoxi-m-1032"), params);
+  const auto expected =
+      recognizeViews(fresh, {view0, view1}, scene, sensorPreset("phoxi-m-1032"), params);
   Recognizer prepared;
-  EXPECT_THROW(prepared.prepare(params), Error);  // no model yet
+  EXPECT_THROW(prepared.prepare(params), Error); // no model yet
   EXPECT_GE(prepareViews(prepared, {view0, view1}, params), 0.0);
   EXPECT_EQ(prepared.preparedModels(), 2u);
-  const auto got = recognizeViews(prepared, {view0, view1}, scene, sensorPreset("phoxi-m-1032"), params);
-  EXPECT_EQ(prepared.preparedModels(), 2u);  // used, not prepared again
+  const auto got =
+      recognizeViews(prepared, {view0, view1}, scene, sensorPreset("phoxi-m-1032"), params);
+  EXPECT_EQ(prepared.preparedModels(), 2u); // used, not prepared again
   ASSERT_EQ(got.detections.size(), expected.detections.size());
   ASSERT_FALSE(got.detections.empty());
   for (std::size_t i = 0; i < got.detections.size(); ++i) {
-    EXPECT_EQ(got.detections[i].T_scene_model.matrix(), expected.detections[i].T_scene_model.matrix());
+    EXPECT_EQ(got.detections[i].T_scene_model.matrix(),
+              expected.detections[i].T_scene_model.matrix());
     EXPECT_EQ(got.detections[i].score, expected.detections[i].score);
   }
   // Without verification or refinement there is nothing to prepare.
