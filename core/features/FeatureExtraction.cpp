@@ -2,10 +2,12 @@
 
 #include "core/cloud/PointCloud.h"
 #include "core/common/Error.h"
+#include "core/features/Ransac.h"
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <pcl/console/print.h>
@@ -14,7 +16,6 @@
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/mlesac.h>
 #include <pcl/sample_consensus/prosac.h>
-#include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_circle3d.h>
 #include <pcl/sample_consensus/sac_model_line.h>
 #include <pcl/search/kdtree.h>
@@ -112,8 +113,8 @@ bool runEstimator(const pcl::SampleConsensusModel<pcl::PointXYZ>::Ptr& model,
   std::unique_ptr<pcl::SampleConsensus<pcl::PointXYZ>> sac;
   switch (params.estimator) {
   case FeatureParams::Estimator::Ransac:
-    sac = std::make_unique<pcl::RandomSampleConsensus<pcl::PointXYZ>>(model, threshold);
-    break;
+    return ransacModel(*model, threshold, std::max(1, params.max_iterations), coefficients) &&
+           coefficients.allFinite();
   case FeatureParams::Estimator::Mlesac:
     sac = std::make_unique<pcl::MaximumLikelihoodSampleConsensus<pcl::PointXYZ>>(model, threshold);
     break;
