@@ -138,19 +138,81 @@ struct Recognizer::Cache {
   double surface_scene_sampling = 0.0;
   std::shared_ptr<const OrientedPoints> surface_scene;
   /// How the views have voted with surface_scene: by stride and quantizer, and the scene paired
-  /// (ScenePairs) once a second view votes alike, shared by those whose diameter its radius
-  /// covers. Pairing computes every pair's angle, more than one view voting alone needs with a
-  /// sparse table: so the first view, and one voting with its own stride (the cup's bottom
-  /// view), pair as they vote.
+  /// (ScenePairs) for those alike, shared by those whose diameter its radius covers. Pairing
+  /// computes every pair's angle, more than one view voting alone needs with a sparse table: so
+  /// a view voting with its own stride (the cup's bottom view) pairs as it votes, and so does
+  /// the first of views not prepared beforehand; for prepared views that vote alike the scene
+  /// is paired beside the feature search.
   struct SurfacePairing {
     int stride = 0;
     PairQuantizer quantizer;
     std::shared_ptr<const ScenePairs> pairs; ///< null while one view has voted so
   };
   std::vector<SurfacePairing> surface_pairings;
+
+  /// The scene sampled at `sampling_mm` from scene_index (made if missing) and paired for a view
+  /// of `diameter_mm` voting with `stride` and `quantizer`: made when missing or paired within
+  /// a smaller radius, except for the first view to vote so, which pairs as it votes (null)
+  /// unless `pair_now`.
+  std::shared_ptr<const ScenePairs> pairScene(const PreKey& key, double sampling_mm, int stride,
+                                              const PairQuantizer& quantizer, double diameter_mm,
+                                              bool pair_now, const ProgressFn& progress) {
+    if (surface_scene_key != key || surface_scene_sampling != sampling_mm) {
+      surface_scene = std::make_shared<const OrientedPoints>(
+          sampleOriented(scene_index->points(), scene_index->normals(), sampling_mm));
+      surface_scene_key = key;
+      surface_scene_sampling = sampling_mm;
+      surface_pairings.clear();
+    }
+    auto pairing = std::find_if(
+        surface_pairings.begin(), surface_pairings.end(),
+        [&](const SurfacePairing& p) { return p.stride == stride && p.quantizer == quantizer; });
+    if (pairing == surface_pairings.end()) {
+      pairing = surface_pairings.insert(surface_pairings.end(), {stride, quantizer, nullptr});
+      if (!pair_now)
+        return nullptr;
+    }
+    if (!pairing->pairs || pairing->pairs->radius() < diameter_mm)
+      pairing->pairs = std::make_shared<const ScenePairs>(*surface_scene, quantizer, stride,
+                                                          kPairingMargin * diameter_mm, progress);
+    return pairing->pairs;
+  }
 };
 
 namespace {
+/// A scene pairing that two or more prepared views vote with (the same stride and quantizer, at
+/// the same sampling), and the diameter of the largest of them.
+struct SharedPairing {
+  int stride = 0;
+  PairQuantizer quantizer;
+  double diameter_mm = 0.0;
+  int views = 0;
+};
+
+/// The pairings of the scene sampled at `sampling_mm` that two or more of the prepared views
+/// share, their strides each view's own (`requested` with the view's parameters).
+std::vector<SharedPairing>
+sharedPairings(const std::vector<std::shared_ptr<const ModelPrep>>& preps,
+               const RecognitionParams& requested, double sampling_mm) {
+  std::vector<SharedPairing> all;
+  for (const auto& prep : preps) {
+    if (!prep->pairs || prep->surface_sampling_mm != sampling_mm)
+      continue;
+    const int stride = std::max(
+        1, withViewParams(requested, prep->model->view_params).matching.surface_reference_stride);
+    const PairQuantizer& quantizer = prep->pairs->quantizer();
+    auto shared = std::find_if(all.begin(), all.end(), [&](const SharedPairing& p) {
+      return p.stride == stride && p.quantizer == quantizer;
+    });
+    if (shared == all.end())
+      shared = all.insert(all.end(), {stride, quantizer, 0.0, 0});
+    shared->diameter_mm = std::max(shared->diameter_mm, prep->pairs->diameter());
+    ++shared->views;
+  }
+  std::erase_if(all, [](const SharedPairing& p) { return p.views < 2; });
+  return all;
+}
+
 /// Another try for a pose that verified under the minimum but at least half of it: may replace
 /// the detection's pose and coverage.
 using PoseRescue = std::function<void(Detection&)>;
@@ -320,28 +382,42 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   reportProgress(progress, 0.1);
 
-  // Verification's scene index (the scan's normals) and projector shadows depend on the
-  // preprocessed scan alone: they are built in a task while the scene is split and its features
-  // found, which use both cores only in part. Each is the same whichever thread builds it.
+  // Verification's scene index (the scan's normals), the sampled scene and its pairings for
+  // surface voting, and projector shadows depend on the preprocessed scan alone: they are built
+  // in tasks while the scene is split and its features found, which use both cores only in
+  // part. Each is the same whichever thread builds it.
   const bool preparing = detail::needsModelPrep(params) && cache.pre && cache.pre->hasValidPoint();
   const std::pair index_key{pre_key, sensorHash(sensor)};
   const std::pair shadow_key{pre_key.scene, sensorHash(sensor)};
+  const double sampling_mm = params.matching.surface_sampling_mm;
+  const bool verifying = params.matching.verify_tolerance_mm > 0;
   tbb::task_group scene_tasks;
-  if (preparing && (cache.index_key != index_key || !cache.scene_index)) {
-    cache.scene_index.reset();
-    scene_tasks.run([&, scene = cache.pre] {
-      const auto t0 = Clock::now();
-      SceneIndexOptions options;
-      options.normal_radius_mm = params.keypoints.normal_radius_mm;
-      options.sensor = sensor;
-      cache.scene_index = std::make_shared<const SceneIndex>(*scene, options);
-      logger()->debug("scene indexed for verification: {} points, {:.0f} ms; they lie within "
-                      "{:.3f} px of where the sensor projects them (nearest points are looked "
-                      "for in pixel windows up to {} px)",
-                      cache.scene_index->points().size(), msSince(t0),
-                      cache.scene_index->pixelSlack(), kMaxPixelWindowSlack);
-    });
+  if (preparing) {
+    const bool index = cache.index_key != index_key || !cache.scene_index;
+    if (index)
+      cache.scene_index.reset();
     cache.index_key = index_key;
+    // Pairings that prepared views share are made now, not when the second of them votes.
+    std::vector<SharedPairing> shared;
+    if (verifying && sampling_mm > 0)
+      shared = sharedPairings(cache.model_preps, requested, sampling_mm);
+    if (index || !shared.empty())
+      scene_tasks.run([&, index, shared = std::move(shared), scene = cache.pre] {
+        if (index) {
+          const auto t0 = Clock::now();
+          SceneIndexOptions options;
+          options.normal_radius_mm = params.keypoints.normal_radius_mm;
+          options.sensor = sensor;
+          cache.scene_index = std::make_shared<const SceneIndex>(*scene, options);
+          logger()->debug("scene indexed for verification: {} points, {:.0f} ms; they lie within "
+                          "{:.3f} px of where the sensor projects them (nearest points are looked "
+                          "for in pixel windows up to {} px)",
+                          cache.scene_index->points().size(), msSince(t0),
+                          cache.scene_index->pixelSlack(), kMaxPixelWindowSlack);
+        }
+        for (const SharedPairing& p : shared)
+          cache.pairScene(pre_key, sampling_mm, p.stride, p.quantizer, p.diameter_mm, true, {});
+      });
   }
   if (preparing && (cache.shadow_key != shadow_key || !cache.shadow)) {
     cache.shadow.reset();
@@ -389,7 +465,6 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     cache.feature_key = feature_key;
     result.timings.features_ms = msSince(t0);
   }
-  const bool verifying = params.matching.verify_tolerance_mm > 0;
   std::shared_ptr<const ModelPrep> prep;
   if (preparing) {
     const auto t0 = Clock::now(); // what the scene tasks still need is matching's time
@@ -413,33 +488,14 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
   }
   const EdgeCheck edges{edge_check ? cache.edge_index.get() : nullptr,
                         params.matching.edge_tolerance_mm};
-  const double sampling_mm = params.matching.surface_sampling_mm;
   const bool surface = verifying && sampling_mm > 0 && prep;
   std::shared_ptr<const ScenePairs> scene_pairs;
   if (surface) {
     const auto t0 = Clock::now();
-    if (cache.surface_scene_key != pre_key || cache.surface_scene_sampling != sampling_mm) {
-      cache.surface_scene = std::make_shared<const OrientedPoints>(
-          sampleOriented(cache.scene_index->points(), cache.scene_index->normals(), sampling_mm));
-      cache.surface_scene_key = pre_key;
-      cache.surface_scene_sampling = sampling_mm;
-      cache.surface_pairings.clear();
-    }
     const PointPairModel& view = *prep->pairs;
-    const int stride = std::max(1, params.matching.surface_reference_stride);
-    auto pairing = std::find_if(cache.surface_pairings.begin(), cache.surface_pairings.end(),
-                                [&](const Cache::SurfacePairing& p) {
-                                  return p.stride == stride && p.quantizer == view.quantizer();
-                                });
-    if (pairing == cache.surface_pairings.end()) {
-      cache.surface_pairings.push_back({stride, view.quantizer(), nullptr});
-    } else {
-      if (!pairing->pairs || pairing->pairs->radius() < view.diameter())
-        pairing->pairs = std::make_shared<const ScenePairs>(
-            *cache.surface_scene, view.quantizer(), stride, kPairingMargin * view.diameter(),
-            subProgress(progress, 0.8, 0.8));
-      scene_pairs = pairing->pairs;
-    }
+    scene_pairs =
+        cache.pairScene(pre_key, sampling_mm, std::max(1, params.matching.surface_reference_stride),
+                        view.quantizer(), view.diameter(), false, subProgress(progress, 0.8, 0.8));
     result.timings.matching_ms += msSince(t0);
   }
   {

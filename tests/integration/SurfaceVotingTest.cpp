@@ -73,6 +73,20 @@ TEST(SurfaceVoting, FindsMoreSupportsInBinsWithoutFalseDetections) {
       EXPECT_TRUE(
           again.detections[i].T_scene_model.isApprox(surface.detections[i].T_scene_model, 0.0));
 
+    // Views prepared beforehand (as a cell loads them) that vote alike share a pairing of the
+    // scene (ScenePairs) made beside the feature search, before the first of them votes: the
+    // same detections as the fresh recognizer's, whose second view pairs the scene.
+    Recognizer prepared;
+    prepareViews(prepared, models, with_surface);
+    const RecognitionResult paired_early =
+        recognizeViews(prepared, models, bin.render.cloud, bin.sensor, with_surface);
+    ASSERT_EQ(paired_early.detections.size(), again.detections.size());
+    for (std::size_t i = 0; i < again.detections.size(); ++i) {
+      EXPECT_TRUE(paired_early.detections[i].T_scene_model.isApprox(
+          again.detections[i].T_scene_model, 0.0));
+      EXPECT_EQ(paired_early.detections[i].coverage, again.detections[i].coverage);
+    }
+
     // The views after the first vote with the scene paired once (ScenePairs): each finds what it
     // finds in a recognizer of its own, which pairs the scene as it votes.
     if (seed != 21u)
