@@ -49,10 +49,12 @@ Stats computeStats(std::vector<double> values) {
   return s;
 }
 
-SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& results,
+SceneEvaluation evaluateScene(GroundTruth scene_truth, const ResultsFile& results,
                               const GroundTruth& teach, const Tolerances& tolerances,
                               const std::string& name,
                               const std::vector<const GroundTruth*>& view_teach) {
+  const auto kept = std::make_shared<const GroundTruth>(std::move(scene_truth));
+  const GroundTruth& truth = *kept;
   const auto taughtOf = [](const GroundTruth& t) -> const TruthInstance& {
     if (t.instances.size() != 1)
       throw Error(
@@ -82,7 +84,7 @@ SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& resul
   scene.name = name;
   scene.part = taught.part;
   scene.total_ms = results.total_ms;
-  scene.truth = std::make_shared<const GroundTruth>(truth);
+  scene.truth = kept;
   std::vector<std::size_t> targets;
   for (std::size_t i = 0; i < truth.instances.size(); ++i) {
     if (truth.instances[i].part != taught.part)
@@ -323,11 +325,12 @@ EvalReport evaluateFiles(const std::filesystem::path& truth_path,
                          const std::filesystem::path& results_path,
                          const std::vector<GroundTruth>& teach_truths,
                          const Tolerances& tolerances) {
-  const GroundTruth truth = loadGroundTruth(truth_path);
+  GroundTruth truth = loadGroundTruth(truth_path);
   const ResultsFile results = loadResults(results_path);
+  const GroundTruth& teach = selectTeachTruth(teach_truths, results, truth);
   std::vector<SceneEvaluation> scenes;
-  scenes.push_back(evaluateScene(truth, results, selectTeachTruth(teach_truths, results, truth),
-                                 tolerances, sceneNameOf(truth_path),
+  scenes.push_back(evaluateScene(std::move(truth), results, teach, tolerances,
+                                 sceneNameOf(truth_path),
                                  selectViewTeachTruths(teach_truths, results)));
   return makeReport(std::move(scenes), tolerances);
 }
@@ -420,7 +423,7 @@ EvalReport evaluateSuite(const std::filesystem::path& suite_dir,
   for (std::size_t i = 0; i < truth_paths.size(); ++i) {
     reportProgress(progress, static_cast<double>(i) / static_cast<double>(truth_paths.size()));
     const std::string name = sceneNameOf(truth_paths[i]);
-    const GroundTruth truth = loadGroundTruth(truth_paths[i]);
+    GroundTruth truth = loadGroundTruth(truth_paths[i]);
     if (truth.kind == "teach")
       continue;
     const std::filesystem::path results_path = results_dir / (name + ".json");
@@ -428,8 +431,9 @@ EvalReport evaluateSuite(const std::filesystem::path& suite_dir,
       throw Error("no results for " + name + ": expected '" + results_path.string() +
                   "' (run scanpick-cli recognize on every scene of the suite)");
     const ResultsFile results = loadResults(results_path);
-    scenes.push_back(evaluateScene(truth, results, selectTeachTruth(teach_truths, results, truth),
-                                   tolerances, name, selectViewTeachTruths(teach_truths, results)));
+    const GroundTruth& teach = selectTeachTruth(teach_truths, results, truth);
+    scenes.push_back(evaluateScene(std::move(truth), results, teach, tolerances, name,
+                                   selectViewTeachTruths(teach_truths, results)));
   }
   reportProgress(progress, 1.0);
   return makeReport(std::move(scenes), tolerances);

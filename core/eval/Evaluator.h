@@ -93,8 +93,9 @@ struct EvalReport {
 /// Throws Error when `teach` does not hold exactly one instance.
 /// With several models (views of one part taught from different scans), `view_teach[m]` is
 /// the teach ground truth of results.models[m] (see selectViewTeachTruths); empty = `teach` for
-/// every model. Throws Error when the views are of different parts.
-SceneEvaluation evaluateScene(const GroundTruth& truth, const ResultsFile& results,
+/// every model. Throws Error when the views are of different parts. `truth` is kept in the
+/// result (SceneEvaluation::truth): a caller done with it moves it in.
+SceneEvaluation evaluateScene(GroundTruth truth, const ResultsFile& results,
                               const GroundTruth& teach, const Tolerances& tolerances,
                               const std::string& name,
                               const std::vector<const GroundTruth*>& view_teach = {});

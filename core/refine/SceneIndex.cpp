@@ -115,8 +115,11 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
       !options.viewpoint_mm.allFinite())
     throw Error("Scene index options out of range: normal radius must be > 0 mm, pixel half "
                 "window 1-10, neighbours 5-100, and the viewpoint finite.");
-  // Valid points in input order; for organized clouds, remember where each pixel went.
-  std::vector<std::int64_t> pixel_to_index(scene_mm.isOrganized() ? scene_mm.size() : 0, -1);
+  // Valid points in input order; for an organized cloud (a sensor's image, far fewer than 2^31
+  // pixels), where each pixel went.
+  const bool organized = scene_mm.isOrganized() &&
+                         scene_mm.size() < std::size_t(std::numeric_limits<std::int32_t>::max());
+  std::vector<std::int32_t> pixel_to_index(organized ? scene_mm.size() : 0, -1);
   std::vector<std::size_t> source_index;
   std::vector<Eigen::Vector3f> valid;
   valid.reserve(scene_mm.size());
@@ -124,7 +127,7 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
   for (std::size_t i = 0; i < scene_mm.size(); ++i)
     if (isValid(scene_mm.points_mm[i])) {
       if (!pixel_to_index.empty())
-        pixel_to_index[i] = static_cast<std::int64_t>(valid.size());
+        pixel_to_index[i] = static_cast<std::int32_t>(valid.size());
       valid.push_back(scene_mm.points_mm[i]);
       source_index.push_back(i);
     }
@@ -133,11 +136,10 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
                 "the scan loaded and that the crop or floor removal left points.");
   m_tree = std::make_unique<Tree>(std::move(valid));
   const std::vector<Eigen::Vector3f>& indexed = m_tree->points;
-  if (!pixel_to_index.empty() &&
-      indexed.size() < std::size_t(std::numeric_limits<std::int32_t>::max())) {
+  if (organized) {
     m_width = static_cast<int>(scene_mm.width);
     m_height = static_cast<int>(scene_mm.height);
-    m_pixel_index.assign(pixel_to_index.begin(), pixel_to_index.end());
+    m_pixel_index = std::move(pixel_to_index);
     if (options.sensor)
       m_pixel_slack = measurePixelSlack(*options.sensor);
   }
@@ -172,14 +174,14 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
           continue;
         }
       }
-      if (scene_mm.isOrganized()) {
+      if (organized) {
         const int row = static_cast<int>(src / scene_mm.width);
         const int col = static_cast<int>(src % scene_mm.width);
         m_normals[i] = planeNormal(p, viewpoint, m_variation[i], [&](auto&& add) {
           for (int r = std::max(0, row - w); r <= std::min(height - 1, row + w); ++r)
             for (int c = std::max(0, col - w); c <= std::min(width - 1, col + w); ++c) {
-              const std::int64_t j = pixel_to_index[static_cast<std::size_t>(r) * scene_mm.width +
-                                                    static_cast<std::size_t>(c)];
+              const std::int32_t j = m_pixel_index[static_cast<std::size_t>(r) * scene_mm.width +
+                                                   static_cast<std::size_t>(c)];
               if (j >= 0 && (indexed[static_cast<std::size_t>(j)] - p).squaredNorm() <= radius_sq)
                 add(indexed[static_cast<std::size_t>(j)]);
             }
