@@ -126,6 +126,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
       (!symmetry_key || (*found)->symmetry_key == symmetry_key))
     return *found;
   auto prep = std::make_shared<ModelPrep>();
+  std::shared_ptr<const SceneIndex> surface; // the model's points and normals, when made here
   if (found != preps.end()) {
     *prep = **found;
     preps.erase(found);
@@ -133,7 +134,8 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     prep->model = model;
     prep->points = points;
     prep->normal_radius_mm = radius;
-    prep->verify = makeVerifyModel(*model, points, radius);
+    surface = modelSurface(*model, radius);
+    prep->verify = makeVerifyModel(*model, *surface, points);
     prep->axis = fitRevolutionAxis(prep->verify->points, prep->verify->normals);
     if (prep->axis)
       logger()->debug("model '{}' is a surface of revolution ({:.0f} % of its normals), its turn "
@@ -169,9 +171,14 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
       prep->verify = std::move(verify);
     }
   }
+  // Refinement's surface is verification's when their normals agree (the same radius and
+  // teach camera): estimated once.
   if (needs_refine && !prep->refine)
-    prep->refine = std::make_shared<const RefineModel>(
-        model->cloud_mm, points, Eigen::Vector3d(model->T_teach_model.inverse().translation()));
+    prep->refine = surface && radius == SceneIndexOptions{}.normal_radius_mm
+                       ? std::make_shared<const RefineModel>(surface, points)
+                       : std::make_shared<const RefineModel>(
+                             model->cloud_mm, points,
+                             Eigen::Vector3d(model->T_teach_model.inverse().translation()));
   if (sampling > 0 && (!prep->pairs || prep->surface_sampling_mm != sampling)) {
     prep->pairs = std::make_shared<const PointPairModel>(
         sampleOriented(prep->verify->points, prep->verify->normals, sampling), sampling);

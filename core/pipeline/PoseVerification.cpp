@@ -78,12 +78,20 @@ bool ProjectorShadow::shadowed(const Eigen::Vector3f& p, float margin_mm) const 
   return false;
 }
 
-std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int points,
-                                                   double normal_radius_mm) {
+std::shared_ptr<const SceneIndex> modelSurface(const TaughtModel& model, double normal_radius_mm) {
   SceneIndexOptions model_options;
   model_options.normal_radius_mm = normal_radius_mm;
   model_options.viewpoint_mm = model.T_teach_model.inverse().translation();
-  const SceneIndex model_index(model.cloud_mm, model_options);
+  return std::make_shared<const SceneIndex>(model.cloud_mm, model_options);
+}
+
+std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int points,
+                                                   double normal_radius_mm) {
+  return makeVerifyModel(model, *modelSurface(model, normal_radius_mm), points);
+}
+
+std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
+                                                   const SceneIndex& model_index, int points) {
   const auto& valid = model_index.points();
   const std::size_t stride =
       std::max<std::size_t>(1, (valid.size() + std::size_t(points) - 1) / std::size_t(points));

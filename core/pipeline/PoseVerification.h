@@ -34,6 +34,12 @@ struct VerifyModel {
 /// by position alone), and at most about 400 of its keypoints.
 std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int points,
                                                    double normal_radius_mm);
+/// The same from the model's points already indexed (modelSurface), which refinement can share.
+std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
+                                                   const SceneIndex& model_surface, int points);
+/// The model's valid points indexed with their normals (PCA within `normal_radius_mm`, facing the
+/// teach camera), as verification uses them.
+std::shared_ptr<const SceneIndex> modelSurface(const TaughtModel& model, double normal_radius_mm);
 
 /// The scene's keypoints (of every object) indexed, for the edge check of verification.
 struct EdgeCheck {

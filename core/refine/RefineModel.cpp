@@ -52,11 +52,17 @@ std::size_t occupiedVoxels(const std::vector<Eigen::Vector3f>& points,
 
 } // namespace
 
-RefineModel::RefineModel(const PointCloud& model_mm, int max_points,
-                         const std::optional<Eigen::Vector3d>& viewpoint_model_mm) {
+namespace {
+void requireModelPoints(int max_points) {
   if (max_points < 3)
     throw Error("The refinement needs at least 3 model points (refine.model_points is " +
                 std::to_string(max_points) + ").");
+}
+
+std::shared_ptr<const SceneIndex>
+indexModel(const PointCloud& model_mm, int max_points,
+           const std::optional<Eigen::Vector3d>& viewpoint_model_mm) {
+  requireModelPoints(max_points);
   if (!model_mm.hasValidPoint())
     throw Error("The model cloud to refine has no valid point (empty or all NaN): teach the model "
                 "again from a crop that holds the part.");
@@ -69,7 +75,19 @@ RefineModel::RefineModel(const PointCloud& model_mm, int max_points,
     const auto box = boundingBox(model_mm);
     options.viewpoint_mm = box.center().cast<double>() - Eigen::Vector3d(0, 0, 1e6);
   }
-  m_surface = std::make_shared<const SceneIndex>(model_mm, options);
+  return std::make_shared<const SceneIndex>(model_mm, options);
+}
+} // namespace
+
+RefineModel::RefineModel(const PointCloud& model_mm, int max_points,
+                         const std::optional<Eigen::Vector3d>& viewpoint_model_mm)
+    : RefineModel(indexModel(model_mm, max_points, viewpoint_model_mm), max_points) {}
+
+RefineModel::RefineModel(std::shared_ptr<const SceneIndex> surface, int max_points)
+    : m_surface(std::move(surface)) {
+  requireModelPoints(max_points);
+  if (!m_surface)
+    throw Error("RefineModel needs the model's indexed surface");
   const SceneIndex& full = *m_surface;
 
   std::vector<Eigen::Vector3f> points, normals;

@@ -26,6 +26,10 @@ public:
   /// valid point or fewer than 3 points with a normal.
   RefineModel(const PointCloud& model_mm, int max_points,
               const std::optional<Eigen::Vector3d>& viewpoint_model_mm = std::nullopt);
+  /// The same from the model's points already indexed with their normals (`surface`, built with
+  /// the options the constructor above uses, or others the caller wants), so that one index
+  /// serves verification and refinement. Throws as above.
+  RefineModel(std::shared_ptr<const SceneIndex> surface, int max_points);
 
   [[nodiscard]] const std::vector<Eigen::Vector3f>& points() const { return m_points; }
   [[nodiscard]] const std::vector<Eigen::Vector3f>& normals() const { return m_normals; }

@@ -158,3 +158,20 @@ TEST(RefineModel, SubsampleIsEvenDeterministicAndBounded) {
   EXPECT_THROW(core::RefineModel(core::PointCloud{}, 500), core::Error);
   EXPECT_THROW(core::RefineModel(scan, 0), core::Error);
 }
+
+TEST(RefineModel, FromAnIndexedSurfaceItIsTheSameAsFromTheCloud) {
+  // The recognizer indexes a view once for verification and refinement: the same model.
+  const auto scan = floorScan(0.1);
+  const Eigen::Vector3d camera(0, 0, 0);
+  core::SceneIndexOptions options;
+  options.viewpoint_mm = camera;
+  const auto surface = std::make_shared<const core::SceneIndex>(scan, options);
+  const core::RefineModel from_cloud(scan, 500, camera), from_index(surface, 500);
+  EXPECT_EQ(from_index.points(), from_cloud.points());
+  EXPECT_EQ(from_index.normals(), from_cloud.normals());
+  EXPECT_EQ(from_index.voxel_mm(), from_cloud.voxel_mm());
+  EXPECT_EQ(from_index.radius_mm(), from_cloud.radius_mm());
+  EXPECT_EQ(&from_index.surface(), surface.get());
+  EXPECT_THROW(core::RefineModel(surface, 2), core::Error);
+  EXPECT_THROW(core::RefineModel(std::shared_ptr<const core::SceneIndex>{}, 500), core::Error);
+}
