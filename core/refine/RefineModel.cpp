@@ -50,9 +50,6 @@ std::size_t occupiedVoxels(const std::vector<Eigen::Vector3f>& points,
   return occupied.size();
 }
 
-} // namespace
-
-namespace {
 void requireModelPoints(int max_points) {
   if (max_points < 3)
     throw Error("The refinement needs at least 3 model points (refine.model_points is " +
