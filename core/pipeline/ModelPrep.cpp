@@ -174,7 +174,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
   // Refinement's surface is verification's when their normals agree (the same radius and
   // teach camera): estimated once.
   if (needs_refine && !prep->refine)
-    prep->refine = surface && radius == SceneIndexOptions{}.normal_radius_mm
+    prep->refine = surface && radius == RefineModel::kNormalRadiusMm
                        ? std::make_shared<const RefineModel>(surface, points)
                        : std::make_shared<const RefineModel>(
                              model->cloud_mm, points,

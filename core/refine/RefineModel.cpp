@@ -64,6 +64,7 @@ indexModel(const PointCloud& model_mm, int max_points,
     throw Error("The model cloud to refine has no valid point (empty or all NaN): teach the model "
                 "again from a crop that holds the part.");
   SceneIndexOptions options;
+  options.normal_radius_mm = RefineModel::kNormalRadiusMm;
   if (viewpoint_model_mm) {
     options.viewpoint_mm = *viewpoint_model_mm;
   } else {

@@ -16,13 +16,16 @@ namespace scanpick::core {
 /// Model points (model frame, mm) and normals used by refinePose and coverageScore.
 class RefineModel {
 public:
-  /// Estimates normals on all valid points of `model_mm` (PCA of up to 12 neighbours within 3 mm,
-  /// or the cloud's own normals if it has them), turns them towards the teach camera, then keeps
-  /// at most `max_points` (> 0) points: one per cell of the finest voxel grid that gives no more
-  /// than that, the one nearest the cell centre. `viewpoint_model_mm` is the teach camera in the
-  /// model frame (TaughtModel: T_teach_model.inverse().translation()); without it the camera is
-  /// taken to look along +z from far away (the model frame has the teach camera's axes).
-  /// Points whose normal cannot be estimated are dropped. Throws Error when the cloud has no
+  /// Radius (mm) within which the cloud constructor estimates normals.
+  static constexpr double kNormalRadiusMm = 3.0;
+
+  /// Estimates normals on all valid points of `model_mm` (PCA of up to 12 neighbours within
+  /// kNormalRadiusMm, or the cloud's own normals if it has them), turns them towards the teach
+  /// camera, then keeps at most `max_points` (> 0) points: one per cell of the finest voxel grid
+  /// that gives no more than that, the one nearest the cell centre. `viewpoint_model_mm` is the
+  /// teach camera in the model frame (TaughtModel: T_teach_model.inverse().translation()); without
+  /// it the camera is taken to look along +z from far away (the model frame has the teach camera's
+  /// axes). Points whose normal cannot be estimated are dropped. Throws Error when the cloud has no
   /// valid point or fewer than 3 points with a normal.
   RefineModel(const PointCloud& model_mm, int max_points,
               const std::optional<Eigen::Vector3d>& viewpoint_model_mm = std::nullopt);

@@ -126,7 +126,7 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
   source_index.reserve(scene_mm.size());
   for (std::size_t i = 0; i < scene_mm.size(); ++i)
     if (isValid(scene_mm.points_mm[i])) {
-      if (!pixel_to_index.empty())
+      if (organized)
         pixel_to_index[i] = static_cast<std::int32_t>(valid.size());
       valid.push_back(scene_mm.points_mm[i]);
       source_index.push_back(i);
