@@ -2,6 +2,7 @@
 
 #include "core/cloud/PointCloud.h"
 #include "core/common/Error.h"
+#include "core/features/GridRadiusSearch.h"
 #include "core/features/Ransac.h"
 
 #include <algorithm>
@@ -18,7 +19,6 @@
 #include <pcl/sample_consensus/prosac.h>
 #include <pcl/sample_consensus/sac_model_circle3d.h>
 #include <pcl/sample_consensus/sac_model_line.h>
-#include <pcl/search/kdtree.h>
 #include <random>
 #include <string>
 #include <tbb/parallel_invoke.h>
@@ -31,14 +31,22 @@ constexpr double kTwoPi = 6.283185307179586;
 /// Most keypoints a RANSAC search scores its trials on (see extractFeatures).
 constexpr std::size_t kMaxSearchPoints = 3000;
 
-/// Whether a point lies within the threshold of a line (PCL's coefficients: point, direction).
+/// Whether a point lies within the threshold of a line (PCL's coefficients: point, direction),
+/// computed as PCL does, |(origin − p) × direction|² in Eigen's order of operations, so that its
+/// inliers are PCL's bit for bit.
 class NearLine {
 public:
+  using Scalar = float;
+  using Tally = std::size_t; // an inlier count the compiler's vectorized loop can keep
   NearLine(const Eigen::VectorXf& c, double threshold)
       : m_origin(c.head<3>()), m_along(c.tail<3>().normalized()),
         m_threshold_sq(static_cast<float>(threshold * threshold)) {}
-  bool operator()(const Eigen::Vector3f& p) const {
-    return (m_origin - p).cross(m_along).squaredNorm() < m_threshold_sq;
+  bool operator()(float x, float y, float z) const {
+    const float dx = m_origin.x() - x, dy = m_origin.y() - y, dz = m_origin.z() - z;
+    const float cx = dy * m_along.z() - dz * m_along.y();
+    const float cy = dz * m_along.x() - dx * m_along.z();
+    const float cz = dx * m_along.y() - dy * m_along.x();
+    return cx * cx + (cy * cy + cz * cz) < m_threshold_sq; // Eigen's squaredNorm of 3 floats
   }
 
 private:
@@ -51,13 +59,18 @@ private:
 /// nearest circle point that PCL computes first.
 class NearCircle {
 public:
+  using Scalar = double; // the points exactly, in the precision of the test
+  // GCC 12 vectorizes comparisons of doubles into a sum of doubles (exact below 2^53), not into
+  // an integer one; with -fno-math-errno for the square root (core/features/CMakeLists.txt).
+  using Tally = double;
   NearCircle(const Eigen::VectorXf& c, double threshold)
       : m_centre(c.head<3>().cast<double>()), m_normal(c.tail<3>().cast<double>().normalized()),
         m_radius(c[3]), m_threshold_sq(threshold * threshold) {}
-  bool operator()(const Eigen::Vector3f& p) const {
-    const Eigen::Vector3d d = p.cast<double>() - m_centre;
-    const double h = d.dot(m_normal);
-    const double rho = std::sqrt(std::max(0.0, d.squaredNorm() - h * h));
+  bool operator()(double x, double y, double z) const {
+    const double dx = x - m_centre.x(), dy = y - m_centre.y(), dz = z - m_centre.z();
+    // Eigen's order for 3 doubles (dot, squaredNorm), so the same inliers as with Eigen.
+    const double h = dx * m_normal.x() + dy * m_normal.y() + dz * m_normal.z();
+    const double rho = std::sqrt(std::max(0.0, dx * dx + dy * dy + dz * dz - h * h));
     return h * h + (rho - m_radius) * (rho - m_radius) < m_threshold_sq;
   }
 
@@ -68,33 +81,46 @@ private:
 
 /// A PCL model seeded by us (PCL seeds its samplers with a constant) whose inliers are counted and
 /// selected by `Near`. Every RANSAC trial counts its inliers, and PCL's own loops for that took
-/// two thirds of feature extraction (perf); these compute the same distances (the line's by PCL's
-/// cross product, so its inliers are the same bit for bit) and ran 2-3 times faster.
+/// two thirds of feature extraction (perf). These compute the same distances over a copy of the
+/// model's points laid out one coordinate per array, a loop the compiler vectorizes.
 template <typename Model, typename Near> class SeededModel : public Model {
 public:
-  using Model::Model;
+  SeededModel(const typename Model::PointCloudConstPtr& cloud, const pcl::Indices& indices)
+      : Model(cloud, indices) {
+    m_x.reserve(indices.size());
+    m_y.reserve(indices.size());
+    m_z.reserve(indices.size());
+    for (const pcl::index_t i : indices) {
+      const pcl::PointXYZ& p = (*cloud)[static_cast<std::size_t>(i)];
+      m_x.push_back(p.x);
+      m_y.push_back(p.y);
+      m_z.push_back(p.z);
+    }
+  }
   void seed(std::uint64_t s) { this->rng_alg_.seed(static_cast<unsigned>(s ^ (s >> 32))); }
   std::size_t countWithinDistance(const Eigen::VectorXf& c, double threshold) const override {
-    std::size_t count = 0;
-    forEachInlier(c, threshold, [&](pcl::index_t) { ++count; });
-    return count;
+    if (!this->isModelValid(c))
+      return 0;
+    const Near near(c, threshold);
+    typename Near::Tally count = 0;
+    for (std::size_t k = 0; k < m_x.size(); ++k)
+      count += near(m_x[k], m_y[k], m_z[k]) ? typename Near::Tally(1) : typename Near::Tally(0);
+    return static_cast<std::size_t>(count);
   }
   void selectWithinDistance(const Eigen::VectorXf& c, double threshold,
                             pcl::Indices& inliers) override {
     inliers.clear();
-    forEachInlier(c, threshold, [&](pcl::index_t i) { inliers.push_back(i); });
-  }
-
-private:
-  template <typename Visit>
-  void forEachInlier(const Eigen::VectorXf& c, double threshold, Visit&& visit) const {
     if (!this->isModelValid(c))
       return;
     const Near near(c, threshold);
-    for (const pcl::index_t i : *this->indices_)
-      if (near((*this->input_)[static_cast<std::size_t>(i)].getVector3fMap()))
-        visit(i);
+    for (std::size_t k = 0; k < m_x.size(); ++k)
+      if (near(m_x[k], m_y[k], m_z[k]))
+        inliers.push_back((*this->indices_)[k]);
   }
+
+private:
+  // The points of the model's indices, in their order.
+  std::vector<typename Near::Scalar> m_x, m_y, m_z;
 };
 using LineModel = SeededModel<pcl::SampleConsensusModelLine<pcl::PointXYZ>, NearLine>;
 using CircleModel = SeededModel<pcl::SampleConsensusModelCircle3D<pcl::PointXYZ>, NearCircle>;
@@ -377,7 +403,7 @@ FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_
     // Localized sampling: the sample's other points come from the candidates near its first.
     SearchPtr near;
     if (params.sample_radius_mm > 0) {
-      near = std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>(true);
+      near = std::make_shared<GridRadiusSearch>(params.sample_radius_mm);
       near->setInputCloud(cloud,
                           std::make_shared<pcl::Indices>(candidates.begin(), candidates.end()));
     }

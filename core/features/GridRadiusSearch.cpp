@@ -1,0 +1,106 @@
+#include "core/features/GridRadiusSearch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <pcl/exceptions.h>
+#include <tuple>
+
+namespace scanpick::core {
+
+GridRadiusSearch::GridRadiusSearch(double cell_mm)
+    : pcl::search::Search<pcl::PointXYZ>("GridRadiusSearch", true), m_cell_mm(cell_mm) {
+  if (!(cell_mm > 0) || !std::isfinite(cell_mm))
+    throw pcl::PCLException("GridRadiusSearch needs a positive cell edge");
+}
+
+std::size_t GridRadiusSearch::CellHash::operator()(const Cell& c) const {
+  return std::hash<std::int64_t>()(c[0] * 73856093 ^ c[1] * 19349663 ^ c[2] * 83492791);
+}
+
+GridRadiusSearch::Cell GridRadiusSearch::cellOf(const pcl::PointXYZ& p) const {
+  return {static_cast<std::int64_t>(std::floor(p.x / m_cell_mm)),
+          static_cast<std::int64_t>(std::floor(p.y / m_cell_mm)),
+          static_cast<std::int64_t>(std::floor(p.z / m_cell_mm))};
+}
+
+void GridRadiusSearch::setInputCloud(const PointCloudConstPtr& cloud,
+                                     const IndicesConstPtr& indices) {
+  input_ = cloud;
+  indices_ = indices;
+  m_points.clear();
+  m_position.clear();
+  m_index.clear();
+  m_cells.clear();
+  if (!cloud)
+    return;
+  // Finite points only, as PCL's kd-tree keeps them; position = rank among those kept.
+  std::vector<std::pair<Cell, std::uint32_t>> keyed;
+  std::vector<pcl::index_t> kept;
+  const std::size_t n = indices ? indices->size() : cloud->size();
+  keyed.reserve(n);
+  kept.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const pcl::index_t i = indices ? (*indices)[k] : static_cast<pcl::index_t>(k);
+    const pcl::PointXYZ& p = (*cloud)[static_cast<std::size_t>(i)];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      continue;
+    keyed.emplace_back(cellOf(p), static_cast<std::uint32_t>(kept.size()));
+    kept.push_back(i);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  m_points.reserve(keyed.size());
+  m_position.reserve(keyed.size());
+  m_index.reserve(keyed.size());
+  for (std::size_t k = 0; k < keyed.size(); ++k) {
+    const pcl::index_t i = kept[keyed[k].second];
+    m_points.push_back((*cloud)[static_cast<std::size_t>(i)]);
+    m_position.push_back(keyed[k].second);
+    m_index.push_back(i);
+    auto [cell, inserted] = m_cells.try_emplace(keyed[k].first, static_cast<std::uint32_t>(k), 0u);
+    cell->second.second = static_cast<std::uint32_t>(k + 1);
+  }
+}
+
+int GridRadiusSearch::radiusSearch(const pcl::PointXYZ& point, double radius,
+                                   pcl::Indices& k_indices, std::vector<float>& k_sqr_distances,
+                                   unsigned int max_nn) const {
+  k_indices.clear();
+  k_sqr_distances.clear();
+  // As FLANN: the radius squared in double, compared in float; distances summed from x to z.
+  const auto radius_sq = static_cast<float>(radius * radius);
+  const Cell centre = cellOf(point);
+  const auto reach = static_cast<std::int64_t>(std::ceil(radius / m_cell_mm));
+  std::vector<std::tuple<float, std::uint32_t, pcl::index_t>> found;
+  for (std::int64_t dx = -reach; dx <= reach; ++dx)
+    for (std::int64_t dy = -reach; dy <= reach; ++dy)
+      for (std::int64_t dz = -reach; dz <= reach; ++dz) {
+        const auto cell = m_cells.find({centre[0] + dx, centre[1] + dy, centre[2] + dz});
+        if (cell == m_cells.end())
+          continue;
+        for (std::uint32_t k = cell->second.first; k < cell->second.second; ++k) {
+          const pcl::PointXYZ& p = m_points[k];
+          const float ex = point.x - p.x, ey = point.y - p.y, ez = point.z - p.z;
+          const float distance_sq = ex * ex + ey * ey + ez * ez;
+          if (distance_sq < radius_sq)
+            found.emplace_back(distance_sq, m_position[k], m_index[k]);
+        }
+      }
+  std::sort(found.begin(), found.end());
+  if (max_nn > 0 && found.size() > max_nn)
+    found.resize(max_nn);
+  k_indices.reserve(found.size());
+  k_sqr_distances.reserve(found.size());
+  for (const auto& [distance_sq, position, index] : found) {
+    k_indices.push_back(index);
+    k_sqr_distances.push_back(distance_sq);
+  }
+  return static_cast<int>(found.size());
+}
+
+int GridRadiusSearch::nearestKSearch(const pcl::PointXYZ&, int, pcl::Indices&,
+                                     std::vector<float>&) const {
+  throw pcl::PCLException("GridRadiusSearch offers radius search only");
+}
+
+} // namespace scanpick::core
