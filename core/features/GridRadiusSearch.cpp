@@ -14,10 +14,6 @@ GridRadiusSearch::GridRadiusSearch(double cell_mm)
     throw pcl::PCLException("GridRadiusSearch needs a positive cell edge");
 }
 
-std::size_t GridRadiusSearch::CellHash::operator()(const Cell& c) const {
-  return std::hash<std::int64_t>()(c[0] * 73856093 ^ c[1] * 19349663 ^ c[2] * 83492791);
-}
-
 GridRadiusSearch::Cell GridRadiusSearch::cellOf(const pcl::PointXYZ& p) const {
   return {static_cast<std::int64_t>(std::floor(p.x / m_cell_mm)),
           static_cast<std::int64_t>(std::floor(p.y / m_cell_mm)),
@@ -32,6 +28,7 @@ void GridRadiusSearch::setInputCloud(const PointCloudConstPtr& cloud,
   m_position.clear();
   m_index.clear();
   m_cells.clear();
+  m_starts.clear();
   if (!cloud)
     return;
   // Finite points only, as PCL's kd-tree keeps them; position = rank among those kept.
@@ -57,9 +54,12 @@ void GridRadiusSearch::setInputCloud(const PointCloudConstPtr& cloud,
     m_points.push_back((*cloud)[static_cast<std::size_t>(i)]);
     m_position.push_back(keyed[k].second);
     m_index.push_back(i);
-    auto [cell, inserted] = m_cells.try_emplace(keyed[k].first, static_cast<std::uint32_t>(k), 0u);
-    cell->second.second = static_cast<std::uint32_t>(k + 1);
+    if (m_cells.empty() || m_cells.back() != keyed[k].first) {
+      m_cells.push_back(keyed[k].first);
+      m_starts.push_back(static_cast<std::uint32_t>(k));
+    }
   }
+  m_starts.push_back(static_cast<std::uint32_t>(keyed.size()));
 }
 
 int GridRadiusSearch::radiusSearch(const pcl::PointXYZ& point, double radius,
@@ -73,12 +73,14 @@ int GridRadiusSearch::radiusSearch(const pcl::PointXYZ& point, double radius,
   const auto reach = static_cast<std::int64_t>(std::ceil(radius / m_cell_mm));
   std::vector<std::tuple<float, std::uint32_t, pcl::index_t>> found;
   for (std::int64_t dx = -reach; dx <= reach; ++dx)
-    for (std::int64_t dy = -reach; dy <= reach; ++dy)
-      for (std::int64_t dz = -reach; dz <= reach; ++dz) {
-        const auto cell = m_cells.find({centre[0] + dx, centre[1] + dy, centre[2] + dz});
-        if (cell == m_cells.end())
-          continue;
-        for (std::uint32_t k = cell->second.first; k < cell->second.second; ++k) {
+    for (std::int64_t dy = -reach; dy <= reach; ++dy) {
+      // The cells along z from centre − reach to centre + reach follow each other in the order.
+      const Cell last{centre[0] + dx, centre[1] + dy, centre[2] + reach};
+      for (auto cell = std::lower_bound(m_cells.begin(), m_cells.end(),
+                                        Cell{centre[0] + dx, centre[1] + dy, centre[2] - reach});
+           cell != m_cells.end() && *cell <= last; ++cell) {
+        const auto c = static_cast<std::size_t>(cell - m_cells.begin());
+        for (std::uint32_t k = m_starts[c]; k < m_starts[c + 1]; ++k) {
           const pcl::PointXYZ& p = m_points[k];
           const float ex = point.x - p.x, ey = point.y - p.y, ez = point.z - p.z;
           const float distance_sq = ex * ex + ey * ey + ez * ez;
@@ -86,6 +88,7 @@ int GridRadiusSearch::radiusSearch(const pcl::PointXYZ& point, double radius,
             found.emplace_back(distance_sq, m_position[k], m_index[k]);
         }
       }
+    }
   std::sort(found.begin(), found.end());
   if (max_nn > 0 && found.size() > max_nn)
     found.resize(max_nn);
