@@ -32,8 +32,8 @@ constexpr double kTwoPi = 6.283185307179586;
 constexpr std::size_t kMaxSearchPoints = 3000;
 
 /// Whether a point lies within the threshold of a line (PCL's coefficients: point, direction),
-/// computed as PCL does, |(origin − p) × direction|² in Eigen's order of operations, so that its
-/// inliers are PCL's bit for bit.
+/// |(origin − p) × direction|² as PCL's line model computes it, in the order in which Eigen
+/// evaluates `(origin - p).cross(direction).squaredNorm()` for 3 floats.
 class NearLine {
 public:
   using Scalar = float;
