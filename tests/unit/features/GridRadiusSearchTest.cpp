@@ -1,7 +1,9 @@
 #include "core/features/GridRadiusSearch.h"
 
+#include <algorithm>
 #include <gtest/gtest.h>
 #include <limits>
+#include <numeric>
 #include <pcl/exceptions.h>
 #include <pcl/search/kdtree.h>
 #include <random>
