@@ -66,6 +66,9 @@ int GridRadiusSearch::radiusSearch(const pcl::PointXYZ& point, double radius,
                                    unsigned int max_nn) const {
   k_indices.clear();
   k_sqr_distances.clear();
+  if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z) ||
+      !(radius > 0))
+    return 0; // no neighbours (PCL's kd-tree asserts on such a query)
   // As FLANN: the radius squared in double, compared in float; distances summed from x to z.
   const auto radius_sq = static_cast<float>(radius * radius);
   const Cell centre = cellOf(point);

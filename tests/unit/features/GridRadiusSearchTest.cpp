@@ -97,11 +97,15 @@ TEST(GridRadiusSearch, SkipsPointsThatAreNotFinite) {
   EXPECT_GT(expectSameAsKdTree(cloud, nullptr, 20.0, 20.0, queries), queries.size());
 }
 
-TEST(GridRadiusSearch, RefusesANonPositiveCellAndNearestKSearch) {
+TEST(GridRadiusSearch, RefusesANonPositiveCellNearestKSearchAndNonFiniteQueries) {
   EXPECT_THROW(GridRadiusSearch(0.0), pcl::PCLException);
   GridRadiusSearch grid(1.0);
   grid.setInputCloud(scattered(10, 3));
   pcl::Indices ids;
   std::vector<float> d;
   EXPECT_THROW(grid.nearestKSearch(pcl::PointXYZ(0, 0, 0), 1, ids, d), pcl::PCLException);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(grid.radiusSearch(pcl::PointXYZ(nan, 0, 0), 100.0, ids, d), 0);
+  EXPECT_TRUE(ids.empty());
+  EXPECT_EQ(grid.radiusSearch(pcl::PointXYZ(0, 0, 600), 120.0, ids, d), 10); // all within 115 mm
 }
