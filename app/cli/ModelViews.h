@@ -19,8 +19,9 @@ struct ModelViews {
   std::vector<const core::PointCloud*> clouds;
 };
 
-/// Loads `paths` (at least one). Throws core::Error for a file that does not load, or for
-/// models of different parts (several --model must be views of one part).
+/// Loads `paths` (at least one) and joins the views that know their place in the part
+/// (core::joinViews). Throws core::Error for a file that does not load, or for models of
+/// different parts (several --model must be views of one part).
 inline ModelViews loadModelViews(const std::vector<std::string>& paths) {
   if (paths.empty())
     throw core::Error("--model is required");
@@ -32,8 +33,11 @@ inline ModelViews loadModelViews(const std::vector<std::string>& paths) {
                         "' are different parts: several --model must be views of one part "
                         "(recognize each part in its own run)");
     out.models.push_back(model);
-    out.sources.push_back({model.get(), path});
-    out.clouds.push_back(&model->cloud_mm);
+  }
+  out.models = core::joinViews(out.models);
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    out.sources.push_back({out.models[i].get(), paths[i]});
+    out.clouds.push_back(&out.models[i]->cloud_mm);
   }
   return out;
 }

@@ -7,6 +7,8 @@
 #include "core/model/ModelFile.h"
 #include "core/params/ParameterTable.h"
 
+#include <Eigen/Geometry>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -57,6 +59,14 @@ void cropFromTruth(const std::string& path, core::TeachOptions& options) {
     oriented.T_scan_box = centred.cast<float>();
     oriented.half_extents_mm = (0.5 * (hi - lo)).cast<float>();
     options.crop_oriented = oriented;
+    // A teach scene holds one part: its pose places the model in the part, so that views of it
+    // can be joined when searched together.
+    if (doc.contains("instances") && doc["instances"].size() == 1 &&
+        doc["instances"][0].contains("T_scene_part")) {
+      Eigen::Isometry3d T_scan_part;
+      T_scan_part.matrix() = matrixFromJson(doc["instances"][0]["T_scene_part"]);
+      options.T_scan_part = T_scan_part;
+    }
     if (options.grips_scan.empty() && doc.contains("instances") && !doc["instances"].empty())
       for (const auto& g : doc["instances"][0].value("grip_points", nlohmann::json::array()))
         options.grips_scan.push_back(
@@ -73,7 +83,7 @@ void cropFromTruth(const std::string& path, core::TeachOptions& options) {
 void registerTeachCommand(CLI::App& app) {
   struct Options {
     RecipeOptions recipe;
-    std::string scan, crop_box, crop_truth, out, name = "part";
+    std::string scan, crop_box, crop_truth, part_pose, out, name = "part";
     bool remove_floor = false;
     std::vector<std::string> grips;
     std::vector<std::string> view_settings;
@@ -103,6 +113,17 @@ void registerTeachCommand(CLI::App& app) {
     } else {
       cropFromTruth(o->crop_truth, options);
     }
+    if (!o->part_pose.empty()) {
+      const auto p = parseNumbers(o->part_pose, 7, "--part-pose");
+      const Eigen::Quaterniond q(p[3], p[4], p[5], p[6]);
+      if (std::abs(q.norm() - 1.0) > 1e-3)
+        throw core::Error("--part-pose: the quaternion qw,qx,qy,qz has length " +
+                          std::to_string(q.norm()) + ": give a unit quaternion");
+      Eigen::Isometry3d T_scan_part = Eigen::Isometry3d::Identity();
+      T_scan_part.linear() = q.normalized().toRotationMatrix();
+      T_scan_part.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
+      options.T_scan_part = T_scan_part;
+    }
     const core::PointCloud scan = loadWithUnitsCheck(o->scan, o->recipe.units);
     core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));
     model.teach_scan = std::filesystem::path(o->scan).filename().string();
@@ -126,7 +147,13 @@ void registerTeachCommand(CLI::App& app) {
   });
   sub->add_option("--scan", o->scan, "Scan holding the part (.pcd or .ply)")->required();
   sub->add_option("--crop-box", o->crop_box, "Crop box in the scan frame: xmin,ymin,zmin,xmax,ymax,zmax");
-  sub->add_option("--crop-from-truth", o->crop_truth, "Take the crop box from a teach scene's .gt.json");
+  sub->add_option(
+      "--crop-from-truth", o->crop_truth,
+      "Take the crop box, grip points and the part's pose from a teach scene's .gt.json");
+  sub->add_option("--part-pose", o->part_pose,
+                  "The part's pose in the scan frame, when known (a fixture, or the robot that "
+                  "placed it): x,y,z (mm),qw,qx,qy,qz. Views taught knowing it are joined when "
+                  "recognized together (overrides the pose of --crop-from-truth)");
   sub->add_flag("--remove-floor", o->remove_floor, "Remove the floor plane inside the crop");
   sub->add_option("--grip", o->grips, "Grip point NAME=x,y,z in the scan frame (repeatable)");
   sub->add_option("--name", o->name, "Part name stored in the model")->capture_default_str();

@@ -161,6 +161,8 @@ std::string encodeModel(const TaughtModel& model) {
                  {"keypoints", model.keypoints_mm.size()},
                  {"bytes", block.size()},
                  {"crc32", crc32(block.data(), block.size())}}}};
+  if (model.T_part_model)
+    header["T_part_model"] = matrix(*model.T_part_model);
   for (const auto& [key, value] : model.view_params) {
     // Whole-number parameters (integers, booleans, enum indices) are written as integers.
     const ParamInfo* info = findParameter(key);
@@ -220,6 +222,8 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   model.source_units = parseLengthUnit(header.value("source_units", std::string("mm")));
   model.diameter_mm = header.value("diameter_mm", 0.0);
   model.T_teach_model = r.isometry(r.at(header, "T_teach_model"), "T_teach_model");
+  if (header.contains("T_part_model"))
+    model.T_part_model = r.isometry(header["T_part_model"], "T_part_model");
   if (header.contains("view_params")) {
     const json& view = header["view_params"];
     if (!view.is_object())

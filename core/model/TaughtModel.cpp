@@ -97,9 +97,35 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
     f.centre_mm = T_model_teach * f.centre_mm;
   for (const auto& g : options.grips_scan)
     model.grip_points.push_back({g.name, model.T_teach_model.inverse() * g.position_mm});
+  if (options.T_scan_part)
+    model.T_part_model = options.T_scan_part->inverse() * model.T_teach_model;
   model.diameter_mm = static_cast<double>(boundingBox(model.cloud_mm).diagonal().norm());
   reportProgress(progress, 1.0);
   return model;
+}
+
+std::vector<std::shared_ptr<const TaughtModel>>
+joinViews(const std::vector<std::shared_ptr<const TaughtModel>>& models) {
+  std::vector<std::shared_ptr<const TaughtModel>> joined = models;
+  for (std::size_t v = 0; v < models.size(); ++v) {
+    const TaughtModel& view = *models[v];
+    if (!view.T_part_model)
+      continue;
+    auto copy = std::make_shared<TaughtModel>(view);
+    copy->joined_views.clear();
+    for (std::size_t w = 0; w < models.size(); ++w) {
+      const TaughtModel& other = *models[w];
+      if (w == v || !other.T_part_model || other.name != view.name)
+        continue;
+      const Eigen::Isometry3d T_view_other = view.T_part_model->inverse() * *other.T_part_model;
+      copy->joined_views.push_back({other.teach_scan,
+                                    transformed(other.cloud_mm, T_view_other.cast<float>()),
+                                    T_view_other * other.T_teach_model.inverse().translation()});
+    }
+    if (!copy->joined_views.empty())
+      joined[v] = std::move(copy);
+  }
+  return joined;
 }
 
 } // namespace scanpick::core

@@ -13,11 +13,20 @@
 #include "core/pipeline/Detection.h"
 
 #include <Eigen/Geometry>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace scanpick::core {
+
+/// Another view of the same part, moved into a model's frame (joinViews): what that view's teach
+/// scan saw of the part, which this model's own scan may not have (a cup's handle from the front).
+struct JoinedView {
+  std::string teach_scan;    ///< the view's teach scan file, for messages
+  PointCloud cloud_mm;       ///< its cropped part, in this model's frame
+  Eigen::Vector3d camera_mm; ///< its teach camera, in this model's frame (its normals face it)
+};
 
 /// A part taught from one scan. The model frame has the teach camera's axes and its origin at the
 /// centroid of the cropped cloud, so a detection's translation is where that centroid lies.
@@ -32,6 +41,11 @@ struct TaughtModel {
   LengthUnit source_units = LengthUnit::Millimetres;  ///< units of the teach scan's file
   /// The model frame in the teach scan's (camera) frame: a pure translation to the centroid.
   Eigen::Isometry3d T_teach_model = Eigen::Isometry3d::Identity();
+  /// The model frame in the part's own frame, when the part's pose in the teach scan was known
+  /// (TeachOptions::T_scan_part): views of one part that have it can be joined (joinViews).
+  std::optional<Eigen::Isometry3d> T_part_model;
+  /// The other views of the part joined into this one (joinViews); not kept in the model file.
+  std::vector<JoinedView> joined_views;
   double diameter_mm = 0.0;  ///< diagonal of the cloud's bounding box, for duplicate suppression
   /// File name of the scan it was taught from ("" when unknown): tells views of one part apart
   /// and lets the evaluator find the teach scene's ground truth.
@@ -57,6 +71,9 @@ struct TeachOptions {
   /// dominant plane there; inside a tight crop a flat face of the part could be taken instead).
   bool remove_floor = false;
   std::vector<GripPoint> grips_scan;  ///< grip points in the scan frame, mm
+  /// The part's pose in the scan frame, when known (a teach scene's ground truth): the model then
+  /// knows its place in the part (TaughtModel::T_part_model).
+  std::optional<Eigen::Isometry3d> T_scan_part;
   SensorModel sensor;              ///< sensor of the scan (stored with the model)
   LengthUnit source_units = LengthUnit::Millimetres;
 };
@@ -72,6 +89,13 @@ inline constexpr std::size_t kMinTeachPoints = 100;
 /// `progress` asks to stop. Deterministic for a given params.seed.
 TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
                   const RecognitionParams& params, const ProgressFn& progress = {});
+
+/// Joins views of one part: each model that knows its place in the part (T_part_model) gets, in
+/// joined_views, the clouds of the other models of the same name that know theirs, moved into its
+/// own frame. Models returned in the order given; a joined one is a new copy, the others are the
+/// models given.
+std::vector<std::shared_ptr<const TaughtModel>>
+joinViews(const std::vector<std::shared_ptr<const TaughtModel>>& models);
 
 /// Points of `cloud` inside the oriented box (unorganized, channels follow).
 PointCloud cropToOrientedBox(const PointCloud& cloud, const OrientedBox& box);

@@ -36,6 +36,10 @@ struct Detection {
   int cluster = -1;                          ///< scene cluster it was found in (-1: whole scene)
   /// Which model found it, when several views of a part are searched (recognizeViews); else 0.
   int model_index = 0;
+  /// Where the instance lies, for telling instances apart (scene frame, mm): the model origin, or
+  /// for a view that is a surface of revolution but for a detail, the point of its axis nearest
+  /// the origin, which a turn about the axis leaves in place.
+  Eigen::Vector3d centre_mm = Eigen::Vector3d::Zero();
   /// Set when the view that found it is a surface of revolution about this axis (RevolutionAxis.h,
   /// such as a flanged pipe taught from the side), or one but for a detail that the scan does not
   /// confirm at this pose (a cup whose handle is hidden): the part's turn about the axis is not

@@ -87,8 +87,36 @@ std::optional<RevolutionAxis> rimAxis(const std::vector<Eigen::Vector3f>& points
   return axis;
 }
 
+/// The detail of a view that is a surface of revolution but for it (a cup's handle), as the view
+/// and the views joined to it (TaughtModel::joined_views) saw it, in the view's frame: the points
+/// of all of them (each strided to about `points`, with normals facing its own teach camera) that
+/// lie off the surface they turn about `axis` (detailPoints), with the view's body.
+std::shared_ptr<const VerifyModel> joinedDetail(const TaughtModel& model, const VerifyModel& view,
+                                                const RevolutionAxis& axis, int points,
+                                                double normal_radius_mm) {
+  VerifyModel all = view;
+  for (const JoinedView& other : model.joined_views) {
+    SceneIndexOptions options;
+    options.normal_radius_mm = normal_radius_mm;
+    options.viewpoint_mm = other.camera_mm;
+    const auto seen = makeVerifyModel(TaughtModel{}, SceneIndex(other.cloud_mm, options), points);
+    all.points.insert(all.points.end(), seen->points.begin(), seen->points.end());
+    all.normals.insert(all.normals.end(), seen->normals.begin(), seen->normals.end());
+  }
+  auto detail = std::make_shared<VerifyModel>();
+  for (const std::uint32_t i : detailPoints(all.points, axis, kDetailCellMm)) {
+    detail->points.push_back(all.points[i]);
+    detail->normals.push_back(all.normals[i]);
+  }
+  detail->body = view.body;
+  return detail;
+}
+
 /// A turn the detail chooses is taken only while the pose verifies at most this much worse.
 constexpr double kDetailTurnCoverageSlack = 0.05;
+/// ICP's polish of a turn the joined detail chooses is kept while the detail's score drops by at
+/// most this much.
+constexpr double kPolishedDetailSlack = 0.05;
 
 /// The differing points of a near symmetry tell two poses apart only when at least this share of
 /// the view's points (and 8) are among them and not hidden: a handful at the view's edges is noise.
@@ -170,6 +198,12 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
           prep->near_axis_detail);
       prep->verify = std::move(verify);
     }
+    if (prep->near_axis && !model->joined_views.empty()) {
+      prep->joined_detail = joinedDetail(*model, *prep->verify, *prep->near_axis, points, radius);
+      logger()->debug("model '{}': its detail holds {} points with {} views joined ({} alone)",
+                      model->name, prep->joined_detail->points.size(), model->joined_views.size(),
+                      prep->near_axis_detail.size());
+    }
   }
   // Refinement's surface is verification's when their normals agree (the same radius and
   // teach camera): estimated once.
@@ -206,11 +240,69 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
   return prep;
 }
 
+namespace {
+
+/// Which detail a tally looks at: the view's own, or the joined one (ModelPrep::joined_detail).
+enum class Detail { Own, Joined };
+
+/// (confirmed − violations) of the view's detail at `T_scene_model`, as a share: of every point of
+/// the view's own detail; of a joined detail (seen from every side, of which a camera sees at most
+/// about half), of its points facing the camera, but at least a quarter of them all.
+struct DetailTally {
+  PointTally tally;
+  double of = 1.0;
+  [[nodiscard]] double score() const {
+    return (double(tally.confirmed) - double(tally.violations)) / of;
+  }
+  [[nodiscard]] bool seen() const {
+    return double(tally.confirmed) >= kMinDetailSeenShare * of && tally.confirmed > 0;
+  }
+};
+
+DetailTally tallyDetail(const ModelPrep& prep, Detail which, const VerifyScene& scene,
+                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm) {
+  if (which == Detail::Own) {
+    const PointTally t =
+        tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm, &prep.near_axis_detail);
+    return {t, double(std::max<std::size_t>(1, t.points))};
+  }
+  const VerifyModel& detail = *prep.joined_detail;
+  const Eigen::Isometry3f T = T_scene_model.cast<float>();
+  std::size_t facing = 0;
+  for (std::size_t i = 0; i < detail.points.size(); ++i)
+    facing += !detail.normals[i].allFinite() ||
+              (T.linear() * detail.normals[i]).dot(T * detail.points[i]) < 0.0f;
+  const PointTally t = tallyPoints(detail, scene, T_scene_model, tolerance_mm);
+  return {t, std::max({1.0, double(facing), 0.25 * double(t.points)})};
+}
+
+/// The turn about the view's near axis (1° steps) at which `which` detail scores best, if it
+/// scores at least kMinDetailSeenShare and kTurnMargin more than at `T_scene_model`.
+std::optional<DetailTurn> bestTurn(const ModelPrep& prep, Detail which, const VerifyScene& scene,
+                                   double tolerance_mm, const Eigen::Isometry3d& T_scene_model) {
+  const RevolutionAxis& axis = *prep.near_axis;
+  const double as_found = tallyDetail(prep, which, scene, T_scene_model, tolerance_mm).score();
+  DetailTurn turn{T_scene_model, 0.0, as_found, as_found, false};
+  for (int degrees = 1; degrees < 360; ++degrees) {
+    const Eigen::Isometry3d T = T_scene_model * axis.turn(degrees * M_PI / 180.0);
+    if (const double score = tallyDetail(prep, which, scene, T, tolerance_mm).score();
+        score > turn.detail_confirmed) {
+      turn.detail_confirmed = score;
+      turn.T_scene_model = T;
+    }
+  }
+  if (turn.detail_confirmed < kMinDetailSeenShare || turn.detail_confirmed < as_found + kTurnMargin)
+    return std::nullopt;
+  return turn;
+}
+
+} // namespace
+
 bool seesDetail(const ModelPrep& prep, const VerifyScene& scene,
                 const Eigen::Isometry3d& T_scene_model, double tolerance_mm) {
-  const PointTally t =
-      tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm, &prep.near_axis_detail);
-  return double(t.confirmed) >= kMinDetailSeenShare * double(t.points) && t.confirmed > 0;
+  return tallyDetail(prep, Detail::Own, scene, T_scene_model, tolerance_mm).seen() ||
+         (prep.joined_detail &&
+          tallyDetail(prep, Detail::Joined, scene, T_scene_model, tolerance_mm).seen());
 }
 
 std::optional<DetailTurn> turnByDetail(const ModelPrep& prep, const VerifyScene& scene,
@@ -219,36 +311,38 @@ std::optional<DetailTurn> turnByDetail(const ModelPrep& prep, const VerifyScene&
                                        const Eigen::Isometry3d& T_scene_model, double coverage) {
   if (!prep.near_axis || prep.near_axis_detail.empty())
     return std::nullopt;
-  const RevolutionAxis& axis = *prep.near_axis;
-  const auto detailScore = [&](const Eigen::Isometry3d& T) {
-    const PointTally t =
-        tallyPoints(*prep.verify, scene, T, params.verify_tolerance_mm, &prep.near_axis_detail);
-    return (double(t.confirmed) - double(t.violations)) /
-           double(std::max<std::size_t>(1, t.points));
-  };
-  const double as_found = detailScore(T_scene_model);
-  DetailTurn turn{T_scene_model, 0.0, as_found, as_found, false};
-  for (int degrees = 1; degrees < 360; ++degrees) {
-    const Eigen::Isometry3d T = T_scene_model * axis.turn(degrees * M_PI / 180.0);
-    if (const double score = detailScore(T); score > turn.detail_confirmed) {
-      turn.detail_confirmed = score;
-      turn.T_scene_model = T;
+  const double tolerance = params.verify_tolerance_mm;
+  if (auto turn = bestTurn(prep, Detail::Own, scene, tolerance, T_scene_model)) {
+    // The turn is known to a degree: ICP finishes it.
+    turn->coverage = verify(turn->T_scene_model);
+    const Eigen::Isometry3d polished = polish(turn->T_scene_model);
+    if (const double polished_coverage = verify(polished); polished_coverage >= turn->coverage) {
+      turn->T_scene_model = polished;
+      turn->coverage = polished_coverage;
+      turn->refined = true;
     }
+    // The body must still agree: a side view turned far about its axis moves its visible half
+    // out of the camera's sight, where a handle-like patch of another part can confirm the
+    // detail.
+    if (turn->coverage >= coverage - kDetailTurnCoverageSlack)
+      return turn;
   }
-  if (turn.detail_confirmed < kMinDetailSeenShare || turn.detail_confirmed < as_found + kTurnMargin)
+  if (!prep.joined_detail)
     return std::nullopt;
-  // The turn is known to a degree: ICP finishes it.
-  turn.coverage = verify(turn.T_scene_model);
-  const Eigen::Isometry3d polished = polish(turn.T_scene_model);
-  if (const double polished_coverage = verify(polished); polished_coverage >= turn.coverage) {
-    turn.T_scene_model = polished;
-    turn.coverage = polished_coverage;
-    turn.refined = true;
+  // Where the view's own detail tells nothing, the detail as the joined views saw it (a handle
+  // seen from the front by a view that saw it from behind). The body is the same surface at any
+  // turn, but turned far the view's own half of it faces away from the camera: the pose keeps the
+  // coverage it was found with, and ICP's polish only while the detail stays as confirmed.
+  auto turn = bestTurn(prep, Detail::Joined, scene, tolerance, T_scene_model);
+  if (!turn)
+    return std::nullopt;
+  const Eigen::Isometry3d polished = polish(turn->T_scene_model);
+  if (tallyDetail(prep, Detail::Joined, scene, polished, tolerance).score() >=
+      turn->detail_confirmed - kPolishedDetailSlack) {
+    turn->T_scene_model = polished;
+    turn->refined = true;
   }
-  // The body must still agree: a side view turned far about its axis moves its visible half out
-  // of the camera's sight, where a handle-like patch of another part can confirm the detail.
-  if (turn.coverage < coverage - kDetailTurnCoverageSlack)
-    return std::nullopt;
+  turn->coverage = std::max(coverage, verify(turn->T_scene_model));
   return turn;
 }
 
@@ -301,14 +395,15 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
                                         params.verify_tolerance_mm, &s.differing_inverse),
                             min_seen);
       Eigen::Isometry3d T_turned = polish(d.T_scene_model * s.S_model);
+      double coverage = verify(T_turned);
       // Turned end over end, a cup's handle lies at another turn about its axis: its detail says
       // which.
-      if (const auto turn =
-              turnByDetail(prep, scene, params, verify, polish, T_turned, verify(T_turned))) {
+      if (const auto turn = turnByDetail(prep, scene, params, verify, polish, T_turned, coverage)) {
         logger()->trace("detection {} turned by a near symmetry: then about its axis by its "
                         "detail, {:.2f} -> {:.2f} of it confirmed",
                         k, turn->detail_as_found, turn->detail_confirmed);
         T_turned = turn->T_scene_model;
+        coverage = turn->coverage;
       }
       const double turned = contradictedShare(
           tallyPoints(*prep.verify, scene, T_turned, params.verify_tolerance_mm, &s.differing),
@@ -318,7 +413,6 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
                       k, as_found, turned);
       if (!turn_unseen && turned > as_found + kTurnMargin)
         continue; // the turned pose is ruled out
-      const double coverage = verify(T_turned);
       if (coverage < params.min_coverage)
         continue;
       if (!turn_unseen && as_found > turned + kTurnMargin) {

@@ -44,6 +44,10 @@ struct ModelPrep {
   /// and the detail's points (indices into verify->points).
   std::optional<RevolutionAxis> near_axis;
   std::vector<std::uint32_t> near_axis_detail;
+  /// With views joined (TaughtModel::joined_views), the detail as all of them saw it, in this
+  /// view's frame, with this view's body (null otherwise): a cup's handle from every side, where
+  /// this view alone saw it from one.
+  std::shared_ptr<const VerifyModel> joined_detail;
   std::shared_ptr<const RefineModel> refine;   ///< when ICP or surface voting needs it
   double surface_sampling_mm = 0;              ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on

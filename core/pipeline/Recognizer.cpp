@@ -614,7 +614,13 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     const RevolutionAxis& axis = prep->axis ? *prep->axis : *prep->near_axis;
     return FreeTurnAxis{T * axis.point_mm, T.linear() * axis.direction};
   };
+  // A view that is a surface of revolution but for a detail is placed by its axis: turned about it
+  // by its detail, the view's own origin moves round the axis, the instance does not.
+  const std::optional<RevolutionAxis> placing_axis =
+      prep ? prep->near_axis : std::optional<RevolutionAxis>();
   for (auto& d : result.detections) {
+    d.centre_mm = placing_axis ? d.T_scene_model * placing_axis->point_mm
+                               : Eigen::Vector3d(d.T_scene_model.translation());
     for (const auto& g : model->grip_points)
       d.grip_points_scene.push_back({g.name, d.T_scene_model * g.position_mm});
     d.free_turn_axis = freeTurnAt(d.T_scene_model);
@@ -673,20 +679,23 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
     }
   }
   sortBestFirst(merged.detections);
-  merged.detections = suppressDuplicates(std::move(merged.detections), 0.3 * diameter_mm);
+  merged.detections = suppressDuplicates(std::move(merged.detections), 0.3 * diameter_mm,
+                                         [](const Detection& d) { return d.centre_mm; });
   if (params.matching.max_detections > 0 &&
       merged.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
     merged.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
   return merged;
 }
 
-std::vector<Detection> suppressDuplicates(std::vector<Detection> detections,
-                                          double min_distance_mm) {
+std::vector<Detection> suppressDuplicates(std::vector<Detection> detections, double min_distance_mm,
+                                          const DetectionPosition& position) {
+  const auto at = [&](const Detection& d) {
+    return position ? position(d) : Eigen::Vector3d(d.T_scene_model.translation());
+  };
   std::vector<Detection> kept;
   for (auto& d : detections) {
     const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const Detection& k) {
-      return (k.T_scene_model.translation() - d.T_scene_model.translation()).norm() <
-             min_distance_mm;
+      return (at(k) - at(d)).norm() < min_distance_mm;
     });
     if (!duplicate)
       kept.push_back(std::move(d));

@@ -16,6 +16,7 @@
 #include "core/params/Parameters.h"
 #include "core/pipeline/Detection.h"
 
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -92,17 +93,22 @@ double prepareViews(Recognizer& recognizer,
 /// Finds any of several models in one scene: views of one part, each taught from a scan of
 /// another side it can rest on (one model sees one side only). The scene stages run once (the
 /// recognizer's cache), matching per model; detections are merged best first, and one whose
-/// position lies within 0.3 × the larger model diameter of a better one's is dropped (the same
-/// instance seen through another view). Detection::model_index names the model. Throws as
-/// Recognizer::recognize, and Error for an empty `models`.
+/// position (Detection::centre_mm) lies within 0.3 × the larger model diameter of a better one's
+/// is dropped (the same instance seen through another view). Views that know their place in the
+/// part should be joined first (joinViews, TaughtModel.h). Detection::model_index names the model.
+/// Throws as Recognizer::recognize, and Error for an empty `models`.
 RecognitionResult recognizeViews(Recognizer& recognizer,
                                  const std::vector<std::shared_ptr<const TaughtModel>>& models,
                                  const PointCloud& scene_mm, const SensorModel& sensor,
                                  const RecognitionParams& params, const ProgressFn& progress = {});
 
-/// Removes duplicates: detections (sorted best first) whose model origins are closer than
-/// `min_distance_mm` to a better one are dropped. Keeps the input order otherwise.
-std::vector<Detection> suppressDuplicates(std::vector<Detection> detections,
-                                          double min_distance_mm);
+/// Where a detection lies, for suppressDuplicates (scene frame, mm).
+using DetectionPosition = std::function<Eigen::Vector3d(const Detection&)>;
+
+/// Removes duplicates: detections (sorted best first) whose positions are closer than
+/// `min_distance_mm` to a better one's are dropped; the position is `position`'s, or the model
+/// origin when it is empty. Keeps the input order otherwise.
+std::vector<Detection> suppressDuplicates(std::vector<Detection> detections, double min_distance_mm,
+                                          const DetectionPosition& position = {});
 
 } // namespace scanpick::core

@@ -5,6 +5,7 @@
 #include "core/sim/MeshIo.h"
 #include "tests/support/TempDir.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -94,6 +95,26 @@ TEST(CliRepeatability, TwoRecognizeRunsWriteTheSameResults) {
   ASSERT_EQ(runCli(own), 0);
   const scanpick::core::ViewParams stored{{"matching.min_coverage", 0.6}};
   EXPECT_EQ(scanpick::core::loadModel(d / "own.spmodel").view_params, stored);
+
+  // The part's pose in the teach scan places the view in the part: from a teach scene's ground
+  // truth, or given (here the part turned a quarter about z, 700 mm in front of the camera).
+  EXPECT_TRUE(scanpick::core::loadModel(d / "support-teach.spmodel").T_part_model);
+  std::vector<std::string> posed = teach_own;
+  posed.back() = "--part-pose";
+  posed.push_back("10,20,700,0.70710678,0,0,0.70710678");
+  posed[posed.size() - 3] = quoted(d / "posed.spmodel");
+  ASSERT_EQ(runCli(posed), 0);
+  const scanpick::core::TaughtModel placed = scanpick::core::loadModel(d / "posed.spmodel");
+  ASSERT_TRUE(placed.T_part_model);
+  Eigen::Isometry3d T_scan_part = Eigen::Isometry3d::Identity();
+  T_scan_part.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_scan_part.translation() = Eigen::Vector3d(10, 20, 700);
+  EXPECT_TRUE((T_scan_part * *placed.T_part_model).isApprox(placed.T_teach_model, 1e-6));
+  posed.back() = "10,20,700,1,0,0,1";
+  posed[posed.size() - 3] = quoted(d / "unit.spmodel");
+  EXPECT_NE(runCli(posed, d / "unit.txt"), 0) << "a quaternion that is not a unit is an error";
+  EXPECT_NE(readText(d / "unit.txt").find("unit quaternion"), std::string::npos);
+  EXPECT_FALSE(fs::exists(d / "unit.spmodel"));
 
   for (const char* out : {"a.json", "b.json"})
     ASSERT_EQ(runCli({"recognize", "--model", quoted(d / "support-teach.spmodel"), "--model",

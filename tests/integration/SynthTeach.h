@@ -55,6 +55,8 @@ inline SynthTeach teachFromScan(const core::SynthScene& scan, const std::string&
   crop.T_scan_box = (scan.scene.T_camera_world * Eigen::Translation3d(box.center())).cast<float>();
   crop.half_extents_mm = (0.5 * box.sizes()).cast<float>();
   options.crop_oriented = crop;
+  // The part's pose in the scan, as `teach --crop-from-truth` reads it: views can be joined.
+  options.T_scan_part = scan.scene.T_scene_part(scan.scene.instances.at(0));
   SynthTeach out;
   out.model = std::make_shared<core::TaughtModel>(core::teach(scan.render.cloud, options, params));
   out.T_teach_part = scan.scene.T_scene_part(scan.scene.instances.at(0));

@@ -88,6 +88,73 @@ TEST(ModelFile, RoundTripKeepsEverything) {
   EXPECT_TRUE(r.view_params.empty());
 }
 
+TEST(Teach, APartPoseGivenPlacesTheModelInThePart) {
+  TeachOptions options = cropAll();
+  EXPECT_FALSE(teach(teachScan(), options, test::idealParams(0.001)).T_part_model);
+  // The part's frame in the scan: turned 30° about z, at (10, 20, 700) mm.
+  Eigen::Isometry3d T_scan_part = Eigen::Isometry3d::Identity();
+  T_scan_part.linear() = Eigen::AngleAxisd(0.5236, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_scan_part.translation() = Eigen::Vector3d(10, 20, 700);
+  options.T_scan_part = T_scan_part;
+  const TaughtModel m = teach(teachScan(), options, test::idealParams(0.001));
+  ASSERT_TRUE(m.T_part_model);
+  // Model frame → part frame → scan frame is the model frame in the scan.
+  EXPECT_TRUE((T_scan_part * *m.T_part_model).isApprox(m.T_teach_model, 1e-12));
+}
+
+TEST(ModelFile, APartPoseIsKeptWhenThereIsOne) {
+  TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
+  EXPECT_EQ(encodeModel(m).find("T_part_model"), std::string::npos);
+  EXPECT_FALSE(decodeModel(encodeModel(m), "p.spmodel").T_part_model);
+  Eigen::Isometry3d T_part_model = Eigen::Isometry3d::Identity();
+  T_part_model.linear() =
+      Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  T_part_model.translation() = Eigen::Vector3d(-4.5, 7.25, 12.0);
+  m.T_part_model = T_part_model;
+  const auto read = decodeModel(encodeModel(m), "p.spmodel").T_part_model;
+  ASSERT_TRUE(read);
+  EXPECT_TRUE(read->isApprox(T_part_model, 1e-12));
+}
+
+TEST(JoinViews, EachViewGetsTheOthersInItsOwnFrame) {
+  const TaughtModel taught = teach(teachScan(), cropAll(), test::idealParams(0.001));
+  // Three views of one part, placed in it by known poses; the third knows no pose.
+  const auto view = [&](double angle_rad, const Eigen::Vector3d& at, bool placed) {
+    auto m = std::make_shared<TaughtModel>(taught);
+    m->teach_scan = "view-" + std::to_string(angle_rad) + ".pcd";
+    if (placed) {
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.linear() = Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitX()).toRotationMatrix();
+      T.translation() = at;
+      m->T_part_model = T;
+    }
+    return std::shared_ptr<const TaughtModel>(std::move(m));
+  };
+  const std::vector<std::shared_ptr<const TaughtModel>> views = {
+      view(0.0, Eigen::Vector3d(0, 0, 0), true), view(1.2, Eigen::Vector3d(5, -3, 8), true),
+      view(2.0, Eigen::Vector3d(1, 1, 1), false)};
+  const auto joined = joinViews(views);
+  ASSERT_EQ(joined.size(), 3u);
+  EXPECT_EQ(joined[2], views[2]) << "a view without its place in the part is left as it is";
+  ASSERT_EQ(joined[0]->joined_views.size(), 1u);
+  ASSERT_EQ(joined[1]->joined_views.size(), 1u);
+  // A point of view 1 lies, in view 0's frame, where view 0's pose in the part puts it.
+  const Eigen::Isometry3d T_0_1 = views[0]->T_part_model->inverse() * *views[1]->T_part_model;
+  const JoinedView& seen = joined[0]->joined_views[0];
+  EXPECT_EQ(seen.teach_scan, views[1]->teach_scan);
+  ASSERT_EQ(seen.cloud_mm.size(), taught.cloud_mm.size());
+  for (std::size_t i = 0; i < taught.cloud_mm.size(); i += 97)
+    EXPECT_LT((seen.cloud_mm.points_mm[i].cast<double>() -
+               T_0_1 * taught.cloud_mm.points_mm[i].cast<double>())
+                  .norm(),
+              1e-3);
+  EXPECT_LT((seen.camera_mm - T_0_1 * taught.T_teach_model.inverse().translation()).norm(), 1e-9);
+  // Views of another part are not joined.
+  auto other = std::make_shared<TaughtModel>(*views[1]);
+  other->name = "another part";
+  EXPECT_TRUE(joinViews({views[0], other})[0] == views[0]);
+}
+
 TEST(ModelFile, AViewsOwnParametersAreKeptAndChecked) {
   TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
   m.view_params = {{"matching.min_coverage", 0.5}, {"matching.surface_reference_stride", 2}};
