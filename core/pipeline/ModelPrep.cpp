@@ -87,10 +87,15 @@ std::optional<RevolutionAxis> rimAxis(const std::vector<Eigen::Vector3f>& points
   return axis;
 }
 
+/// At most about this many points make a joined detail (the cup's views' own details hold 92–222):
+/// its turn search then costs about what the view's own does.
+constexpr std::size_t kJoinedDetailPoints = 250;
+
 /// The detail of a view that is a surface of revolution but for it (a cup's handle), as the view
 /// and the views joined to it (TaughtModel::joined_views) saw it, in the view's frame: the points
 /// of all of them (each strided to about `points`, with normals facing its own teach camera) that
-/// lie off the surface they turn about `axis` (detailPoints), with the view's body.
+/// lie off the surface they turn about `axis` (detailPoints), strided to about
+/// kJoinedDetailPoints, with the view's body.
 std::shared_ptr<const VerifyModel> joinedDetail(const TaughtModel& model, const VerifyModel& view,
                                                 const RevolutionAxis& axis, int points,
                                                 double normal_radius_mm) {
@@ -104,7 +109,10 @@ std::shared_ptr<const VerifyModel> joinedDetail(const TaughtModel& model, const 
     all.normals.insert(all.normals.end(), seen->normals.begin(), seen->normals.end());
   }
   auto detail = std::make_shared<VerifyModel>();
-  for (const std::uint32_t i : detailPoints(all.points, axis, kDetailCellMm)) {
+  const auto indices = detailPoints(all.points, axis, kDetailCellMm);
+  const std::size_t stride = (indices.size() + kJoinedDetailPoints - 1) / kJoinedDetailPoints;
+  for (std::size_t k = 0; k < indices.size(); k += std::max<std::size_t>(1, stride)) {
+    const std::uint32_t i = indices[k];
     detail->points.push_back(all.points[i]);
     detail->normals.push_back(all.normals[i]);
   }
@@ -308,7 +316,8 @@ bool seesDetail(const ModelPrep& prep, const VerifyScene& scene,
 std::optional<DetailTurn> turnByDetail(const ModelPrep& prep, const VerifyScene& scene,
                                        const MatchingParams& params, const PoseVerifier& verify,
                                        const PosePolisher& polish,
-                                       const Eigen::Isometry3d& T_scene_model, double coverage) {
+                                       const Eigen::Isometry3d& T_scene_model, double coverage,
+                                       bool ask_joined) {
   if (!prep.near_axis || prep.near_axis_detail.empty())
     return std::nullopt;
   const double tolerance = params.verify_tolerance_mm;
@@ -327,7 +336,7 @@ std::optional<DetailTurn> turnByDetail(const ModelPrep& prep, const VerifyScene&
     if (turn->coverage >= coverage - kDetailTurnCoverageSlack)
       return turn;
   }
-  if (!prep.joined_detail)
+  if (!prep.joined_detail || !ask_joined)
     return std::nullopt;
   // Where the view's own detail tells nothing, the detail as the joined views saw it (a handle
   // seen from the front by a view that saw it from behind). The body is the same surface at any

@@ -86,11 +86,14 @@ struct DetailTurn {
 /// The turn about the view's near axis (1° steps, the detail's points alone) whose detail the scan
 /// confirms most, polished by ICP; nothing when the view has no near axis, the best turn confirms
 /// less than a quarter of the detail or not a clear share more than `T_scene_model`, or it
-/// verifies clearly worse than `coverage` (the pose's own score).
+/// verifies clearly worse than `coverage` (the pose's own score). Failing that, with `ask_joined`
+/// and views joined, the turn the joined detail says (ModelPrep::joined_detail), which keeps
+/// `coverage` unless it verifies better.
 std::optional<DetailTurn> turnByDetail(const ModelPrep& prep, const VerifyScene& scene,
                                        const MatchingParams& params, const PoseVerifier& verify,
                                        const PosePolisher& polish,
-                                       const Eigen::Isometry3d& T_scene_model, double coverage);
+                                       const Eigen::Isometry3d& T_scene_model, double coverage,
+                                       bool ask_joined = true);
 
 /// Puts `detection` at the turned pose: its pose, coverage, score and polish from `turn`; the
 /// features and alternatives of the pose it had no longer hold.

@@ -537,12 +537,13 @@ RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const Sensor
     return prep && prep->refine ? icp(T).T_scene_model : T;
   };
   // A view that is a surface of revolution but for a detail may be found turned about its axis,
-  // its detail (a cup's handle) where the scan has none: the turn its detail says can verify.
+  // its detail (a cup's handle) where the scan has none: the turn its detail says can verify. (Its
+  // own detail only: a turn the joined detail says keeps the coverage the pose was found with.)
   PoseRescue rescue;
   if (verify && prep->near_axis)
     rescue = [&](Detection& d) {
       const auto turn = detail::turnByDetail(*prep, verify_scene, params.matching, verify, polish,
-                                             d.T_scene_model, d.coverage);
+                                             d.T_scene_model, d.coverage, false);
       if (turn && turn->coverage > d.coverage)
         detail::takeTurn(d, *turn);
     };
