@@ -62,8 +62,13 @@ int run(const Options& o) {
   core::Recognizer recognizer;
   // The views are prepared once, as a cell does when it loads them; the scenes' timings are
   // then their own.
-  std::printf("prepared %zu view(s) in %.0f ms\n", loaded.models.size(),
+  const auto joined = std::count_if(loaded.models.begin(), loaded.models.end(),
+                                    [](const auto& m) { return !m->joined_views.empty(); });
+  std::printf("prepared %zu view(s) in %.0f ms", loaded.models.size(),
               core::prepareViews(recognizer, loaded.models, params));
+  if (joined > 0)
+    std::printf(", %ld of them joined (they know their place in the part)", long(joined));
+  std::printf("\n");
   const auto recognize = [&](const core::PointCloud& scene, const core::SensorModel& sensor) {
     return core::recognizeViews(recognizer, loaded.models, scene, sensor, params);
   };

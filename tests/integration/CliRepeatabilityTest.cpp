@@ -119,8 +119,12 @@ TEST(CliRepeatability, TwoRecognizeRunsWriteTheSameResults) {
   for (const char* out : {"a.json", "b.json"})
     ASSERT_EQ(runCli({"recognize", "--model", quoted(d / "support-teach.spmodel"), "--model",
                       quoted(d / "support-teach-side1.spmodel"), "--scene",
-                      quoted(d / "demo-bin.pcd"), "--preset", preset, "--out", quoted(d / out)}),
+                      quoted(d / "demo-bin.pcd"), "--preset", preset, "--out", quoted(d / out)},
+                     d / (std::string(out) + ".txt")),
               0);
+  // Both views were taught knowing their place in the part: recognize joins them.
+  EXPECT_NE(readText(d / "a.json.txt").find("2 of them joined"), std::string::npos)
+      << readText(d / "a.json.txt");
   const auto a = withoutTimings(d / "a.json"), b = withoutTimings(d / "b.json");
   EXPECT_FALSE(a.at("detections").empty()) << "the demo bin should give detections";
   EXPECT_EQ(a.dump(), b.dump());
