@@ -38,7 +38,8 @@ struct Detection {
   int model_index = 0;
   /// Where the instance lies, for telling instances apart (scene frame, mm): the model origin, or
   /// for a view that is a surface of revolution but for a detail, the point of its axis nearest
-  /// the origin, which a turn about the axis leaves in place.
+  /// the origin, which a turn about the axis leaves in place. Set by Recognizer::recognize with the
+  /// final pose; recognizeViews merges views by it.
   Eigen::Vector3d centre_mm = Eigen::Vector3d::Zero();
   /// Set when the view that found it is a surface of revolution about this axis (RevolutionAxis.h,
   /// such as a flanged pipe taught from the side), or one but for a detail that the scan does not
