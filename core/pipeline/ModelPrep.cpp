@@ -274,14 +274,9 @@ DetailTally tallyDetail(const ModelPrep& prep, Detail which, const VerifyScene& 
         tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm, &prep.near_axis_detail);
     return {t, double(std::max<std::size_t>(1, t.points))};
   }
-  const VerifyModel& detail = *prep.joined_detail;
-  const Eigen::Isometry3f T = T_scene_model.cast<float>();
-  std::size_t facing = 0;
-  for (std::size_t i = 0; i < detail.points.size(); ++i)
-    facing += !detail.normals[i].allFinite() ||
-              (T.linear() * detail.normals[i]).dot(T * detail.points[i]) < 0.0f;
-  const PointTally t = tallyPoints(detail, scene, T_scene_model, tolerance_mm);
-  return {t, std::max({1.0, double(facing), 0.25 * double(t.points)})};
+  const PointTally t = tallyPoints(*prep.joined_detail, scene, T_scene_model, tolerance_mm);
+  const double facing = double(t.points - t.turned_away);
+  return {t, std::max({1.0, facing, 0.25 * double(t.points)})};
 }
 
 /// The turn about the view's near axis (1° steps) at which `which` detail scores best, if it

@@ -125,14 +125,15 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
   const auto look = [&](std::size_t k) {
     ++tally.points;
     const Eigen::Vector3f p = T * model.points[k];
+    const Eigen::Vector3f& n_model = model.normals[k];
+    // The camera sits at the scene origin.
+    const bool turned_away = n_model.allFinite() && (T.linear() * n_model).dot(-p) <= 0.0f;
+    tally.turned_away += turned_away;
     if (scene.floor_plane &&
         scene.floor_plane->head<3>().dot(p) + (*scene.floor_plane)(3) < -margin) {
       ++tally.violations;
       return;
     }
-    const Eigen::Vector3f& n_model = model.normals[k];
-    // The camera sits at the scene origin.
-    const bool turned_away = n_model.allFinite() && (T.linear() * n_model).dot(-p) <= 0.0f;
     const std::int64_t near = turned_away ? -1 : index.nearest(p, tol_sq);
     if (near >= 0) {
       // A surface confirms a point only when it faces the same way: the far face of a thin plate

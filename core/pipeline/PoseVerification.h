@@ -60,6 +60,9 @@ struct PointTally {
   std::size_t confirmed = 0;  ///< a scene point facing the same way lies within the tolerance
   std::size_t violations = 0; ///< the camera sees clearly behind the point: nothing is there
   std::size_t hidden = 0;     ///< turned away from the camera, or behind something else
+  /// Whose normal faces away from the camera, wherever else they are counted (the floor test
+  /// comes first): a model of every side expects only the others.
+  std::size_t turned_away = 0;
   /// Unmeasured, and the projector's light to it is blocked by measured surface (the inside of
   /// an upright cup behind its rim): the scan can say nothing about it.
   std::size_t shadowed = 0;
