@@ -42,7 +42,8 @@ case "$mode" in
     "$build_dir/bin/scanpick-cli" demo --out "$demo_out"
     # With a display, the desktop application opens on the demo and recognizes the bin there.
     if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ] && [ -x "$build_dir/bin/scanpick" ]; then
-      "$build_dir/bin/scanpick" --scan "$demo_out/demo-bin.pcd" --model "$demo_out/support.spmodel" --recognize ||
+      "$build_dir/bin/scanpick" --scan "$demo_out/demo-bin.pcd" --model "$demo_out/support.spmodel" \
+        --model "$demo_out/support-table.spmodel" --recognize ||
         echo "scanpick: the desktop application did not start; the overlay picture is $demo_out/demo-overlay.png"
     else
       echo "scanpick: no display (or no GUI build); the overlay picture is $demo_out/demo-overlay.png"

@@ -104,6 +104,26 @@
 <context>
     <name>scanpick::ui::MainWindow</name>
     <message>
+        <source>&amp;Add model view…</source>
+        <translation>&amp;Aggiungi vista del modello…</translation>
+    </message>
+    <message>
+        <source>Add model view</source>
+        <translation>Aggiungi vista del modello</translation>
+    </message>
+    <message>
+        <source>Add views of the same part, taught from scans of its other sides: Recognize searches them all</source>
+        <translation>Aggiungi viste dello stesso pezzo, insegnate da scansioni dei suoi altri lati: Riconosci le cerca tutte</translation>
+    </message>
+    <message>
+        <source>Model %1: %2 views, %3 of them joined</source>
+        <translation>Modello %1: %2 viste, %3 unite</translation>
+    </message>
+    <message>
+        <source>taught</source>
+        <translation>insegnato</translation>
+    </message>
+    <message>
         <location filename="../ui/MainWindow.cpp" line="41"/>
         <source>scanpick</source>
         <translation>scanpick</translation>
@@ -742,6 +762,10 @@
 </context>
 <context>
     <name>scanpick::ui::ResultsTable</name>
+    <message>
+        <source>View</source>
+        <translation>Vista</translation>
+    </message>
     <message>
         <location filename="../ui/panels/ResultsTable.cpp" line="11"/>
         <source>Score</source>

@@ -145,14 +145,22 @@ void MainWindow::buildDocks() {
 void MainWindow::buildActions() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
   QAction* open = file->addAction(tr("&Open scan or model…"), this, [this] {
-    QSettings s;
-    const QString path = QFileDialog::getOpenFileName(
-        this, tr("Open"), s.value(settings::kLastDirectory).toString(),
+    // Several models chosen together are the views of one part.
+    const QStringList paths = QFileDialog::getOpenFileNames(
+        this, tr("Open"), QSettings().value(settings::kLastDirectory).toString(),
         tr("Scans and models (*.pcd *.ply *.spmodel);;All files (*)"));
-    if (!path.isEmpty())
-      openAny(path);
+    openFiles(paths);
   });
   open->setShortcut(QKeySequence::Open);
+  QAction* add_view = file->addAction(tr("&Add model view…"), this, [this] {
+    const QStringList paths = QFileDialog::getOpenFileNames(
+        this, tr("Add model view"), QSettings().value(settings::kLastDirectory).toString(),
+        tr("Models (*.spmodel)"));
+    if (!paths.isEmpty())
+      addModelViews(paths);
+  });
+  add_view->setToolTip(tr("Add views of the same part, taught from scans of its other sides: "
+                          "Recognize searches them all"));
   m_recent_menu = file->addMenu(tr("Open &recent"));
   rebuildRecentMenu();
   file->addSeparator();
@@ -303,16 +311,21 @@ void MainWindow::rebuildRecentMenu() {
   m_recent_menu->clear();
   const QStringList files = QSettings().value(settings::kRecentFiles).toStringList();
   for (const QString& path : files)
-    m_recent_menu->addAction(QFileInfo(path).fileName(), this, [this, path] { openAny(path); })
+    m_recent_menu->addAction(QFileInfo(path).fileName(), this, [this, path] { openFiles({path}); })
         ->setToolTip(path);
   m_recent_menu->setEnabled(!files.isEmpty());
 }
 
-void MainWindow::openAny(const QString& path) {
-  if (path.endsWith(QLatin1String(".spmodel"), Qt::CaseInsensitive))
-    openModel(path);
-  else
-    openScan(path);
+void MainWindow::openFiles(const QStringList& paths) {
+  QStringList models;
+  for (const QString& path : paths) {
+    if (path.endsWith(QLatin1String(".spmodel"), Qt::CaseInsensitive))
+      models << path;
+    else
+      openScan(path);
+  }
+  if (!models.isEmpty())
+    openModels(models);
 }
 
 core::LoadedCloud MainWindow::loadScanFile(const std::string& file) {
@@ -350,7 +363,7 @@ void MainWindow::setScan(std::shared_ptr<const core::PointCloud> scan_mm, const 
   m_undo->clear();
   m_grips.clear();
   m_result.reset();
-  m_results->setDetections({}, nullptr);
+  m_results->setDetections({}, {});
   refreshGripList();
   clearLayers({QStringLiteral("detections"), QStringLiteral("grips"), QStringLiteral("scene")});
   setPart(m_scan);
@@ -369,43 +382,97 @@ void MainWindow::lookFromSensor() {
   m_view->resetCamera();
 }
 
-bool MainWindow::openModel(const QString& path) {
+std::vector<std::shared_ptr<const core::TaughtModel>>
+MainWindow::loadViews(const QStringList& paths) {
+  std::vector<std::shared_ptr<const core::TaughtModel>> views;
+  for (const QString& path : paths)
+    views.push_back(std::make_shared<const core::TaughtModel>(core::loadModel(path.toStdString())));
+  return views;
+}
+
+bool MainWindow::openModels(const QStringList& paths) {
+  if (paths.isEmpty())
+    return false;
   try {
-    auto model = std::make_shared<const core::TaughtModel>(core::loadModel(path.toStdString()));
-    m_model = model;
-    m_model_path = path;
-    // The view's own matching parameters become the panel's values, so that the panel tunes them
-    // (the recognizer's copy drops them; the file keeps them when saved again).
-    core::RecognitionParams params = model->params;
-    std::shared_ptr<const core::TaughtModel> searched = model;
-    if (!model->view_params.empty()) {
-      auto folded = std::make_shared<core::TaughtModel>(*model);
-      core::foldViewParams(params, folded->view_params);
-      searched = folded;
-    }
-    m_recognizer->setModel(searched);
-    m_params->setParams(params);
-    prepareModelInBackground();
-    addRecentFile(path);
-    core::logger()->info("model '{}' from {}: {} features, {} grip points", model->name,
-                         path.toStdString(), model->features.size(), model->grip_points.size());
-    statusBar()->showMessage(tr("Model %1 loaded").arg(QString::fromStdString(model->name)), 5000);
-    return true;
+    auto views = loadViews(paths);
+    core::requireOnePart(views);
+    setViews(std::move(views), paths, true);
   } catch (const std::exception& e) {
     showError(tr("Open model"), QString::fromUtf8(e.what()));
     return false;
   }
+  for (const QString& path : paths)
+    addRecentFile(path);
+  return true;
+}
+
+bool MainWindow::addModelViews(const QStringList& paths) {
+  if (!m_model)
+    return openModels(paths);
+  try {
+    auto views = m_loaded_views;
+    for (auto& view : loadViews(paths))
+      views.push_back(std::move(view));
+    core::requireOnePart(views);
+    setViews(std::move(views), m_view_paths + paths, false);
+  } catch (const std::exception& e) {
+    showError(tr("Add model view"), QString::fromUtf8(e.what()));
+    return false;
+  }
+  for (const QString& path : paths)
+    addRecentFile(path);
+  return true;
+}
+
+void MainWindow::setViews(std::vector<std::shared_ptr<const core::TaughtModel>> views,
+                          QStringList paths, bool take_params) {
+  m_model = views.front();
+  m_model_path = paths.front();
+  m_loaded_views = std::move(views);
+  m_view_paths = std::move(paths);
+  core::RecognitionParams params = m_model->params;
+  if (m_loaded_views.size() == 1 && !m_model->view_params.empty()) {
+    // A single view's own matching parameters become the panel's values, so that the panel tunes
+    // them (the searched copy drops them; the file keeps them when saved again). With several
+    // views each keeps its own, over the panel's.
+    auto folded = std::make_shared<core::TaughtModel>(*m_model);
+    core::foldViewParams(params, folded->view_params);
+    m_views = {folded};
+    take_params = true;
+  } else {
+    m_views = core::joinViews(m_loaded_views);
+  }
+  if (take_params)
+    m_params->setParams(params);
+  prepareModelInBackground();
+  const auto joined = std::count_if(m_views.begin(), m_views.end(),
+                                    [](const auto& v) { return !v->joined_views.empty(); });
+  for (std::size_t v = 0; v < m_views.size(); ++v)
+    core::logger()->info(
+        "model '{}' view {} ({}): {} features, {} grip points{}", m_model->name, v + 1,
+        m_view_paths[int(v)].isEmpty() ? std::string("taught") : m_view_paths[int(v)].toStdString(),
+        m_views[v]->features.size(), m_views[v]->grip_points.size(),
+        m_views[v]->joined_views.empty() ? "" : ", joined with the others");
+  statusBar()->showMessage(m_views.size() == 1
+                               ? tr("Model %1 loaded").arg(QString::fromStdString(m_model->name))
+                               : tr("Model %1: %2 views, %3 of them joined")
+                                     .arg(QString::fromStdString(m_model->name))
+                                     .arg(m_views.size())
+                                     .arg(joined),
+                           5000);
 }
 
 void MainWindow::prepareModelInBackground() {
   const auto recognizer = m_recognizer;
+  const auto views = m_views;
   const core::RecognitionParams params = m_params->params();
-  m_prepare_jobs->run<bool>(
-      [recognizer, params](const core::ProgressFn&) {
-        recognizer->prepare(params);
-        return true;
+  m_prepare_jobs->run<double>(
+      [recognizer, views, params](const core::ProgressFn&) {
+        return core::prepareViews(*recognizer, views, params);
       },
-      [](std::shared_ptr<const bool>) { core::logger()->info("model prepared for matching"); });
+      [](std::shared_ptr<const double> ms) {
+        core::logger()->info("model prepared for matching in {:.0f} ms", *ms);
+      });
 }
 
 bool MainWindow::saveScan(const QString& path) {
@@ -447,9 +514,11 @@ void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
 }
 
 void MainWindow::dropEvent(QDropEvent* event) {
+  QStringList paths;
   for (const QUrl& url : event->mimeData()->urls())
     if (url.isLocalFile())
-      openAny(url.toLocalFile());
+      paths << url.toLocalFile();
+  openFiles(paths);
 }
 
 void MainWindow::showError(const QString& title, const QString& message) {

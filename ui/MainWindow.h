@@ -69,9 +69,20 @@ public:
   void openScan(const QString& path);
   /// Shows `scan` as the current scan (teach source and recognition scene).
   void setScan(std::shared_ptr<const core::PointCloud> scan_mm, const QString& name);
-  /// Loads a .spmodel file (synchronous, small); shows a dialog on failure. Returns success.
-  bool openModel(const QString& path);
-  /// Saves the taught model; returns false (and says why) on failure.
+  /// Loads a .spmodel file (synchronous, small) as the part to find, in place of the views
+  /// opened or taught before; shows a dialog on failure. Returns success.
+  bool openModel(const QString& path) { return openModels({path}); }
+  /// Loads several .spmodel files as the views of one part (each taught from a scan of another
+  /// side it can rest on), in place of those opened or taught before. Recognize and Live search
+  /// them all, as `scanpick-cli recognize` with several --model does; views that know their place
+  /// in the part are joined (core::joinViews). When a file does not load, or the views are of
+  /// different parts, a dialog says why and nothing changes. Returns success.
+  bool openModels(const QStringList& paths);
+  /// Adds views of the same part to those opened or taught (e.g. the other sides' saved views to
+  /// one just taught); the same checks as openModels. Returns success.
+  bool addModelViews(const QStringList& paths);
+  /// Saves the model taught or opened first (the first view); returns false (and says why) on
+  /// failure.
   bool saveModel(const QString& path);
   /// Saves the current scan (PCD or PLY by extension); returns false (and says why) on failure.
   bool saveScan(const QString& path);
@@ -141,6 +152,10 @@ public:
   [[nodiscard]] std::shared_ptr<const core::PointCloud> scan() const { return m_scan; }
   [[nodiscard]] std::shared_ptr<const core::PointCloud> part() const { return m_part; }
   [[nodiscard]] std::shared_ptr<const core::TaughtModel> model() const { return m_model; }
+  /// The part's views as Recognize searches them (joined; the first one is model()'s).
+  [[nodiscard]] const std::vector<std::shared_ptr<const core::TaughtModel>>& views() const {
+    return m_views;
+  }
   [[nodiscard]] std::shared_ptr<const PreviewResult> preview() const { return m_preview; }
   [[nodiscard]] const core::RecognitionResult* lastResult() const { return m_result.get(); }
   [[nodiscard]] const std::vector<core::GripPoint>& gripPoints() const { return m_grips; }
@@ -177,7 +192,8 @@ private:
   void restoreSettings();
   void addRecentFile(const QString& path);
   void rebuildRecentMenu();
-  void openAny(const QString& path);
+  /// Opens scans (in turn) and models (together, as the views of one part).
+  void openFiles(const QStringList& paths);
   void showError(const QString& title, const QString& message);
   void setLayer(const QString& name, vtkSmartPointer<vtkProp> prop);
   void clearLayers(const QStringList& names);
@@ -197,7 +213,17 @@ private:
   void replacePart(std::shared_ptr<const core::PointCloud> after, const QString& text);
   // MainWindowTools.cpp
   void buildToolButtons(QVBoxLayout* layout);
+  /// Makes `views` (as loaded, first = the one the panel tunes; `paths` alike, empty for one not
+  /// saved) the part to find and prepares them. With `take_params` the panel takes the first
+  /// view's parameters; a single view's own matching parameters become the panel's values.
+  void setViews(std::vector<std::shared_ptr<const core::TaughtModel>> views, QStringList paths,
+                bool take_params);
+  /// Loads `paths` as views; throws core::Error.
+  static std::vector<std::shared_ptr<const core::TaughtModel>> loadViews(const QStringList& paths);
   // MainWindowRecognize.cpp
+  /// Shows `result`, found with `views` (their files in `paths`), in the table and the viewport.
+  void setResult(std::shared_ptr<const core::RecognitionResult> result,
+                 std::vector<std::shared_ptr<const core::TaughtModel>> views, QStringList paths);
   void showResult(int selected);
   /// Prepares the model for matching in the background (Recognizer::prepare), so that the first
   /// recognition, or live cycle, does not pay for it.
@@ -241,11 +267,18 @@ private:
   std::shared_ptr<const core::PointCloud> m_part;  // working cloud of the teach workflow
   quint64 m_part_version = 0;
   std::vector<core::GripPoint> m_grips;            // scan frame
-  std::shared_ptr<const core::TaughtModel> m_model;
+  std::shared_ptr<const core::TaughtModel> m_model; // the first view, as loaded or taught
   QString m_model_path;
+  // The part's views: as loaded or taught (m_model first), their files, and as searched.
+  std::vector<std::shared_ptr<const core::TaughtModel>> m_loaded_views;
+  QStringList m_view_paths;
+  std::vector<std::shared_ptr<const core::TaughtModel>> m_views;
   std::shared_ptr<core::Recognizer> m_recognizer;
   std::shared_ptr<const PreviewResult> m_preview;
   std::shared_ptr<const core::RecognitionResult> m_result;
+  // The views and files the last result was found with (Detection::model_index refers to them).
+  std::vector<std::shared_ptr<const core::TaughtModel>> m_result_views;
+  QStringList m_result_view_paths;
   struct FloorPreview {
     std::shared_ptr<const core::PointCloud> part;       // the working cloud it was computed for
     std::shared_ptr<const core::PointCloud> remaining;  // the working cloud without the floor

@@ -1,9 +1,8 @@
 // Recognize and live: background recognition with progress and cancel, the detections drawn in
 // distinct colours over the grey scene, the results table, export, and capture → recognize loops.
-#include "ui/MainWindow.h"
-
 #include "core/common/Log.h"
 #include "core/pipeline/ResultsJson.h"
+#include "ui/MainWindow.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/DevicePanel.h"
 #include "ui/panels/ParameterPanel.h"
@@ -13,6 +12,7 @@
 
 #include <QAction>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QLabel>
 #include <QStatusBar>
 #include <QTimer>
@@ -55,18 +55,18 @@ void MainWindow::recognize() {
     return showError(tr("Recognize"), tr("Open or capture a scene first."));
   const auto scene = m_scan;
   const auto recognizer = m_recognizer;
+  const auto views = m_views;
+  const QStringList paths = m_view_paths;
   const core::RecognitionParams params = m_params->params();
   // The scene's own sensor when its grid tells, otherwise the one the model was taught with.
   const core::SensorModel sensor = sensorOfGrid(*scene).value_or(m_model->sensor);
   statusBar()->showMessage(tr("Recognizing…"));
   const quint64 gen = m_recognize_jobs->run<core::RecognitionResult>(
-      [scene, recognizer, params, sensor](const core::ProgressFn& progress) {
-        return recognizer->recognize(*scene, sensor, params, progress);
+      [scene, recognizer, views, params, sensor](const core::ProgressFn& progress) {
+        return core::recognizeViews(*recognizer, views, *scene, sensor, params, progress);
       },
-      [this](std::shared_ptr<const core::RecognitionResult> result) {
-        m_result = std::move(result);
-        m_results->setDetections(m_result->detections, m_model.get());
-        showResult(-1);
+      [this, views, paths](std::shared_ptr<const core::RecognitionResult> result) {
+        setResult(std::move(result), views, paths);
         m_status_counts->setText(tr("%n detection(s)", nullptr,
                                     static_cast<int>(m_result->detections.size())));
         m_status_timings->setText(timingsText(m_result->timings));
@@ -98,6 +98,20 @@ void MainWindow::cancelRecognition() {
     m_live_action->setChecked(false);
 }
 
+void MainWindow::setResult(std::shared_ptr<const core::RecognitionResult> result,
+                           std::vector<std::shared_ptr<const core::TaughtModel>> views,
+                           QStringList paths) {
+  m_result = std::move(result);
+  m_result_views = std::move(views);
+  m_result_view_paths = std::move(paths);
+  QStringList names;
+  if (m_result_views.size() > 1)
+    for (const QString& path : m_result_view_paths)
+      names << (path.isEmpty() ? tr("taught") : QFileInfo(path).completeBaseName());
+  m_results->setDetections(m_result->detections, names);
+  showResult(-1);
+}
+
 void MainWindow::showResult(int selected) {
   if (!m_result || !m_scan)
     return;
@@ -106,13 +120,18 @@ void MainWindow::showResult(int selected) {
   setLayer(QStringLiteral("part"),
            makeCloudActor(*m_scan, QColor(200, 200, 200), 1.5, ratio(), false));
   auto assembly = vtkSmartPointer<vtkAssembly>::New();
-  const double axis_mm = m_model ? std::max(5.0, m_model->diameter_mm * 0.15) : 10.0;
   for (int i = 0; i < static_cast<int>(m_result->detections.size()); ++i) {
     const core::Detection& d = m_result->detections[i];
     const bool highlight = selected < 0 || selected == i;
     const QColor colour = detectionColour(i);
-    if (m_model) {
-      auto cloud = makeCloudActor(m_model->cloud_mm, colour, highlight ? 3.0 : 2.0, ratio(), false,
+    // The view that found it, moved to where it was found.
+    const core::TaughtModel* view =
+        d.model_index >= 0 && d.model_index < static_cast<int>(m_result_views.size())
+            ? m_result_views[std::size_t(d.model_index)].get()
+            : nullptr;
+    const double axis_mm = view ? std::max(5.0, view->diameter_mm * 0.15) : 10.0;
+    if (view) {
+      auto cloud = makeCloudActor(view->cloud_mm, colour, highlight ? 3.0 : 2.0, ratio(), false,
                                   d.T_scene_model);
       cloud->GetProperty()->SetOpacity(highlight ? 1.0 : 0.25);
       assembly->AddPart(cloud);
@@ -133,13 +152,15 @@ void MainWindow::onResultSelected(int row) {
 }
 
 bool MainWindow::exportResults(const QString& path) {
-  if (!m_result || !m_model) {
+  if (!m_result || m_result_views.empty()) {
     showError(tr("Export results"), tr("Run a recognition first (F5)."));
     return false;
   }
   try {
-    core::saveResults(path.toStdString(), *m_result, *m_model, m_scan_path.toStdString(),
-                      m_model_path.toStdString());
+    std::vector<core::ModelSource> sources;
+    for (std::size_t v = 0; v < m_result_views.size(); ++v)
+      sources.push_back({m_result_views[v].get(), m_result_view_paths[int(v)].toStdString()});
+    core::saveResults(path.toStdString(), *m_result, sources, m_scan_path.toStdString());
     core::logger()->info("results written to {}", path.toStdString());
     statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
     return true;
@@ -182,26 +203,27 @@ void MainWindow::runLiveCycle() {
     return;
   }
   const auto recognizer = m_recognizer;
+  const auto views = m_views;
+  const QStringList paths = m_view_paths;
   const core::RecognitionParams params = m_params->params();
   const core::SensorModel model_sensor = m_model->sensor;
   // Each cycle schedules the next one when it ends, so cycles never overlap.
   m_recognize_jobs->run<LiveCycle>(
-      [camera, recognizer, params, model_sensor](const core::ProgressFn& progress) {
+      [camera, recognizer, views, params, model_sensor](const core::ProgressFn& progress) {
         QElapsedTimer timer;
         timer.start();
         LiveCycle c;
         c.scene = std::make_shared<const core::PointCloud>(
             camera->capture(std::chrono::seconds(5)).cloud);
-        c.result = recognizer->recognize(*c.scene, sensorOfGrid(*c.scene).value_or(model_sensor),
-                                         params, progress);
+        c.result =
+            core::recognizeViews(*recognizer, views, *c.scene,
+                                 sensorOfGrid(*c.scene).value_or(model_sensor), params, progress);
         c.cycle_ms = static_cast<double>(timer.nsecsElapsed()) / 1e6;
         return c;
       },
-      [this](std::shared_ptr<const LiveCycle> c) {
+      [this, views, paths](std::shared_ptr<const LiveCycle> c) {
         m_scan = c->scene;
-        m_result = std::shared_ptr<const core::RecognitionResult>(c, &c->result);
-        m_results->setDetections(m_result->detections, m_model.get());
-        showResult(-1);
+        setResult(std::shared_ptr<const core::RecognitionResult>(c, &c->result), views, paths);
         if (m_live_cycles++ == 0)
           lookFromSensor();  // the operator may have been looking elsewhere, or at nothing
         m_status_counts->setText(tr("%n detection(s)", nullptr,

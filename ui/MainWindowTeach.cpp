@@ -374,9 +374,7 @@ void MainWindow::teach() {
         return core::teach(*part, options, params, progress);
       },
       [this](std::shared_ptr<const core::TaughtModel> model) {
-        m_model = model;
-        m_recognizer->setModel(model);
-        prepareModelInBackground();
+        setViews({model}, {QString()}, false);
         core::logger()->info("taught '{}': {} points, {} keypoints, {} features, {} grip points",
                              model->name, model->cloud_mm.size(), model->keypoints_mm.size(),
                              model->features.size(), model->grip_points.size());

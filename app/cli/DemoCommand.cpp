@@ -107,7 +107,6 @@ int runDemo(const DemoOptions& o) {
     sources.push_back({models[m].get(), model_paths[m]});
     clouds.push_back(&models[m]->cloud_mm);
   }
-  const std::string model_path = model_paths.front();
 
   std::cout << "3/3 recognizing the support in demo-bin.pcd\n";
   const fs::path scene_path = dir / "demo-bin.pcd";
@@ -130,8 +129,10 @@ int runDemo(const DemoOptions& o) {
   }
   std::cout << "results: " << results_path.string() << "\npicture: " << picture_path.string()
             << " (scene grey, detections red)\n"
-            << "desktop application: scanpick --scan " << scene_path.string() << " --model "
-            << model_path << " --recognize\n";
+            << "desktop application: scanpick --scan " << scene_path.string();
+  for (const auto& path : model_paths)
+    std::cout << " --model " << path;
+  std::cout << " --recognize\n";
   if (result.detections.empty())
     throw core::Error("the demo found no support in the bin: the build or the preset '" + o.preset +
                       "' is broken (run ./cmake/setup.sh test)");

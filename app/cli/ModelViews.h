@@ -26,14 +26,9 @@ inline ModelViews loadModelViews(const std::vector<std::string>& paths) {
   if (paths.empty())
     throw core::Error("--model is required");
   ModelViews out;
-  for (const auto& path : paths) {
-    auto model = std::make_shared<const core::TaughtModel>(core::loadModel(path));
-    if (!out.models.empty() && model->name != out.models.front()->name)
-      throw core::Error("models '" + out.models.front()->name + "' and '" + model->name +
-                        "' are different parts: several --model must be views of one part "
-                        "(recognize each part in its own run)");
-    out.models.push_back(model);
-  }
+  for (const auto& path : paths)
+    out.models.push_back(std::make_shared<const core::TaughtModel>(core::loadModel(path)));
+  core::requireOnePart(out.models);
   out.models = core::joinViews(out.models);
   for (std::size_t i = 0; i < paths.size(); ++i) {
     out.sources.push_back({out.models[i].get(), paths[i]});

@@ -1,8 +1,9 @@
 // scanpick: the desktop application. Options let scripts and the docs drive it:
-//   scanpick [--scan S] [--model M] [--preset P] [--recognize] [--screenshot out.png]
+//   scanpick [--scan S] [--model M ...] [--preset P] [--recognize] [--screenshot out.png]
 //            [--quit-after-screenshot] [files...]
 // `./cmake/setup.sh demo` opens the demo this way:
-//   scanpick --scan demo-output/demo-bin.pcd --model demo-output/support.spmodel --recognize
+//   scanpick --scan demo-output/demo-bin.pcd --model demo-output/support.spmodel
+//            --model demo-output/support-table.spmodel --recognize
 #include "core/common/Log.h"
 #include "ui/MainWindow.h"
 #include "ui/Settings.h"
@@ -44,7 +45,10 @@ int main(int argc, char** argv) {
       QApplication::translate("main", "3D object recognition for bin picking, taught from a scan"));
   parser.addHelpOption();
   const QCommandLineOption scene({"s", "scan", "scene"}, "Scan to open (PCD or PLY).", "file");
-  const QCommandLineOption model({"m", "model"}, "Taught model to open (.spmodel).", "file");
+  const QCommandLineOption model({"m", "model"},
+                                 "Taught model to open (.spmodel); repeat it for the views of one "
+                                 "part, as with scanpick-cli recognize.",
+                                 "file");
   const QCommandLineOption preset("preset", "Parameter preset to load (JSON).", "file");
   const QCommandLineOption recognize("recognize", "Recognize the model in the scene at start.");
   const QCommandLineOption screenshot("screenshot", "Save the 3D view as PNG when ready.", "png");
@@ -60,7 +64,7 @@ int main(int argc, char** argv) {
   try {
     if (parser.isSet(preset))
       window.parameterPanel()->loadPresetFile(parser.value(preset));
-    if (parser.isSet(model) && !window.openModel(parser.value(model)))
+    if (parser.isSet(model) && !window.openModels(parser.values(model)))
       exit_code = 1;
     if (parser.isSet(scene)) {
       // Synchronous on purpose: scripted runs want the scene before anything else.
@@ -72,12 +76,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "scanpick: %s\n", e.what());
     exit_code = 1;
   }
+  QStringList models; // the views of one part
   for (const QString& file : parser.positionalArguments()) {
     if (file.endsWith(QLatin1String(".spmodel")))
-      window.openModel(file);
+      models << file;
     else
       window.openScan(file);
   }
+  if (!models.isEmpty())
+    window.openModels(models);
   if (exit_code != 0 && parser.isSet(quit))
     return exit_code;
 

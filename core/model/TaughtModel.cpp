@@ -104,6 +104,14 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
   return model;
 }
 
+void requireOnePart(const std::vector<std::shared_ptr<const TaughtModel>>& models) {
+  for (const auto& model : models)
+    if (model->name != models.front()->name)
+      throw Error("models '" + models.front()->name + "' and '" + model->name +
+                  "' are different parts: the models searched together must be views of one "
+                  "part (recognize each part on its own)");
+}
+
 std::vector<std::shared_ptr<const TaughtModel>>
 joinViews(const std::vector<std::shared_ptr<const TaughtModel>>& models) {
   std::vector<std::shared_ptr<const TaughtModel>> joined = models;

@@ -97,6 +97,10 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
 std::vector<std::shared_ptr<const TaughtModel>>
 joinViews(const std::vector<std::shared_ptr<const TaughtModel>>& models);
 
+/// Throws Error naming the first two names that differ when `models` are not all views of one
+/// part: the models searched together (recognizeViews) must be.
+void requireOnePart(const std::vector<std::shared_ptr<const TaughtModel>>& models);
+
 /// Points of `cloud` inside the oriented box (unorganized, channels follow).
 PointCloud cropToOrientedBox(const PointCloud& cloud, const OrientedBox& box);
 

@@ -303,26 +303,30 @@ std::shared_ptr<const TaughtModel> Recognizer::model() const {
   return m_model;
 }
 
-std::shared_ptr<const TaughtModel> Recognizer::snapshot(Cache& cache, const char* action) const {
-  std::shared_ptr<const TaughtModel> model;
-  {
-    const std::lock_guard lock(m_mutex);
-    model = m_model;
-    if (m_cache)
-      cache = *m_cache;
-  }
+Recognizer::Cache Recognizer::cacheSnapshot() const {
+  const std::lock_guard lock(m_mutex);
+  return m_cache ? *m_cache : Cache{};
+}
+
+namespace {
+void requireModel(const std::shared_ptr<const TaughtModel>& model, const char* action) {
   if (!model)
     throw Error(std::string("no model to ") + action +
                 ": teach a part or open a .spmodel file first");
-  return model;
 }
+} // namespace
 
 void Recognizer::prepare(const RecognitionParams& requested) {
-  Cache cache;
-  const auto model = snapshot(cache, "prepare");
+  prepare(model(), requested);
+}
+
+void Recognizer::prepare(const std::shared_ptr<const TaughtModel>& model,
+                         const RecognitionParams& requested) {
+  requireModel(model, "prepare");
   const RecognitionParams params = withViewParams(requested, model->view_params);
   if (!detail::needsModelPrep(params))
     return;
+  Cache cache = cacheSnapshot();
   detail::prepareModel(cache.model_preps, model, params);
   // Only the preparations go back: a recognition running meanwhile may have cached scene stages.
   const std::lock_guard lock(m_mutex);
@@ -339,10 +343,8 @@ double prepareViews(Recognizer& recognizer,
                     const std::vector<std::shared_ptr<const TaughtModel>>& models,
                     const RecognitionParams& params) {
   const auto t0 = Clock::now();
-  for (const auto& model : models) {
-    recognizer.setModel(model);
-    recognizer.prepare(params);
-  }
+  for (const auto& model : models)
+    recognizer.prepare(model, params);
   return msSince(t0);
 }
 
@@ -354,9 +356,16 @@ void Recognizer::clearCache() {
 RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const SensorModel& sensor,
                                         const RecognitionParams& requested,
                                         const ProgressFn& progress) {
+  return recognize(model(), scene_mm, sensor, requested, progress);
+}
+
+RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>& model,
+                                        const PointCloud& scene_mm, const SensorModel& sensor,
+                                        const RecognitionParams& requested,
+                                        const ProgressFn& progress) {
   const auto t_start = Clock::now();
-  Cache cache;
-  const auto model = snapshot(cache, "recognize");
+  requireModel(model, "recognize");
+  Cache cache = cacheSnapshot();
   const RecognitionParams params = withViewParams(requested, model->view_params);
   scene_mm.validate();
   if (!scene_mm.hasValidPoint())
@@ -652,10 +661,9 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
   RecognitionResult merged;
   double diameter_mm = 0.0;
   for (std::size_t m = 0; m < models.size(); ++m) {
-    recognizer.setModel(models[m]);
     const double begin = double(m) / double(models.size());
     RecognitionResult r =
-        recognizer.recognize(scene_mm, sensor, params,
+        recognizer.recognize(models[m], scene_mm, sensor, params,
                              subProgress(progress, begin, begin + 1.0 / double(models.size())));
     diameter_mm = std::max(diameter_mm, models[m]->diameter_mm);
     for (auto& d : r.detections) {

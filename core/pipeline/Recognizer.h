@@ -60,6 +60,12 @@ public:
   /// Same scene + parameters (seed included) = identical result, cached or not.
   RecognitionResult recognize(const PointCloud& scene_mm, const SensorModel& sensor,
                               const RecognitionParams& params, const ProgressFn& progress = {});
+  /// As above, for `model` instead of the recognizer's own, which stays as it is: the views of a
+  /// part share one recognizer's cache without taking turns as its model (recognizeViews), so a
+  /// window may recognize while it prepares. Throws Error for a null `model`.
+  RecognitionResult recognize(const std::shared_ptr<const TaughtModel>& model,
+                              const PointCloud& scene_mm, const SensorModel& sensor,
+                              const RecognitionParams& params, const ProgressFn& progress = {});
 
   /// Prepares the model for matching as recognize() would with these parameters (verification
   /// points, ICP model, surface pair table, axis fit, near symmetries), so that the first scene
@@ -67,6 +73,9 @@ public:
   /// the parameters need no preparation (no verification, refinement or surface voting). Throws
   /// Error without a model.
   void prepare(const RecognitionParams& params);
+  /// As above, for `model` instead of the recognizer's own (see recognize). Throws Error for a
+  /// null `model`.
+  void prepare(const std::shared_ptr<const TaughtModel>& model, const RecognitionParams& params);
 
   /// How many model preparations the cache holds (at most 8: views alternate scene after scene).
   [[nodiscard]] std::size_t preparedModels() const;
@@ -76,16 +85,15 @@ public:
 
 private:
   struct Cache;
-  /// The model and a copy of the cache, taken under the lock. Throws Error without a model,
-  /// naming `action` ("recognize", "prepare").
-  std::shared_ptr<const TaughtModel> snapshot(Cache& cache, const char* action) const;
+  /// A copy of the cache, taken under the lock.
+  [[nodiscard]] Cache cacheSnapshot() const;
   mutable std::mutex m_mutex;
   std::shared_ptr<const TaughtModel> m_model;
   std::shared_ptr<Cache> m_cache;
 };
 
-/// Recognizer::prepare for each of `models` (views of one part), in turn. Returns the wall time
-/// it took, milliseconds.
+/// Recognizer::prepare for each of `models` (views of one part), in turn; the recognizer's own
+/// model is left as it is. Returns the wall time it took, milliseconds.
 double prepareViews(Recognizer& recognizer,
                     const std::vector<std::shared_ptr<const TaughtModel>>& models,
                     const RecognitionParams& params);
@@ -96,6 +104,7 @@ double prepareViews(Recognizer& recognizer,
 /// position (Detection::centre_mm) lies within 0.3 × the larger model diameter of a better one's
 /// is dropped (the same instance seen through another view). Views that know their place in the
 /// part should be joined first (joinViews, TaughtModel.h). Detection::model_index names the model.
+/// The recognizer's own model is left as it is.
 /// Throws as Recognizer::recognize, and Error for an empty `models`.
 RecognitionResult recognizeViews(Recognizer& recognizer,
                                  const std::vector<std::shared_ptr<const TaughtModel>>& models,

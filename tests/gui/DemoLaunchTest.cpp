@@ -1,7 +1,8 @@
 // The README's main job with a display: `scanpick --scan demo-bin.pcd --model support.spmodel
-// --recognize` (what ./cmake/setup.sh demo runs after `scanpick-cli demo`) opens the application,
-// recognizes the demo bin and shows the overlay. Run here as a separate process with
-// --screenshot, on scenes and a model made at test time like `scanpick-cli demo` makes them.
+// --model support-table.spmodel --recognize` (what ./cmake/setup.sh demo runs after
+// `scanpick-cli demo`) opens the application with the part's two views, recognizes the demo bin
+// and shows the overlay. Run here as a separate process with --screenshot, on scenes and models
+// made at test time like `scanpick-cli demo` makes them.
 #include "core/cloud/CloudIo.h"
 #include "core/model/ModelFile.h"
 #include "core/params/ParamsJson.h"
@@ -24,21 +25,28 @@ TEST(DemoLaunch, GuiOpensOnTheDemoAndShowsTheRecognizedBin) {
   const test::DemoScenes scenes;
   const core::RecognitionParams params =
       core::loadPreset(test::phoxiBinPreset().toStdString()).params;
-  core::TeachOptions options;
-  options.name = "support";
-  options.crop_oriented = scenes.cropBox();
-  options.remove_floor = true;
-  options.sensor = core::sensorPreset("phoxi-m-1032");
-  auto model = std::make_shared<const core::TaughtModel>(core::teach(
-      core::loadCloud(scenes.teach_scan, core::LengthUnit::Millimetres).cloud, options, params));
-  const fs::path model_path = scenes.dir / "support.spmodel";
-  core::saveModel(model_path, *model);
+  // The demo's two views: the support on its legs, and lying on the table.
+  std::vector<std::shared_ptr<const core::TaughtModel>> views;
+  QStringList model_args;
+  for (const auto& [scan, truth, file] :
+       {std::tuple{scenes.teach_scan, scenes.teach_truth, "support.spmodel"},
+        std::tuple{scenes.table_scan, scenes.table_truth, "support-table.spmodel"}}) {
+    core::TeachOptions options;
+    options.name = "support";
+    options.crop_oriented = scenes.cropBox(truth);
+    options.remove_floor = true;
+    options.sensor = core::sensorPreset("phoxi-m-1032");
+    views.push_back(std::make_shared<const core::TaughtModel>(
+        core::teach(core::loadCloud(scan, core::LengthUnit::Millimetres).cloud, options, params)));
+    core::saveModel(scenes.dir / file, *views.back());
+    model_args << QStringLiteral("--model") << QString::fromStdString((scenes.dir / file).string());
+  }
   // What the window must find: the core's answer for the same inputs.
-  core::Recognizer recognizer(model);
+  core::Recognizer recognizer;
   const std::size_t expected =
-      recognizer
-          .recognize(core::loadCloud(scenes.bin_scan, core::LengthUnit::Millimetres).cloud,
-                     core::sensorPreset("phoxi-m-1032"), params)
+      core::recognizeViews(recognizer, core::joinViews(views),
+                           core::loadCloud(scenes.bin_scan, core::LengthUnit::Millimetres).cloud,
+                           core::sensorPreset("phoxi-m-1032"), params)
           .detections.size();
 
   const QString shot = QString::fromStdString((scenes.dir / "gui-demo.png").string());
@@ -48,15 +56,19 @@ TEST(DemoLaunch, GuiOpensOnTheDemoAndShowsTheRecognizedBin) {
   QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
   env.insert(QStringLiteral("XDG_CONFIG_HOME"), QString::fromStdString((scenes.dir / "config").string()));
   process.setProcessEnvironment(env);
-  process.start(gui, {QStringLiteral("--scan"), QString::fromStdString(scenes.bin_scan.string()),
-                      QStringLiteral("--model"), QString::fromStdString(model_path.string()),
-                      QStringLiteral("--recognize"), QStringLiteral("--screenshot"), shot,
-                      QStringLiteral("--quit-after-screenshot")});
+  process.start(
+      gui, QStringList{QStringLiteral("--scan"), QString::fromStdString(scenes.bin_scan.string())}
+               << model_args
+               << QStringList{QStringLiteral("--recognize"), QStringLiteral("--screenshot"), shot,
+                              QStringLiteral("--quit-after-screenshot")});
   ASSERT_TRUE(process.waitForFinished(50000)) << "scanpick did not finish";
   const QString output = QString::fromUtf8(process.readAll());
   ASSERT_EQ(process.exitCode(), 0) << output.toStdString();
   EXPECT_TRUE(output.contains(QStringLiteral("recognized %1 instance(s)").arg(expected)))
       << output.toStdString();
+  EXPECT_TRUE(output.contains(QStringLiteral("view 2 (")) &&
+              output.contains("support-table.spmodel"))
+      << "the second view was not opened: " << output.toStdString();
   const QImage image(shot);
   ASSERT_FALSE(image.isNull()) << "no screenshot written";
   image.save(test::screenshotDir() + "/demo-launch.png");

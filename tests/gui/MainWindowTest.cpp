@@ -259,7 +259,7 @@ TEST(Translation, ItalianMenusAndTheNextStartNote) {
   ASSERT_TRUE(italian.load(QStringLiteral(":/i18n/scanpick_it.qm")));
   QCoreApplication::installTranslator(&italian);
   QStringList titles;
-  QStringList teach_entries;
+  QStringList teach_entries, file_entries;
   {
     MainWindow window;
     for (QAction* menu_action : window.menuBar()->actions()) {
@@ -267,6 +267,9 @@ TEST(Translation, ItalianMenusAndTheNextStartNote) {
       if (menu_action->menu() && menu_action->text() == QStringLiteral("&Insegna"))
         for (QAction* a : menu_action->menu()->actions())
           teach_entries << a->text();
+      if (menu_action->menu() && menu_action->text() == QStringLiteral("&File"))
+        for (QAction* a : menu_action->menu()->actions())
+          file_entries << a->text();
     }
   }
   QCoreApplication::removeTranslator(&italian);
@@ -274,6 +277,8 @@ TEST(Translation, ItalianMenusAndTheNextStartNote) {
   EXPECT_TRUE(teach_entries.contains(QStringLiteral("Ritaglio a &lazo")))
       << teach_entries.join(" | ").toStdString();
   EXPECT_TRUE(teach_entries.contains(QStringLiteral("&Anteprima pavimento")));
+  EXPECT_TRUE(file_entries.contains(QStringLiteral("&Aggiungi vista del modello…")))
+      << file_entries.join(" | ").toStdString();
   EXPECT_EQ(QCoreApplication::translate("scanpick::ui::MainWindow", "&Language (applies at next start)"),
             QStringLiteral("&Language (applies at next start)"))
       << "without the translator the English text is back";
@@ -287,7 +292,7 @@ TEST(ResultsTableFreeTurn, MarksATurnTheScanDoesNotShow) {
   detections[0].free_turn_axis = core::FreeTurnAxis{{10, 20, 700}, {0, 1, 0}};
   detections[1].score = 0.8;
   ui::ResultsTable table;
-  table.setDetections(detections, nullptr);
+  table.setDetections(detections, {});
   ASSERT_EQ(table.rowCount(), 2);
   EXPECT_TRUE(table.item(0, 2)->text().endsWith(QStringLiteral("(turn free)")))
       << table.item(0, 2)->text().toStdString();
@@ -299,7 +304,7 @@ TEST(ResultsTableFreeTurn, MarksATurnTheScanDoesNotShow) {
   QTranslator italian;
   ASSERT_TRUE(italian.load(QStringLiteral(":/i18n/scanpick_it.qm")));
   QCoreApplication::installTranslator(&italian);
-  table.setDetections(detections, nullptr);
+  table.setDetections(detections, {});
   QCoreApplication::removeTranslator(&italian);
   EXPECT_TRUE(table.item(0, 2)->text().endsWith(QStringLiteral("(rotazione libera)")))
       << table.item(0, 2)->text().toStdString();
@@ -315,7 +320,7 @@ TEST(ResultsTableFreeTurn, MarksAlternativePosesTheScanCannotTellApart) {
   detections[0].alternative_poses = {Eigen::Isometry3d(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()))};
   detections[1].score = 0.8;
   ui::ResultsTable table;
-  table.setDetections(detections, nullptr);
+  table.setDetections(detections, {});
   ASSERT_EQ(table.rowCount(), 2);
   EXPECT_TRUE(table.item(0, 2)->text().endsWith(QStringLiteral("(turn unsure)")))
       << table.item(0, 2)->text().toStdString();
@@ -326,7 +331,7 @@ TEST(ResultsTableFreeTurn, MarksAlternativePosesTheScanCannotTellApart) {
   QTranslator italian;
   ASSERT_TRUE(italian.load(QStringLiteral(":/i18n/scanpick_it.qm")));
   QCoreApplication::installTranslator(&italian);
-  table.setDetections(detections, nullptr);
+  table.setDetections(detections, {});
   QCoreApplication::removeTranslator(&italian);
   EXPECT_TRUE(table.item(0, 2)->text().endsWith(QStringLiteral("(rotazione incerta)")))
       << table.item(0, 2)->text().toStdString();

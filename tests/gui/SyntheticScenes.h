@@ -16,6 +16,8 @@ namespace scanpick::test {
 struct DemoScenes {
   TempDir dir;
   std::filesystem::path teach_scan, teach_truth, bin_scan, bin_truth;
+  /// The demo's second view (support-table.spmodel): the support lying on the table.
+  std::filesystem::path table_scan, table_truth;
 
   DemoScenes() {
     core::writeDemoScenes(dir.path());
@@ -25,11 +27,15 @@ struct DemoScenes {
     teach_truth = dir / "support-teach-side1.gt.json";
     bin_scan = dir / "demo-bin.pcd";
     bin_truth = dir / "demo-bin.gt.json";
+    table_scan = dir / "support-teach.pcd";
+    table_truth = dir / "support-teach.gt.json";
   }
 
-  /// The teach scene's crop box (scan frame), centred on its own origin.
-  [[nodiscard]] core::OrientedBox cropBox() const {
-    const auto box = nlohmann::json::parse(core::readFile(teach_truth)).at("crop_box");
+  /// The teach scene's crop box (scan frame), centred on its own origin; of the scene whose
+  /// ground truth is `truth`, or of the main view's teach scene.
+  [[nodiscard]] core::OrientedBox cropBox(const std::filesystem::path& truth = {}) const {
+    const auto box =
+        nlohmann::json::parse(core::readFile(truth.empty() ? teach_truth : truth)).at("crop_box");
     Eigen::Matrix4d m;
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c)

@@ -1,6 +1,8 @@
 // The teach → recognize workflow on simulated PhoXi scans (written at test time by core/sim):
 // open the teach scan, preview and remove the floor, crop with the box, teach, open the bin,
 // recognize, and compare the results table with the detections. Also the screen-space lasso.
+#include "core/cloud/CloudIo.h"
+#include "core/model/ModelFile.h"
 #include "core/params/ParamsJson.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "tests/gui/SyntheticScenes.h"
@@ -256,4 +258,87 @@ TEST_F(Workflow, FloorPreviewShowsThenRemovesAndUndoes) {
   const QImage after = settledScreenshot();
   EXPECT_LT(test::countColour(after, MainWindow::floorPreviewColour(), 30), 50)
       << "the preview must disappear once the working cloud changed";
+}
+
+// The part as the demo teaches it, two views (the support resting on its legs, and lying on the
+// table), opened together: Recognize searches both, as `scanpick-cli recognize` with two --model
+// does, and the table says which view found each detection. In the table view's own teach scan,
+// the first view alone finds nothing.
+TEST_F(Workflow, ViewsOfOnePartAreSearchedTogether) {
+  const test::DemoScenes scenes;
+  const core::RecognitionParams params =
+      core::loadPreset(test::phoxiBinPreset().toStdString()).params;
+  const auto teachView = [&](const std::filesystem::path& scan, const std::filesystem::path& truth,
+                             const std::string& name, const char* file) {
+    core::TeachOptions options;
+    options.name = name;
+    options.crop_oriented = scenes.cropBox(truth);
+    options.remove_floor = true;
+    options.sensor = core::sensorPreset("phoxi-m-1032");
+    core::saveModel(
+        scenes.dir / file,
+        core::teach(core::loadCloud(scan, core::LengthUnit::Millimetres).cloud, options, params));
+    return QString::fromStdString((scenes.dir / file).string());
+  };
+  const QString legs = teachView(scenes.teach_scan, scenes.teach_truth, "support", "legs.spmodel");
+  const QString table_view =
+      teachView(scenes.table_scan, scenes.table_truth, "support", "table.spmodel");
+  const QString other_part =
+      teachView(scenes.table_scan, scenes.table_truth, "bracket", "bracket.spmodel");
+  open(scenes.table_scan);
+  const auto recognizeHere = [&] {
+    QSignalSpy finished(&window, &MainWindow::recognitionFinished);
+    window.recognize();
+    EXPECT_TRUE(finished.wait(60000)) << window.logDock()->text().toStdString();
+    EXPECT_TRUE(finished.first().at(0).toBool()) << window.logDock()->text().toStdString();
+    return window.lastResult();
+  };
+
+  ASSERT_TRUE(window.openModel(legs));
+  ASSERT_EQ(window.views().size(), 1u);
+  const core::RecognitionResult* alone = recognizeHere();
+  ASSERT_NE(alone, nullptr);
+  EXPECT_TRUE(alone->detections.empty()) << "the legs view should not see the part lying flat";
+  EXPECT_TRUE(window.resultsTable()->isColumnHidden(5)) << "one view: no View column";
+
+  ASSERT_TRUE(window.addModelViews({table_view}));
+  ASSERT_EQ(window.views().size(), 2u);
+  const core::RecognitionResult* both = recognizeHere();
+  ASSERT_NE(both, nullptr);
+  ASSERT_EQ(both->detections.size(), 1u);
+  EXPECT_EQ(both->detections[0].model_index, 1);
+  // What the core finds with the same views, scene and parameters.
+  core::Recognizer direct;
+  const core::RecognitionResult expected =
+      core::recognizeViews(direct, window.views(), *window.scan(),
+                           core::sensorPreset("phoxi-m-1032"), window.parameterPanel()->params());
+  ASSERT_EQ(expected.detections.size(), both->detections.size());
+  EXPECT_DOUBLE_EQ(both->detections[0].score, expected.detections[0].score);
+  EXPECT_TRUE(both->detections[0].T_scene_model.isApprox(expected.detections[0].T_scene_model));
+  ui::ResultsTable* table = window.resultsTable();
+  ASSERT_EQ(table->rowCount(), 1);
+  EXPECT_FALSE(table->isColumnHidden(5));
+  ASSERT_NE(table->item(0, 5), nullptr);
+  EXPECT_EQ(table->item(0, 5)->text(), QStringLiteral("table"));
+  const QImage image = settledScreenshot();
+  image.save(test::screenshotDir() + "/two-views-recognize.png");
+  EXPECT_GT(test::countColour(image, ui::detectionColour(0), 30), 50)
+      << "the second view's overlay is not in the picture";
+
+  // The results name both views; the detection refers to the second.
+  const QString json = test::screenshotDir() + "/two-views-results.json";
+  ASSERT_TRUE(window.exportResults(json));
+  const auto doc = nlohmann::json::parse(core::readFile(json.toStdString()));
+  ASSERT_EQ(doc.at("models").size(), 2u);
+  EXPECT_EQ(doc.at("models").at(1).at("path").get<std::string>(), table_view.toStdString());
+  EXPECT_EQ(doc.at("detections").at(0).at("model").get<int>(), 1);
+
+  // Views of another part are refused, and the part opened stays as it was.
+  EXPECT_FALSE(window.addModelViews({other_part}));
+  EXPECT_FALSE(window.openModels({legs, other_part}));
+  EXPECT_EQ(window.views().size(), 2u);
+  EXPECT_EQ(window.model()->name, "support");
+  EXPECT_TRUE(QTest::qWaitFor(
+      [&] { return window.logDock()->text().contains(QStringLiteral("are different parts")); },
+      5000));
 }

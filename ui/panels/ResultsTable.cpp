@@ -7,9 +7,11 @@ namespace scanpick::ui {
 
 ResultsTable::ResultsTable(QWidget* parent) : QTableWidget(parent) {
   setObjectName(QStringLiteral("resultsTable"));
-  setColumnCount(5);
+  setColumnCount(6);
   setHorizontalHeaderLabels({tr("Score"), tr("Position x, y, z (mm)"),
-                             tr("Orientation r, p, y (°)"), tr("Cluster"), tr("Grip points (mm)")});
+                             tr("Orientation r, p, y (°)"), tr("Cluster"), tr("Grip points (mm)"),
+                             tr("View")});
+  setColumnHidden(5, true);
   setSelectionBehavior(QAbstractItemView::SelectRows);
   setSelectionMode(QAbstractItemView::SingleSelection);
   setEditTriggers(QAbstractItemView::NoEditTriggers);
@@ -22,9 +24,10 @@ ResultsTable::ResultsTable(QWidget* parent) : QTableWidget(parent) {
 }
 
 void ResultsTable::setDetections(const std::vector<core::Detection>& detections,
-                                 const core::TaughtModel* /*model*/) {
+                                 const QStringList& view_names) {
   const QSignalBlocker block(this);
   clearContents();
+  setColumnHidden(5, view_names.size() < 2);
   setRowCount(static_cast<int>(detections.size()));
   const auto fmt = [](double v) { return QString::number(v, 'f', 1); };
   for (int row = 0; row < static_cast<int>(detections.size()); ++row) {
@@ -62,6 +65,8 @@ void ResultsTable::setDetections(const std::vector<core::Detection>& detections,
     setItem(row, 2, orientation);
     setItem(row, 3, new QTableWidgetItem(QString::number(d.cluster)));
     setItem(row, 4, new QTableWidgetItem(grips.join(QStringLiteral("; "))));
+    if (d.model_index >= 0 && d.model_index < view_names.size())
+      setItem(row, 5, new QTableWidgetItem(view_names[d.model_index]));
   }
   resizeColumnsToContents();
 }

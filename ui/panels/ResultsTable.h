@@ -1,11 +1,12 @@
 #pragma once
 /// @file ResultsTable.h
-/// The detections of the last recognition: score, position, orientation (roll, pitch, yaw) and
-/// grip points, one row per detection, best first. Selecting a row highlights that detection.
+/// The detections of the last recognition: score, position, orientation (roll, pitch, yaw),
+/// cluster, grip points and, with several views of the part, the view that found it; one row per
+/// detection, best first. Selecting a row highlights that detection.
 
-#include "core/model/TaughtModel.h"
 #include "core/pipeline/Detection.h"
 
+#include <QStringList>
 #include <QTableWidget>
 #include <vector>
 
@@ -15,8 +16,9 @@ class ResultsTable : public QTableWidget {
   Q_OBJECT
 public:
   explicit ResultsTable(QWidget* parent = nullptr);
-  /// Shows `detections` (row i = detection i). `model` may be null.
-  void setDetections(const std::vector<core::Detection>& detections, const core::TaughtModel* model);
+  /// Shows `detections` (row i = detection i). `view_names` names the views of the part
+  /// (Detection::model_index); the View column is shown only when it names several.
+  void setDetections(const std::vector<core::Detection>& detections, const QStringList& view_names);
 
 signals:
   /// Row selected (-1 when the selection was cleared).
