@@ -382,41 +382,26 @@ void MainWindow::lookFromSensor() {
   m_view->resetCamera();
 }
 
-std::vector<std::shared_ptr<const core::TaughtModel>>
-MainWindow::loadViews(const QStringList& paths) {
-  std::vector<std::shared_ptr<const core::TaughtModel>> views;
-  for (const QString& path : paths)
-    views.push_back(std::make_shared<const core::TaughtModel>(core::loadModel(path.toStdString())));
-  return views;
-}
-
 bool MainWindow::openModels(const QStringList& paths) {
-  if (paths.isEmpty())
-    return false;
-  try {
-    auto views = loadViews(paths);
-    core::requireOnePart(views);
-    setViews(std::move(views), paths, true);
-  } catch (const std::exception& e) {
-    showError(tr("Open model"), QString::fromUtf8(e.what()));
-    return false;
-  }
-  for (const QString& path : paths)
-    addRecentFile(path);
-  return true;
+  return takeViews(paths, false);
 }
 
 bool MainWindow::addModelViews(const QStringList& paths) {
-  if (!m_model)
-    return openModels(paths);
+  return takeViews(paths, m_model != nullptr);
+}
+
+bool MainWindow::takeViews(const QStringList& paths, bool add) {
+  if (paths.isEmpty())
+    return false;
   try {
-    auto views = m_loaded_views;
-    for (auto& view : loadViews(paths))
-      views.push_back(std::move(view));
+    auto views = add ? m_loaded_views : std::vector<std::shared_ptr<const core::TaughtModel>>{};
+    for (const QString& path : paths)
+      views.push_back(
+          std::make_shared<const core::TaughtModel>(core::loadModel(path.toStdString())));
     core::requireOnePart(views);
-    setViews(std::move(views), m_view_paths + paths, false);
+    setViews(std::move(views), add ? m_view_paths + paths : paths, !add);
   } catch (const std::exception& e) {
-    showError(tr("Add model view"), QString::fromUtf8(e.what()));
+    showError(add ? tr("Add model view") : tr("Open model"), QString::fromUtf8(e.what()));
     return false;
   }
   for (const QString& path : paths)

@@ -218,8 +218,9 @@ private:
   /// view's parameters; a single view's own matching parameters become the panel's values.
   void setViews(std::vector<std::shared_ptr<const core::TaughtModel>> views, QStringList paths,
                 bool take_params);
-  /// Loads `paths` as views; throws core::Error.
-  static std::vector<std::shared_ptr<const core::TaughtModel>> loadViews(const QStringList& paths);
+  /// Loads `paths` as the part's views, or with `add` as more of them (openModels,
+  /// addModelViews); on failure a dialog says why and nothing changes.
+  bool takeViews(const QStringList& paths, bool add);
   // MainWindowRecognize.cpp
   /// Shows `result`, found with `views` (their files in `paths`), in the table and the viewport.
   void setResult(std::shared_ptr<const core::RecognitionResult> result,

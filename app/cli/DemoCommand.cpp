@@ -6,6 +6,7 @@
 #include "app/cli/CliCommon.h"
 #include "app/cli/Commands.h"
 #include "app/cli/RecipeOptions.h"
+#include "app/cli/TeachTruth.h"
 
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
@@ -20,42 +21,10 @@
 #include <memory>
 #include <utility>
 #include <vector>
-#include <nlohmann/json.hpp>
 
 namespace scanpick::cli {
 namespace {
 namespace fs = std::filesystem;
-
-Eigen::Vector3d vector3(const nlohmann::json& v) {
-  return {v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>()};
-}
-
-/// The teach scene's crop box (oriented, centred on its own origin) and the part's grip points,
-/// both in the scan frame, from its ground truth.
-void teachOptionsFromTruth(const fs::path& gt_path, core::TeachOptions& options) {
-  const auto doc = nlohmann::json::parse(core::readFile(gt_path), nullptr, false);
-  if (doc.is_discarded() || !doc.contains("crop_box"))
-    throw core::Error(gt_path.string() + " has no crop_box: regenerate the demo with a clean --out folder");
-  try {
-    const auto& box = doc["crop_box"];
-    const Eigen::Vector3d lo = vector3(box.at("min_mm")), hi = vector3(box.at("max_mm"));
-    Eigen::Matrix4d m;
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c)
-        m(r, c) = box.at("T_scene_box").at(r).at(c).get<double>();
-    Eigen::Isometry3d T_scene_box(m);
-    const Eigen::Isometry3d centred = T_scene_box * Eigen::Translation3d(0.5 * (lo + hi));
-    core::OrientedBox oriented;
-    oriented.T_scan_box = centred.cast<float>();
-    oriented.half_extents_mm = (0.5 * (hi - lo)).cast<float>();
-    options.crop_oriented = oriented;
-    if (doc.contains("instances") && !doc["instances"].empty())
-      for (const auto& g : doc["instances"][0].value("grip_points", nlohmann::json::array()))
-        options.grips_scan.push_back({g.at("name").get<std::string>(), vector3(g.at("position_mm"))});
-  } catch (const nlohmann::json::exception& e) {
-    throw core::Error(gt_path.string() + ": malformed crop_box (" + e.what() + ")");
-  }
-}
 
 struct DemoOptions {
   std::string out;

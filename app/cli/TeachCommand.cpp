@@ -2,6 +2,7 @@
 #include "app/cli/CliCommon.h"
 #include "app/cli/Commands.h"
 #include "app/cli/RecipeOptions.h"
+#include "app/cli/TeachTruth.h"
 
 #include "core/common/AtomicFile.h"
 #include "core/model/ModelFile.h"
@@ -9,7 +10,6 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 namespace scanpick::cli {
@@ -30,52 +30,6 @@ std::vector<double> parseNumbers(const std::string& text, std::size_t count, con
     throw core::Error(what + ": expected " + std::to_string(count) + " comma-separated numbers, got " +
                       std::to_string(values.size()));
   return values;
-}
-
-Eigen::Matrix4d matrixFromJson(const nlohmann::json& j) {
-  Eigen::Matrix4d m;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      m(r, c) = j.at(r).at(c).get<double>();
-  return m;
-}
-
-/// Crop box and grip points of a teach scene's ground truth (written by `scanpick-cli synth`).
-void cropFromTruth(const std::string& path, core::TeachOptions& options) {
-  const auto doc = nlohmann::json::parse(core::readFile(path), nullptr, false);
-  if (doc.is_discarded() || !doc.contains("crop_box"))
-    throw core::Error(path + " has no crop_box: use a teach scene's .gt.json or --crop-box");
-  try {
-    const auto& box = doc["crop_box"];
-    const auto vec = [](const nlohmann::json& v) {
-      return Eigen::Vector3d(v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>());
-    };
-    const Eigen::Vector3d lo = vec(box["min_mm"]), hi = vec(box["max_mm"]);
-    core::OrientedBox oriented;
-    Eigen::Isometry3d T_scene_box;
-    T_scene_box.matrix() = matrixFromJson(box["T_scene_box"]);
-    // Recentre the box so it is symmetric about its own origin.
-    Eigen::Isometry3d centred = T_scene_box * Eigen::Translation3d(0.5 * (lo + hi));
-    oriented.T_scan_box = centred.cast<float>();
-    oriented.half_extents_mm = (0.5 * (hi - lo)).cast<float>();
-    options.crop_oriented = oriented;
-    // A teach scene holds one part: its pose places the model in the part, so that views of it
-    // can be joined when searched together.
-    if (doc.contains("instances") && doc["instances"].size() == 1 &&
-        doc["instances"][0].contains("T_scene_part")) {
-      Eigen::Isometry3d T_scan_part;
-      T_scan_part.matrix() = matrixFromJson(doc["instances"][0]["T_scene_part"]);
-      options.T_scan_part = T_scan_part;
-    }
-    if (options.grips_scan.empty() && doc.contains("instances") && !doc["instances"].empty())
-      for (const auto& g : doc["instances"][0].value("grip_points", nlohmann::json::array()))
-        options.grips_scan.push_back(
-            {g["name"].get<std::string>(),
-             Eigen::Vector3d(g["position_mm"][0].get<double>(), g["position_mm"][1].get<double>(),
-                             g["position_mm"][2].get<double>())});
-  } catch (const nlohmann::json::exception& e) {
-    throw core::Error(path + ": malformed crop_box (" + std::string(e.what()) + ")");
-  }
 }
 
 } // namespace
@@ -111,7 +65,7 @@ void registerTeachCommand(CLI::App& app) {
       if (options.crop_box_mm->isEmpty())
         throw core::Error("--crop-box: each minimum must be below its maximum");
     } else {
-      cropFromTruth(o->crop_truth, options);
+      teachOptionsFromTruth(o->crop_truth, options);
     }
     if (!o->part_pose.empty()) {
       const auto p = parseNumbers(o->part_pose, 7, "--part-pose");

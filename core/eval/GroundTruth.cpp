@@ -106,7 +106,21 @@ GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& sourc
     if (value.contains("visible_points"))
       instance.visible_points =
           static_cast<long long>(readNumber(value["visible_points"], at + ".visible_points"));
+    if (value.contains("grip_points"))
+      instance.grip_points_scene = readNamedPoints(value["grip_points"], at + ".grip_points");
     truth.instances.push_back(std::move(instance));
+  }
+  if (doc.contains("crop_box")) {
+    const auto& value = doc["crop_box"];
+    const std::string at = source + ": crop_box";
+    TruthCropBox box;
+    box.T_scene_box =
+        readRigidTransform(requireField(value, "T_scene_box", at), at + ".T_scene_box");
+    box.min_mm = readVector3(requireField(value, "min_mm", at), at + ".min_mm");
+    box.max_mm = readVector3(requireField(value, "max_mm", at), at + ".max_mm");
+    if ((box.min_mm.array() > box.max_mm.array()).any())
+      throw Error(at + ": min_mm exceeds max_mm");
+    truth.crop_box = box;
   }
   return truth;
 }

@@ -52,6 +52,14 @@ struct TruthInstance {
   Eigen::Isometry3d T_scene_part = Eigen::Isometry3d::Identity();
   double visible_fraction = 1.0; ///< [0, 1], see file-formats.md
   long long visible_points = 0;
+  /// The part's grip points in the scene frame, as the file gives them (may be empty).
+  std::vector<NamedPoint> grip_points_scene = {};
+};
+
+/// A teach scene's crop box: the part lies within [min_mm, max_mm] of the box frame.
+struct TruthCropBox {
+  Eigen::Isometry3d T_scene_box = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d min_mm = Eigen::Vector3d::Zero(), max_mm = Eigen::Vector3d::Zero();
 };
 
 /// A ground-truth file's content.
@@ -63,11 +71,12 @@ struct GroundTruth {
   std::string sensor_preset; ///< sensor.preset ("phoxi-m-1032", ...; "" when absent)
   std::map<std::string, PartInfo> parts;
   std::vector<TruthInstance> instances;
+  std::optional<TruthCropBox> crop_box; ///< teach scenes
 };
 
 /// Validates and converts a parsed ground-truth document. Throws Error for a wrong format, a
 /// future version, missing fields, non-finite numbers, non-rigid poses, instances of unknown
-/// parts or a diameter that is not positive.
+/// parts, a diameter that is not positive or a crop box whose minimum exceeds its maximum.
 GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& source);
 
 /// Reads `path` (see parseGroundTruth; also throws Error for a missing or malformed file).

@@ -1,5 +1,6 @@
 // Repeatability at the command line: two `scanpick-cli recognize` runs on the same scene with the
 // same model and preset write the same results file, timings aside.
+#include "core/common/AtomicFile.h"
 #include "core/model/ModelFile.h"
 #include "core/sim/MeshBuilder.h"
 #include "core/sim/MeshIo.h"
@@ -115,6 +116,18 @@ TEST(CliRepeatability, TwoRecognizeRunsWriteTheSameResults) {
   EXPECT_NE(runCli(posed, d / "unit.txt"), 0) << "a quaternion that is not a unit is an error";
   EXPECT_NE(readText(d / "unit.txt").find("unit quaternion"), std::string::npos);
   EXPECT_FALSE(fs::exists(d / "unit.spmodel"));
+  // A teach scene's ground truth whose part pose is not rigid is refused, and nothing written.
+  auto sheared = nlohmann::json::parse(readText(d / "support-teach.gt.json"));
+  sheared["instances"][0]["T_scene_part"][0][1] = 0.3;
+  scanpick::core::writeFileAtomic(d / "sheared.gt.json", sheared.dump());
+  std::vector<std::string> from_sheared = teach_own;
+  from_sheared.resize(from_sheared.size() - 1);
+  from_sheared[4] = quoted(d / "sheared.gt.json");
+  from_sheared[from_sheared.size() - 1] = quoted(d / "sheared.spmodel");
+  EXPECT_NE(runCli(from_sheared, d / "sheared.txt"), 0);
+  EXPECT_NE(readText(d / "sheared.txt").find("T_scene_part"), std::string::npos)
+      << readText(d / "sheared.txt");
+  EXPECT_FALSE(fs::exists(d / "sheared.spmodel"));
 
   for (const char* out : {"a.json", "b.json"})
     ASSERT_EQ(runCli({"recognize", "--model", quoted(d / "support-teach.spmodel"), "--model",

@@ -185,6 +185,31 @@ TEST(EvalFiles, BadInputThrowsClearErrors) {
   expectError([&] { f.evalResults(good); }, "'gear' is not described");
 }
 
+// A teach scene's crop box and the grip points of its part where it lies, as `teach
+// --crop-from-truth` takes them; a box that is not rigid or is inside out is refused.
+TEST(EvalFiles, ATeachScenesCropBoxAndGripPointsAreRead) {
+  json teach = truthJson("teach", {pose({0, 0, 700}, 12, Eigen::Vector3d(1, 0, 0))});
+  teach["instances"][0]["grip_points"] = {{{"name", "top"}, {"position_mm", {1, 2, 720}}}};
+  const Eigen::Isometry3d T_scene_box = pose({5, 0, 690}, 20);
+  teach["crop_box"] = {{"T_scene_box", transformToJson(T_scene_box)},
+                       {"min_mm", {-40, -40, -30}},
+                       {"max_mm", {40, 40, 30}}};
+  const core::eval::GroundTruth truth = core::eval::parseGroundTruth(teach, "teach");
+  ASSERT_TRUE(truth.crop_box);
+  EXPECT_TRUE(truth.crop_box->T_scene_box.isApprox(T_scene_box, 1e-12));
+  EXPECT_EQ(truth.crop_box->max_mm, Eigen::Vector3d(40, 40, 30));
+  ASSERT_EQ(truth.instances.at(0).grip_points_scene.size(), 1u);
+  EXPECT_EQ(truth.instances[0].grip_points_scene[0].position_mm, Eigen::Vector3d(1, 2, 720));
+  EXPECT_FALSE(core::eval::parseGroundTruth(truthJson("bin", {}), "bin").crop_box);
+
+  json sheared = teach;
+  sheared["crop_box"]["T_scene_box"][0][1] = 0.3;
+  expectError([&] { core::eval::parseGroundTruth(sheared, "teach"); }, "crop_box.T_scene_box");
+  json inside_out = teach;
+  inside_out["crop_box"]["min_mm"][2] = 31;
+  expectError([&] { core::eval::parseGroundTruth(inside_out, "teach"); }, "min_mm exceeds max_mm");
+}
+
 TEST(EvalFiles, SuiteModeAggregatesScenes) {
   test::TempDir suite, results;
   const json teach = truthJson("teach", {pose({0, 0, 700})});
