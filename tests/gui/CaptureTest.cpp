@@ -9,6 +9,7 @@
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/DevicePanel.h"
 #include "ui/panels/LogDock.h"
+#include "ui/panels/ParameterPanel.h"
 #include "ui/panels/ResultsTable.h"
 #include "ui/viewport/Presenters.h"
 #include "ui/viewport/QtVtkViewport.h"
@@ -21,6 +22,7 @@
 #include <QSignalSpy>
 #include <QTest>
 #include <gtest/gtest.h>
+#include <tuple>
 
 using namespace scanpick;
 using ui::MainWindow;
@@ -105,18 +107,26 @@ TEST_F(Capture, DeviceListOpenSingleShotAndSaveScan) {
 
 TEST_F(Capture, LiveLoopRunsCyclesUntilStopped) {
   const test::DemoScenes scenes;
-  // The demo's model, taught through the core as `scanpick-cli demo` does.
+  // The demo's two views, taught through the core as `scanpick-cli demo` does, and opened
+  // together: Live searches both.
   const core::RecognitionParams params =
       core::loadPreset(test::phoxiBinPreset().toStdString()).params;
-  core::TeachOptions options;
-  options.crop_oriented = scenes.cropBox();
-  options.remove_floor = true;
-  options.sensor = core::sensorPreset("phoxi-m-1032");
-  const core::TaughtModel model = core::teach(
-      core::loadCloud(scenes.teach_scan, core::LengthUnit::Millimetres).cloud, options, params);
-  const fs::path model_path = scenes.dir / "support.spmodel";
-  core::saveModel(model_path, model);
-  ASSERT_TRUE(window.openModel(QString::fromStdString(model_path.string())));
+  QStringList views;
+  for (const auto& [scan, truth, file] :
+       {std::tuple{scenes.teach_scan, scenes.teach_truth, "support.spmodel"},
+        std::tuple{scenes.table_scan, scenes.table_truth, "support-table.spmodel"}}) {
+    core::TeachOptions options;
+    options.name = "support";
+    options.crop_oriented = scenes.cropBox(truth);
+    options.remove_floor = true;
+    options.sensor = core::sensorPreset("phoxi-m-1032");
+    core::saveModel(scenes.dir / file,
+                    core::teach(core::loadCloud(scan, core::LengthUnit::Millimetres).cloud,
+                                options, params));
+    views << QString::fromStdString((scenes.dir / file).string());
+  }
+  ASSERT_TRUE(window.openModels(views));
+  ASSERT_EQ(window.views().size(), 2u);
 
   // Live without a camera is refused with a dialog, and the window keeps running.
   window.setLiveRunning(true);
@@ -147,6 +157,19 @@ TEST_F(Capture, LiveLoopRunsCyclesUntilStopped) {
   }
   // The latest result is shown: the table has its detections and the status its cycle time.
   ASSERT_NE(window.lastResult(), nullptr);
+  {
+    // What the core finds in the last captured scene with the same views and parameters.
+    core::Recognizer direct;
+    const core::RecognitionResult expected =
+        core::recognizeViews(direct, window.views(), *window.scan(),
+                             core::sensorPreset("phoxi-m-1032"), window.parameterPanel()->params());
+    ASSERT_EQ(window.lastResult()->detections.size(), expected.detections.size());
+    for (std::size_t i = 0; i < expected.detections.size(); ++i) {
+      EXPECT_EQ(window.lastResult()->detections[i].model_index, expected.detections[i].model_index);
+      EXPECT_TRUE(window.lastResult()->detections[i].T_scene_model.isApprox(
+          expected.detections[i].T_scene_model));
+    }
+  }
   EXPECT_EQ(window.resultsTable()->rowCount(),
             static_cast<int>(window.lastResult()->detections.size()));
   EXPECT_EQ(window.resultsTable()->rowCount(), cycles.last().at(1).toInt());
