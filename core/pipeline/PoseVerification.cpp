@@ -207,7 +207,7 @@ PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const Sens
 
 double verifyPose(const VerifyModel& model, const VerifyScene& scene,
                   const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
-                  const EdgeCheck& edges) {
+                  const EdgeCheck& edges, double drop_below) {
   if (model.points.empty())
     return 0.0;
   const PointTally t = tallyPoints(model, scene, T_scene_model, tolerance_mm);
@@ -215,8 +215,10 @@ double verifyPose(const VerifyModel& model, const VerifyScene& scene,
   const double expected = std::max(seeable - double(t.hidden), kMinExpectedShare * seeable);
   if (expected <= 0.0)
     return 0.0;
-  const double q = (double(t.confirmed) - double(t.violations)) / expected;
-  return std::clamp(q, 0.0, 1.0) *
+  const double surface = std::clamp((double(t.confirmed) - double(t.violations)) / expected, 0.0, 1.0);
+  if (surface < drop_below)
+    return surface; // the edge agreement (at most 1) could only lower it
+  return surface *
          edgeAgreement(model, *scene.index, T_scene_model.cast<float>(), tolerance_mm, edges);
 }
 

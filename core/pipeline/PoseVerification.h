@@ -128,8 +128,11 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
 /// never taken below 75 % of the points not shadowed, so a pose that turns the taught side away (a
 /// flip), or is confirmed on one leg of a bracket whose other leg falls behind other parts, cannot
 /// score on the few points left.
+/// A caller that drops every pose scoring under `drop_below` lets verification skip the edge check
+/// of a pose whose surface alone scores under it: that pose gets its surface score, no lower than
+/// its full score and still under `drop_below`. Scores from `drop_below` up are the full ones.
 double verifyPose(const VerifyModel& model, const VerifyScene& scene,
                   const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
-                  const EdgeCheck& edges);
+                  const EdgeCheck& edges, double drop_below = 0.0);
 
 } // namespace scanpick::core

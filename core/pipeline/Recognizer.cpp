@@ -515,15 +515,24 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
   const auto t_match = Clock::now();
   const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane,
                                  cache.shadow.get()};
-  PoseVerifier verify;
-  if (verifying && prep)
-    verify = [&](const Eigen::Isometry3d& T) {
-      return verifyPose(*prep->verify, verify_scene, T, params.matching.verify_tolerance_mm, edges);
+  // Verification; for a search that drops every pose scoring under `drop_below`, one that may skip
+  // those poses' edge check (verifyPose).
+  const auto verifierFrom = [&](double drop_below) -> PoseVerifier {
+    if (!verifying || !prep)
+      return {};
+    return [&, drop_below](const Eigen::Isometry3d& T) {
+      return verifyPose(*prep->verify, verify_scene, T, params.matching.verify_tolerance_mm, edges,
+                        drop_below);
     };
+  };
+  const PoseVerifier verify = verifierFrom(0.0);
+  // The pooled search keeps the poses reaching the minimum coverage, and nothing else of them.
+  const PoseVerifier verify_pooled =
+      params.matching.pool_size > 0 ? verifierFrom(params.matching.min_coverage) : verify;
   std::vector<std::vector<MatchCandidate>> candidates(objects.size());
   parallelForWithProgress(objects.size(), subProgress(progress, 0.8, 0.95), [&](std::size_t i) {
     candidates[i] =
-        matchFeatures(model->features, (*cache.features)[i], params.matching, {}, verify);
+        matchFeatures(model->features, (*cache.features)[i], params.matching, {}, verify_pooled);
   });
   logger()->debug("feature matching: {} model features, {:.0f} ms", model->features.size(),
                   msSince(t_match));
@@ -557,10 +566,14 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
         detail::takeTurn(d, *turn);
     };
   if (surface) {
+    // A voted pose under half the minimum coverage is neither polished nor rescued, and ICP's pose
+    // replaces it only within kIcpCoverageSlack: under that, its score only has to stay under.
+    const PoseVerifier verify_voted =
+        verifierFrom(0.5 * params.matching.min_coverage - kIcpCoverageSlack);
     for (auto& d :
          surfaceDetections(*prep->pairs, *cache.surface_scene, scene_pairs.get(), model->features,
-                           *cache.features, params.matching, 0.1 * model->diameter_mm, verify,
-                           polish, rescue, subProgress(progress, 0.95, 0.98)))
+                           *cache.features, params.matching, 0.1 * model->diameter_mm,
+                           verify_voted, polish, rescue, subProgress(progress, 0.95, 0.98)))
       result.detections.push_back(std::move(d));
   }
   sortBestFirst(result.detections);

@@ -38,3 +38,25 @@ TEST(FloorVerification, APoseSunkIntoTheTableIsContradicted) {
   EXPECT_EQ(verifyPose(*c.view, knowing, T_sunk, tolerance, {}), 0.0);
   EXPECT_GT(verifyPose(*c.view, knowing, c.T_true, tolerance, {}), 0.9);
 }
+
+// A search that drops every pose scoring under a bound lets verification skip those poses' edge
+// check: under the bound a pose gets its surface score (no lower than its full score), from the
+// bound up always the full score. Here the only scene keypoints lie 5 m away, so no model keypoint
+// finds one and the full score is 0.
+TEST(VerificationDropBelow, OnlyPosesUnderTheBoundSkipTheEdgeCheck) {
+  const RecognitionParams params = test::bundledPreset("phoxi-bin");
+  const test::VerifyCase c = test::verifyCase("support", params, 5, 9, 0);
+  const VerifyScene scene{c.index.get(), &c.scan.render.cloud, &c.scan.sensor,
+                          c.floor.planes.front()};
+  const double tolerance = params.matching.verify_tolerance_mm;
+  const SceneIndex far_keypoints(PointCloud::fromPoints(
+      {Eigen::Vector3f(0, 0, 5000), Eigen::Vector3f(10, 0, 5000), Eigen::Vector3f(0, 10, 5000)}));
+  const EdgeCheck edges{&far_keypoints, 2.0};
+  const double surface = verifyPose(*c.view, scene, c.T_true, tolerance, {});
+  ASSERT_GT(surface, 0.9);
+  EXPECT_EQ(verifyPose(*c.view, scene, c.T_true, tolerance, edges), 0.0);
+  EXPECT_EQ(verifyPose(*c.view, scene, c.T_true, tolerance, edges, 0.7), 0.0)
+      << "a surface score over the bound gets the edge check";
+  EXPECT_EQ(verifyPose(*c.view, scene, c.T_true, tolerance, edges, 1.01), surface)
+      << "a surface score under the bound is returned as it is";
+}
