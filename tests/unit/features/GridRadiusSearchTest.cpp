@@ -61,6 +61,21 @@ TEST(GridRadiusSearch, FindsWhatPclsSortedKdTreeFindsInTheSameOrder) {
   EXPECT_GT(expectSameAsKdTree(cloud, indices, 10.0, 3.0, queries), 0u);
 }
 
+// Cells spanning more than 64 bits can number (two clusters 30 km apart in every axis, 10 mm
+// cells) are sorted as arrays instead of as one number each: the same answers.
+TEST(GridRadiusSearch, AnswersTheSameWhenTheCellsSpanMoreThanANumberHolds) {
+  const auto near = scattered(2000, 3);
+  auto cloud = std::make_shared<Cloud>(*near);
+  for (const auto& p : *near)
+    cloud->push_back({p.x + 3e7f, p.y + 3e7f, p.z + 3e7f});
+  auto indices = std::make_shared<pcl::Indices>(cloud->size());
+  std::iota(indices->begin(), indices->end(), 0);
+  Cloud queries;
+  for (std::size_t i = 0; i < cloud->size(); i += 11)
+    queries.push_back((*cloud)[i]);
+  EXPECT_GT(expectSameAsKdTree(cloud, indices, 10.0, 10.0, queries), queries.size());
+}
+
 TEST(GridRadiusSearch, BreaksTiesInTheOrderOfTheIndices) {
   // A lattice: many neighbours at exactly equal distances, and the indices not ascending.
   auto cloud = std::make_shared<Cloud>();
