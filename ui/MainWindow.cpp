@@ -399,7 +399,7 @@ bool MainWindow::takeViews(const QStringList& paths, bool add) {
       views.push_back(
           std::make_shared<const core::TaughtModel>(core::loadModel(path.toStdString())));
     core::requireOnePart(views);
-    setViews(std::move(views), add ? m_view_paths + paths : paths, !add);
+    setViews(std::move(views), add ? m_view_paths + paths : paths, true);
   } catch (const std::exception& e) {
     showError(add ? tr("Add model view") : tr("Open model"), QString::fromUtf8(e.what()));
     return false;

@@ -35,16 +35,18 @@ std::vector<std::uint32_t> sortedByCell(const std::vector<std::array<std::int64_
       lo[a] = std::min(lo[a], c[a]);
       hi[a] = std::max(hi[a], c[a]);
     }
-  const long double span_y = static_cast<long double>(hi[1] - lo[1]) + 1;
-  const long double span_z = static_cast<long double>(hi[2] - lo[2]) + 1;
-  if ((static_cast<long double>(hi[0] - lo[0]) + 1) * span_y * span_z < 1.8e19L) {
+  // Differences taken unsigned: exact below 2^64, where signed ones could overflow.
+  const auto offset = [&](const std::array<std::int64_t, 3>& c, int a) {
+    return static_cast<std::uint64_t>(c[a]) - static_cast<std::uint64_t>(lo[a]);
+  };
+  const long double span_x = static_cast<long double>(offset(hi, 0)) + 1;
+  const long double span_y = static_cast<long double>(offset(hi, 1)) + 1;
+  const long double span_z = static_cast<long double>(offset(hi, 2)) + 1;
+  if (span_x * span_y * span_z < 1.8e19L) {
     const auto sy = static_cast<std::uint64_t>(span_y), sz = static_cast<std::uint64_t>(span_z);
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(cells.size());
     for (std::size_t k = 0; k < cells.size(); ++k)
-      keyed[k] = {(static_cast<std::uint64_t>(cells[k][0] - lo[0]) * sy +
-                   static_cast<std::uint64_t>(cells[k][1] - lo[1])) *
-                          sz +
-                      static_cast<std::uint64_t>(cells[k][2] - lo[2]),
+      keyed[k] = {(offset(cells[k], 0) * sy + offset(cells[k], 1)) * sz + offset(cells[k], 2),
                   static_cast<std::uint32_t>(k)};
     std::sort(keyed.begin(), keyed.end());
     for (std::size_t k = 0; k < keyed.size(); ++k)
