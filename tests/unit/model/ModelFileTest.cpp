@@ -153,6 +153,15 @@ TEST(JoinViews, EachViewGetsTheOthersInItsOwnFrame) {
   auto other = std::make_shared<TaughtModel>(*views[1]);
   other->name = "another part";
   EXPECT_TRUE(joinViews({views[0], other})[0] == views[0]);
+  // Searched together, views must be of one part: the error names both.
+  EXPECT_NO_THROW(requireOnePart(views));
+  try {
+    requireOnePart({views[0], views[1], other});
+    ADD_FAILURE() << "views of two parts were accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'another part' are different parts"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ModelFile, AViewsOwnParametersAreKeptAndChecked) {
