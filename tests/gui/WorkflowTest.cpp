@@ -324,6 +324,21 @@ TEST_F(Workflow, ViewsOfOnePartAreSearchedTogether) {
   image.save(test::screenshotDir() + "/two-views-recognize.png");
   EXPECT_GT(test::countColour(image, ui::detectionColour(0), 30), 50)
       << "the second view's overlay is not in the picture";
+  table->selectRow(0);
+  {
+    // The user guide's picture: the view where it was found, in the middle.
+    Eigen::AlignedBox3f found;
+    for (const Eigen::Vector3f& p : window.views()[1]->cloud_mm.points_mm)
+      if (core::isValid(p))
+        found.extend(both->detections[0].T_scene_model.cast<float>() * p);
+    const Eigen::Vector3f margin = 0.5f * found.sizes();
+    double bounds[6] = {found.min().x() - margin.x(), found.max().x() + margin.x(),
+                        found.min().y() - margin.y(), found.max().y() + margin.y(),
+                        found.min().z() - margin.z(), found.max().z() + margin.z()};
+    window.viewport()->renderer()->ResetCamera(bounds);
+    settledScreenshot();
+  }
+  test::saveDocImage(window, "gui-views.png");
 
   // The results name both views; the detection refers to the second.
   const QString json = test::screenshotDir() + "/two-views-results.json";
