@@ -6,6 +6,7 @@
 #include "tests/unit/refine/BracketScene.h"
 
 #include <gtest/gtest.h>
+#include <random>
 
 using namespace scanpick;
 
@@ -126,6 +127,49 @@ TEST(SceneIndex, WithItsSensorNearestLooksInPixelWindowsWithTheSameAnswers) {
   EXPECT_LT(core::SceneIndex(scan, options).pixelSlack(), 0.0f);
   options.sensor = sensor;
   EXPECT_LT(core::SceneIndex(core::dropInvalid(scan), options).pixelSlack(), 0.0f);
+}
+
+// Points off their pixel's ray (up to 0.45 px sideways, as a real scan's may lie): the pixel
+// windows, which skip the rows and columns whose points all lie farther than the nearest found,
+// still give the tree's answers, ties to the lower index included.
+TEST(SceneIndex, PixelWindowsGiveTheTreesAnswersWhenPointsLieOffTheirPixels) {
+  core::PointCloud scan = floorScan(0.3);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> jitter(-0.45f, 0.45f);
+  for (auto& p : scan.points_mm)
+    if (core::isValid(p)) {
+      const float mm_per_px = p.z() / 500.0f;
+      p.x() += jitter(rng) * mm_per_px;
+      p.y() += jitter(rng) * mm_per_px;
+    }
+  core::SensorModel sensor;
+  sensor.width = 200;
+  sensor.height = 150;
+  sensor.fx = sensor.fy = 500;
+  sensor.cx = (200 - 1) / 2.0;
+  sensor.cy = (150 - 1) / 2.0;
+  core::SceneIndexOptions options;
+  options.sensor = sensor;
+  const core::SceneIndex windows(scan, options), tree(scan);
+  EXPECT_GT(windows.pixelSlack(), 0.3f);
+  EXPECT_LE(windows.pixelSlack(), core::kMaxPixelWindowSlack);
+  std::size_t found = 0;
+  for (std::size_t k = 0; k < tree.size(); k += 13)
+    for (const float radius : {0.5f, 1.0f, 2.5f, 5.0f}) {
+      for (const Eigen::Vector3f& offset :
+           {Eigen::Vector3f(0.6f, -0.7f, 0.4f), Eigen::Vector3f(-1.5f, 0.2f, -0.3f),
+            Eigen::Vector3f(0.0f, 0.0f, 0.0f)}) {
+        const Eigen::Vector3f query = tree.points()[k] + offset;
+        float d_tree = -1.0f, d_windows = -2.0f;
+        const std::int64_t near = tree.nearest(query, radius * radius, &d_tree);
+        ASSERT_EQ(windows.nearest(query, radius * radius, &d_windows), near) << radius;
+        if (near >= 0) {
+          EXPECT_EQ(d_windows, d_tree);
+          ++found;
+        }
+      }
+    }
+  EXPECT_GT(found, 3000u);
 }
 
 TEST(SceneIndex, OwnNormalsAreUsedAndTurnedTowardsTheViewpoint) {
