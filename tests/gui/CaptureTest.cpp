@@ -22,7 +22,6 @@
 #include <QSignalSpy>
 #include <QTest>
 #include <gtest/gtest.h>
-#include <tuple>
 
 using namespace scanpick;
 using ui::MainWindow;
@@ -112,19 +111,8 @@ TEST_F(Capture, LiveLoopRunsCyclesUntilStopped) {
   const core::RecognitionParams params =
       core::loadPreset(test::phoxiBinPreset().toStdString()).params;
   QStringList views;
-  for (const auto& [scan, truth, file] :
-       {std::tuple{scenes.teach_scan, scenes.teach_truth, "support.spmodel"},
-        std::tuple{scenes.table_scan, scenes.table_truth, "support-table.spmodel"}}) {
-    core::TeachOptions options;
-    options.name = "support";
-    options.crop_oriented = scenes.cropBox(truth);
-    options.remove_floor = true;
-    options.sensor = core::sensorPreset("phoxi-m-1032");
-    core::saveModel(scenes.dir / file,
-                    core::teach(core::loadCloud(scan, core::LengthUnit::Millimetres).cloud,
-                                options, params));
-    views << QString::fromStdString((scenes.dir / file).string());
-  }
+  for (const auto& path : scenes.teachDemoViews(params))
+    views << QString::fromStdString(path.string());
   ASSERT_TRUE(window.openModels(views));
   ASSERT_EQ(window.views().size(), 2u);
 

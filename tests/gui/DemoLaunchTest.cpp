@@ -28,18 +28,9 @@ TEST(DemoLaunch, GuiOpensOnTheDemoAndShowsTheRecognizedBin) {
   // The demo's two views: the support on its legs, and lying on the table.
   std::vector<std::shared_ptr<const core::TaughtModel>> views;
   QStringList model_args;
-  for (const auto& [scan, truth, file] :
-       {std::tuple{scenes.teach_scan, scenes.teach_truth, "support.spmodel"},
-        std::tuple{scenes.table_scan, scenes.table_truth, "support-table.spmodel"}}) {
-    core::TeachOptions options;
-    options.name = "support";
-    options.crop_oriented = scenes.cropBox(truth);
-    options.remove_floor = true;
-    options.sensor = core::sensorPreset("phoxi-m-1032");
-    views.push_back(std::make_shared<const core::TaughtModel>(
-        core::teach(core::loadCloud(scan, core::LengthUnit::Millimetres).cloud, options, params)));
-    core::saveModel(scenes.dir / file, *views.back());
-    model_args << QStringLiteral("--model") << QString::fromStdString((scenes.dir / file).string());
+  for (const auto& path : scenes.teachDemoViews(params)) {
+    views.push_back(std::make_shared<const core::TaughtModel>(core::loadModel(path)));
+    model_args << QStringLiteral("--model") << QString::fromStdString(path.string());
   }
   // What the window must find: the core's answer for the same inputs.
   core::Recognizer recognizer;

@@ -2,7 +2,9 @@
 // The demo's simulated scenes (core/sim), written at test time into a temporary folder: PhoXi
 // teach scans of one support on a table and a bin of 8 supports, with ground truth. The crop box
 // and grip points are read from the teach scene's ground truth as an operator would place them.
+#include "core/cloud/CloudIo.h"
 #include "core/common/AtomicFile.h"
+#include "core/model/ModelFile.h"
 #include "core/model/TaughtModel.h"
 #include "core/sim/Suite.h"
 #include "tests/support/TempDir.h"
@@ -58,6 +60,31 @@ struct DemoScenes {
       out.emplace_back(g.at("position_mm").at(0).get<double>(), g.at("position_mm").at(1).get<double>(),
                        g.at("position_mm").at(2).get<double>());
     return out;
+  }
+
+  /// A view of the part taught from `scan` through the core as `scanpick-cli demo` teaches it
+  /// (crop box from `truth`, floor removed, PhoXi M), saved as dir/`file`. Returns the file.
+  [[nodiscard]] std::filesystem::path teachView(const std::filesystem::path& scan,
+                                                const std::filesystem::path& truth,
+                                                const std::string& file,
+                                                const core::RecognitionParams& params,
+                                                const std::string& name = "support") const {
+    core::TeachOptions options;
+    options.name = name;
+    options.crop_oriented = cropBox(truth);
+    options.remove_floor = true;
+    options.sensor = core::sensorPreset("phoxi-m-1032");
+    const std::filesystem::path path = dir / file;
+    core::saveModel(path, core::teach(core::loadCloud(scan, core::LengthUnit::Millimetres).cloud,
+                                      options, params));
+    return path;
+  }
+
+  /// The demo's two views: support.spmodel (on its legs) and support-table.spmodel (lying flat).
+  [[nodiscard]] std::vector<std::filesystem::path>
+  teachDemoViews(const core::RecognitionParams& params) const {
+    return {teachView(teach_scan, teach_truth, "support.spmodel", params),
+            teachView(table_scan, table_truth, "support-table.spmodel", params)};
   }
 
   /// Instances placed in the bin.

@@ -270,15 +270,7 @@ TEST_F(Workflow, ViewsOfOnePartAreSearchedTogether) {
       core::loadPreset(test::phoxiBinPreset().toStdString()).params;
   const auto teachView = [&](const std::filesystem::path& scan, const std::filesystem::path& truth,
                              const std::string& name, const char* file) {
-    core::TeachOptions options;
-    options.name = name;
-    options.crop_oriented = scenes.cropBox(truth);
-    options.remove_floor = true;
-    options.sensor = core::sensorPreset("phoxi-m-1032");
-    core::saveModel(
-        scenes.dir / file,
-        core::teach(core::loadCloud(scan, core::LengthUnit::Millimetres).cloud, options, params));
-    return QString::fromStdString((scenes.dir / file).string());
+    return QString::fromStdString(scenes.teachView(scan, truth, file, params, name).string());
   };
   const QString legs = teachView(scenes.teach_scan, scenes.teach_truth, "support", "legs.spmodel");
   const QString table_view =

@@ -18,6 +18,17 @@ core::PointCloud floorScan(double sigma_mm) {
   return test::renderSolids({}, 600.0, 200, 150, 500, sigma_mm, 0.05, 5);
 }
 
+/// The camera floorScan renders with, as a sensor.
+core::SensorModel floorCamera() {
+  core::SensorModel sensor;
+  sensor.width = 200;
+  sensor.height = 150;
+  sensor.fx = sensor.fy = 500;
+  sensor.cx = (200 - 1) / 2.0;
+  sensor.cy = (150 - 1) / 2.0;
+  return sensor;
+}
+
 } // namespace
 
 TEST(SceneIndex, OrganizedAndUnorganizedNormalsFaceTheCamera) {
@@ -95,12 +106,7 @@ TEST(SceneIndex, WithItsSensorNearestLooksInPixelWindowsWithTheSameAnswers) {
   // The floor's camera as a sensor: each point lies on its pixel's ray (depth noise moves it
   // along the ray), so nearest() looks in pixel windows for small spheres, the tree otherwise.
   const auto scan = floorScan(0.3);
-  core::SensorModel sensor;
-  sensor.width = 200;
-  sensor.height = 150;
-  sensor.fx = sensor.fy = 500;
-  sensor.cx = (200 - 1) / 2.0;
-  sensor.cy = (150 - 1) / 2.0;
+  const core::SensorModel sensor = floorCamera();
   core::SceneIndexOptions options;
   options.sensor = sensor;
   const core::SceneIndex windows(scan, options), tree(scan);
@@ -142,12 +148,7 @@ TEST(SceneIndex, PixelWindowsGiveTheTreesAnswersWhenPointsLieOffTheirPixels) {
       p.x() += jitter(rng) * mm_per_px;
       p.y() += jitter(rng) * mm_per_px;
     }
-  core::SensorModel sensor;
-  sensor.width = 200;
-  sensor.height = 150;
-  sensor.fx = sensor.fy = 500;
-  sensor.cx = (200 - 1) / 2.0;
-  sensor.cy = (150 - 1) / 2.0;
+  const core::SensorModel sensor = floorCamera();
   core::SceneIndexOptions options;
   options.sensor = sensor;
   const core::SceneIndex windows(scan, options), tree(scan);
