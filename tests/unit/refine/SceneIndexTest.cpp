@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 #include <random>
+#include <vector>
 
 using namespace scanpick;
 
@@ -27,6 +28,28 @@ core::SensorModel floorCamera() {
   sensor.cx = (200 - 1) / 2.0;
   sensor.cy = (150 - 1) / 2.0;
   return sensor;
+}
+
+
+/// Asks both indexes for the nearest point to every `stride`-th indexed point moved by each of
+/// `offsets`, within each of `radii`, and expects the same answers. Returns how many were found.
+std::size_t expectSameNearest(const core::SceneIndex& windows, const core::SceneIndex& tree,
+                              std::size_t stride, const std::vector<float>& radii,
+                              const std::vector<Eigen::Vector3f>& offsets) {
+  std::size_t found = 0;
+  for (std::size_t k = 0; k < tree.size(); k += stride)
+    for (const float radius : radii)
+      for (const Eigen::Vector3f& offset : offsets) {
+        const Eigen::Vector3f query = tree.points()[k] + offset;
+        float d_tree = -1.0f, d_windows = -2.0f;
+        const std::int64_t near = tree.nearest(query, radius * radius, &d_tree);
+        EXPECT_EQ(windows.nearest(query, radius * radius, &d_windows), near) << radius;
+        if (near >= 0) {
+          EXPECT_EQ(d_windows, d_tree);
+          ++found;
+        }
+      }
+  return found;
 }
 
 } // namespace
@@ -113,19 +136,9 @@ TEST(SceneIndex, WithItsSensorNearestLooksInPixelWindowsWithTheSameAnswers) {
   EXPECT_GE(windows.pixelSlack(), 0.0f);
   EXPECT_LT(windows.pixelSlack(), 1e-3f);
   EXPECT_LT(tree.pixelSlack(), 0.0f) << "no sensor, no windows";
-  std::size_t found = 0;
-  for (std::size_t k = 0; k < tree.size(); k += 29)
-    for (const float radius : {0.5f, 1.0f, 2.5f, 5.0f, 8.0f, 12.0f}) {
-      const Eigen::Vector3f query = tree.points()[k] + Eigen::Vector3f(0.6f, -0.7f, 0.4f);
-      float d_tree = -1.0f, d_windows = -2.0f;
-      const std::int64_t near = tree.nearest(query, radius * radius, &d_tree);
-      ASSERT_EQ(windows.nearest(query, radius * radius, &d_windows), near) << radius;
-      if (near >= 0) {
-        EXPECT_EQ(d_windows, d_tree);
-        ++found;
-      }
-    }
-  EXPECT_GT(found, 1500u);
+  EXPECT_GT(expectSameNearest(windows, tree, 29, {0.5f, 1.0f, 2.5f, 5.0f, 8.0f, 12.0f},
+                              {Eigen::Vector3f(0.6f, -0.7f, 0.4f)}),
+            1500u);
   // A sensor of another size, or a cloud not organized: no windows.
   core::SensorModel other = sensor;
   other.width = 100;
@@ -154,23 +167,10 @@ TEST(SceneIndex, PixelWindowsGiveTheTreesAnswersWhenPointsLieOffTheirPixels) {
   const core::SceneIndex windows(scan, options), tree(scan);
   EXPECT_GT(windows.pixelSlack(), 0.3f);
   EXPECT_LE(windows.pixelSlack(), core::kMaxPixelWindowSlack);
-  std::size_t found = 0;
-  for (std::size_t k = 0; k < tree.size(); k += 13)
-    for (const float radius : {0.5f, 1.0f, 2.5f, 5.0f}) {
-      for (const Eigen::Vector3f& offset :
-           {Eigen::Vector3f(0.6f, -0.7f, 0.4f), Eigen::Vector3f(-1.5f, 0.2f, -0.3f),
-            Eigen::Vector3f(0.0f, 0.0f, 0.0f)}) {
-        const Eigen::Vector3f query = tree.points()[k] + offset;
-        float d_tree = -1.0f, d_windows = -2.0f;
-        const std::int64_t near = tree.nearest(query, radius * radius, &d_tree);
-        ASSERT_EQ(windows.nearest(query, radius * radius, &d_windows), near) << radius;
-        if (near >= 0) {
-          EXPECT_EQ(d_windows, d_tree);
-          ++found;
-        }
-      }
-    }
-  EXPECT_GT(found, 3000u);
+  EXPECT_GT(expectSameNearest(windows, tree, 13, {0.5f, 1.0f, 2.5f, 5.0f},
+                              {Eigen::Vector3f(0.6f, -0.7f, 0.4f),
+                               Eigen::Vector3f(-1.5f, 0.2f, -0.3f), Eigen::Vector3f::Zero()}),
+            3000u);
 }
 
 TEST(SceneIndex, OwnNormalsAreUsedAndTurnedTowardsTheViewpoint) {
