@@ -104,6 +104,30 @@
 <context>
     <name>scanpick::ui::MainWindow</name>
     <message>
+        <source>the scan&apos;s file name</source>
+        <translation>il nome del file della scansione</translation>
+    </message>
+    <message>
+        <source>Give every view of one part the same name: only views of one part are searched together</source>
+        <translation>Date lo stesso nome a ogni vista di un pezzo: si cercano insieme solo viste di un pezzo</translation>
+    </message>
+    <message>
+        <source>Part name:</source>
+        <translation>Nome del pezzo:</translation>
+    </message>
+    <message>
+        <source>x, y, z (mm), qw, qx, qy, qz (optional)</source>
+        <translation>x, y, z (mm), qw, qx, qy, qz (facoltativa)</translation>
+    </message>
+    <message>
+        <source>Where the part lies in this scan (from a fixture, or the robot that placed it): views that know it are joined, each knowing the others</source>
+        <translation>Dove si trova il pezzo in questa scansione (da un&apos;attrezzatura, o dal robot che l&apos;ha posato): le viste che lo sanno vengono unite, ciascuna conoscendo le altre</translation>
+    </message>
+    <message>
+        <source>Part pose:</source>
+        <translation>Posa del pezzo:</translation>
+    </message>
+    <message>
         <source>&amp;Add model view…</source>
         <translation>&amp;Aggiungi vista del modello…</translation>
     </message>

@@ -25,6 +25,7 @@
 class QAction;
 class QComboBox;
 class QLabel;
+class QLineEdit;
 class QListWidget;
 class QMenu;
 class QProgressBar;
@@ -259,6 +260,8 @@ private:
   QAction* m_floor_remove_action = nullptr;
   bool m_apply_floor_pending = false;  // Remove floor asked before a preview existed
   QComboBox* m_sensor_combo = nullptr;
+  QLineEdit* m_part_name = nullptr; // teach: the part's name (empty: the scan's)
+  QLineEdit* m_part_pose = nullptr; // teach: its pose in the scan, optional
   LassoOverlay* m_lasso = nullptr;
   vtkSmartPointer<vtkBoxWidget2> m_box_widget;
   std::map<QString, vtkSmartPointer<vtkProp>> m_layers;

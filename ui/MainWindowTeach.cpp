@@ -1,10 +1,10 @@
 // Teach and tune: crop box, undoable crops and floor removal, grip points, the debounced
 // keypoint/feature preview and teaching the model.
-#include "ui/MainWindow.h"
-
+#include "core/common/Error.h"
 #include "core/common/Log.h"
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
+#include "ui/MainWindow.h"
 #include "ui/Settings.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/ParameterPanel.h"
@@ -16,7 +16,9 @@
 #include <QDockWidget>
 #include <QElapsedTimer>
 #include <QFileInfo>
+#include <QFormLayout>
 #include <QLabel>
+#include <QLineEdit>
 #include <QListWidget>
 #include <QMouseEvent>
 #include <QPushButton>
@@ -83,6 +85,22 @@ void MainWindow::buildTeachDock() {
   auto* panel = new QWidget(this);
   auto* layout = new QVBoxLayout(panel);
   buildToolButtons(layout);
+  // The part's name (views of one part share it) and, optionally, its pose in the scan (so that
+  // views taught from scans of its other sides are joined).
+  auto* part_form = new QFormLayout();
+  m_part_name = new QLineEdit(panel);
+  m_part_name->setObjectName(QStringLiteral("partNameEdit"));
+  m_part_name->setPlaceholderText(tr("the scan's file name"));
+  m_part_name->setToolTip(tr("Give every view of one part the same name: only views of one part "
+                             "are searched together"));
+  part_form->addRow(tr("Part name:"), m_part_name);
+  m_part_pose = new QLineEdit(panel);
+  m_part_pose->setObjectName(QStringLiteral("partPoseEdit"));
+  m_part_pose->setPlaceholderText(tr("x, y, z (mm), qw, qx, qy, qz (optional)"));
+  m_part_pose->setToolTip(tr("Where the part lies in this scan (from a fixture, or the robot that "
+                             "placed it): views that know it are joined, each knowing the others"));
+  part_form->addRow(tr("Part pose:"), m_part_pose);
+  layout->addLayout(part_form);
   layout->addWidget(new QLabel(tr("Grip points (double-click to rename):"), panel));
   m_grip_list = new QListWidget(panel);
   m_grip_list->setObjectName(QStringLiteral("gripList"));
@@ -358,7 +376,29 @@ void MainWindow::teach() {
     return;
   }
   core::TeachOptions options;
-  options.name = m_scan_path.isEmpty() ? "part" : QFileInfo(m_scan_path).completeBaseName().toStdString();
+  const QString name = m_part_name->text().trimmed();
+  options.name = !name.isEmpty()         ? name.toStdString()
+                 : m_scan_path.isEmpty() ? "part"
+                                         : QFileInfo(m_scan_path).completeBaseName().toStdString();
+  if (const QString pose = m_part_pose->text().trimmed(); !pose.isEmpty()) {
+    std::vector<double> p;
+    bool numbers = true;
+    for (const QString& field : pose.split(QLatin1Char(','))) {
+      p.push_back(field.trimmed().toDouble(&numbers));
+      if (!numbers)
+        break;
+    }
+    try {
+      if (!numbers || p.size() != 7)
+        throw core::Error("give the part pose as 7 numbers separated by commas: x, y, z (mm), qw, "
+                          "qx, qy, qz");
+      options.T_scan_part = core::partPose(Eigen::Vector3d(p[0], p[1], p[2]),
+                                           Eigen::Quaterniond(p[3], p[4], p[5], p[6]));
+    } catch (const core::Error& e) {
+      showError(tr("Teach"), QString::fromUtf8(e.what()));
+      return;
+    }
+  }
   // The working cloud is already cropped; its own bounds (padded) keep every point.
   Eigen::AlignedBox3f bounds = core::boundingBox(*m_part);
   bounds.min() -= Eigen::Vector3f::Constant(1.0f);

@@ -69,14 +69,12 @@ void registerTeachCommand(CLI::App& app) {
     }
     if (!o->part_pose.empty()) {
       const auto p = parseNumbers(o->part_pose, 7, "--part-pose");
-      const Eigen::Quaterniond q(p[3], p[4], p[5], p[6]);
-      if (std::abs(q.norm() - 1.0) > 1e-3)
-        throw core::Error("--part-pose: the quaternion qw,qx,qy,qz has length " +
-                          std::to_string(q.norm()) + ": give a unit quaternion");
-      Eigen::Isometry3d T_scan_part = Eigen::Isometry3d::Identity();
-      T_scan_part.linear() = q.normalized().toRotationMatrix();
-      T_scan_part.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
-      options.T_scan_part = T_scan_part;
+      try {
+        options.T_scan_part = core::partPose(Eigen::Vector3d(p[0], p[1], p[2]),
+                                             Eigen::Quaterniond(p[3], p[4], p[5], p[6]));
+      } catch (const core::Error& e) {
+        throw core::Error(std::string("--part-pose: ") + e.what());
+      }
     }
     const core::PointCloud scan = loadWithUnitsCheck(o->scan, o->recipe.units);
     core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));

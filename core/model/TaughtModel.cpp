@@ -6,6 +6,7 @@
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
 
+#include <cmath>
 #include <string>
 
 namespace scanpick::core {
@@ -102,6 +103,16 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
   model.diameter_mm = static_cast<double>(boundingBox(model.cloud_mm).diagonal().norm());
   reportProgress(progress, 1.0);
   return model;
+}
+
+Eigen::Isometry3d partPose(const Eigen::Vector3d& position_mm, const Eigen::Quaterniond& q) {
+  if (!(std::abs(q.norm() - 1.0) <= 1e-3) || !position_mm.allFinite())
+    throw Error("the part pose's quaternion qw, qx, qy, qz has length " + std::to_string(q.norm()) +
+                ": give a unit quaternion (and a finite position)");
+  Eigen::Isometry3d T_scan_part = Eigen::Isometry3d::Identity();
+  T_scan_part.linear() = q.normalized().toRotationMatrix();
+  T_scan_part.translation() = position_mm;
+  return T_scan_part;
 }
 
 void requireOnePart(const std::vector<std::shared_ptr<const TaughtModel>>& models) {

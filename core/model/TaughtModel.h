@@ -97,6 +97,12 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
 std::vector<std::shared_ptr<const TaughtModel>>
 joinViews(const std::vector<std::shared_ptr<const TaughtModel>>& models);
 
+/// The pose of a part in a scan from its position (mm) and a unit quaternion (qw, qx, qy, qz), as
+/// an operator gives it for TeachOptions::T_scan_part (a fixture, or the robot that placed the
+/// part). Throws Error when the quaternion's length is off 1 by more than 0.001; it is normalized
+/// otherwise.
+Eigen::Isometry3d partPose(const Eigen::Vector3d& position_mm, const Eigen::Quaterniond& q);
+
 /// Throws Error naming the first two names that differ when `models` are not all views of one
 /// part: the models searched together (recognizeViews) must be.
 void requireOnePart(const std::vector<std::shared_ptr<const TaughtModel>>& models);

@@ -1,11 +1,12 @@
 // The main window driven like an operator would: load a teach scan generated in code, crop the
 // part with the box (undo/redo), place a grip point, preview keypoints/features, tune a
 // parameter, teach, load a bin scene, recognize, and check the results table and the picture.
+#include "ui/MainWindow.h"
+
 #include "core/common/Log.h"
 #include "core/model/ModelFile.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "tests/unit/pipeline/IdealScene.h"
-#include "ui/MainWindow.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/LogDock.h"
 #include "ui/panels/ParameterPanel.h"
@@ -14,11 +15,13 @@
 #include "ui/viewport/QtVtkViewport.h"
 
 #include <QDoubleSpinBox>
+#include <QLineEdit>
 #include <QMenu>
 #include <QMenuBar>
-#include <QTranslator>
+#include <QMessageBox>
 #include <QSignalSpy>
 #include <QTest>
+#include <QTranslator>
 #include <QUndoStack>
 #include <gtest/gtest.h>
 #include <thread>
@@ -194,6 +197,45 @@ TEST_F(WindowFixture, TeachRecognizeAndResultsTable) {
   const QString json = test::screenshotDir() + "/results.json";
   EXPECT_TRUE(window.exportResults(json));
   EXPECT_TRUE(QFile::exists(json));
+}
+
+// The Teach dock's part name (views of one part share it) and the part's pose in the scan (views
+// that know it are joined). A pose that is not 7 numbers with a unit quaternion is refused with a
+// dialog, and nothing is taught.
+TEST_F(WindowFixture, TeachTakesThePartsNameAndPose) {
+  window.setScan(teachScan(), QStringLiteral("teach"));
+  window.setCropBoxVisible(true);
+  window.setCropBox(cropAroundPart());
+  ASSERT_TRUE(window.applyCrop());
+  auto* name = window.findChild<QLineEdit*>(QStringLiteral("partNameEdit"));
+  auto* pose = window.findChild<QLineEdit*>(QStringLiteral("partPoseEdit"));
+  ASSERT_NE(name, nullptr);
+  ASSERT_NE(pose, nullptr);
+  name->setText(QStringLiteral("widget"));
+  for (const QString& wrong : {QStringLiteral("1, 2, 3"), QStringLiteral("0, 0, 700, 1, 0, 0, 1"),
+                               QStringLiteral("0, 0, 700, one, 0, 0, 0")}) {
+    pose->setText(wrong);
+    window.teach();
+    EXPECT_EQ(window.model(), nullptr) << wrong.toStdString();
+    EXPECT_FALSE(window.jobs()->busy()) << "nothing is taught";
+  }
+  EXPECT_NE(window.findChild<QMessageBox*>(QStringLiteral("errorDialog")), nullptr);
+  EXPECT_TRUE(QTest::qWaitFor(
+      [&] { return window.logDock()->text().contains(QStringLiteral("unit quaternion")); }, 5000));
+
+  // A quarter turn about z, 700 mm in front of the camera.
+  pose->setText(QStringLiteral("10, 20, 700, 0.70710678, 0, 0, 0.70710678"));
+  QSignalSpy taught(&window, &MainWindow::modelTaught);
+  window.teach();
+  ASSERT_TRUE(taught.wait(60000)) << window.logDock()->text().toStdString();
+  ASSERT_NE(window.model(), nullptr);
+  EXPECT_EQ(window.model()->name, "widget");
+  ASSERT_TRUE(window.model()->T_part_model);
+  Eigen::Isometry3d T_scan_part = Eigen::Isometry3d::Identity();
+  T_scan_part.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_scan_part.translation() = Eigen::Vector3d(10, 20, 700);
+  EXPECT_TRUE(
+      (T_scan_part * *window.model()->T_part_model).isApprox(window.model()->T_teach_model, 1e-6));
 }
 
 TEST_F(WindowFixture, CancelRecognition) {
