@@ -1,8 +1,9 @@
 // Recognize and live: background recognition with progress and cancel, the detections drawn in
 // distinct colours over the grey scene, the results table, export, and capture → recognize loops.
+#include "ui/MainWindow.h"
+
 #include "core/common/Log.h"
 #include "core/pipeline/ResultsJson.h"
-#include "ui/MainWindow.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/DevicePanel.h"
 #include "ui/panels/ParameterPanel.h"

@@ -1,10 +1,11 @@
 // Teach and tune: crop box, undoable crops and floor removal, grip points, the debounced
 // keypoint/feature preview and teaching the model.
+#include "ui/MainWindow.h"
+
 #include "core/common/Error.h"
 #include "core/common/Log.h"
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
-#include "ui/MainWindow.h"
 #include "ui/Settings.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/ParameterPanel.h"
