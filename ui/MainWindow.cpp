@@ -165,9 +165,9 @@ void MainWindow::buildActions() {
   rebuildRecentMenu();
   file->addSeparator();
   QAction* save_model = file->addAction(tr("&Save model…"), this, [this] {
-    if (!m_model)
+    if (!model())
       return showError(tr("Save model"), tr("Teach or open a model first."));
-    const QString path = QFileDialog::getSaveFileName(this, tr("Save model"), m_model_path,
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save model"), m_view_paths.value(0),
                                                       tr("Models (*.spmodel)"));
     if (!path.isEmpty())
       saveModel(path);
@@ -387,7 +387,7 @@ bool MainWindow::openModels(const QStringList& paths) {
 }
 
 bool MainWindow::addModelViews(const QStringList& paths) {
-  return takeViews(paths, m_model != nullptr);
+  return takeViews(paths, model() != nullptr);
 }
 
 bool MainWindow::takeViews(const QStringList& paths, bool add) {
@@ -411,16 +411,15 @@ bool MainWindow::takeViews(const QStringList& paths, bool add) {
 
 void MainWindow::setViews(std::vector<std::shared_ptr<const core::TaughtModel>> views,
                           QStringList paths, bool take_params) {
-  m_model = views.front();
-  m_model_path = paths.front();
   m_loaded_views = std::move(views);
   m_view_paths = std::move(paths);
-  core::RecognitionParams params = m_model->params;
-  if (m_loaded_views.size() == 1 && !m_model->view_params.empty()) {
+  const core::TaughtModel& first = *m_loaded_views.front();
+  core::RecognitionParams params = first.params;
+  if (m_loaded_views.size() == 1 && !first.view_params.empty()) {
     // A single view's own matching parameters become the panel's values, so that the panel tunes
     // them (the searched copy drops them; the file keeps them when saved again). With several
     // views each keeps its own, over the panel's.
-    auto folded = std::make_shared<core::TaughtModel>(*m_model);
+    auto folded = std::make_shared<core::TaughtModel>(first);
     core::foldViewParams(params, folded->view_params);
     m_views = {folded};
     take_params = true;
@@ -434,14 +433,14 @@ void MainWindow::setViews(std::vector<std::shared_ptr<const core::TaughtModel>> 
                                     [](const auto& v) { return !v->joined_views.empty(); });
   for (std::size_t v = 0; v < m_views.size(); ++v)
     core::logger()->info(
-        "model '{}' view {} ({}): {} features, {} grip points{}", m_model->name, v + 1,
+        "model '{}' view {} ({}): {} features, {} grip points{}", first.name, v + 1,
         m_view_paths[int(v)].isEmpty() ? std::string("taught") : m_view_paths[int(v)].toStdString(),
         m_views[v]->features.size(), m_views[v]->grip_points.size(),
         m_views[v]->joined_views.empty() ? "" : ", joined with the others");
   statusBar()->showMessage(m_views.size() == 1
-                               ? tr("Model %1 loaded").arg(QString::fromStdString(m_model->name))
+                               ? tr("Model %1 loaded").arg(QString::fromStdString(first.name))
                                : tr("Model %1: %2 views, %3 of them joined")
-                                     .arg(QString::fromStdString(m_model->name))
+                                     .arg(QString::fromStdString(first.name))
                                      .arg(m_views.size())
                                      .arg(joined),
                            5000);
@@ -477,13 +476,16 @@ bool MainWindow::saveScan(const QString& path) {
 }
 
 bool MainWindow::saveModel(const QString& path) {
-  if (!m_model) {
+  if (!model()) {
     showError(tr("Save model"), tr("Teach or open a model first."));
     return false;
   }
   try {
-    core::saveModel(path.toStdString(), *m_model);
-    m_model_path = path;
+    core::saveModel(path.toStdString(), *model());
+    // The first view now has this file, also for the results found with it.
+    m_view_paths[0] = path;
+    if (!m_result_views.empty() && m_result_views.front() == m_views.front())
+      m_result_view_paths[0] = path;
     core::logger()->info("saved model to {}", path.toStdString());
     statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
     return true;

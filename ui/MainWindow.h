@@ -152,7 +152,10 @@ public:
   [[nodiscard]] QUndoStack* undoStack() const { return m_undo; }
   [[nodiscard]] std::shared_ptr<const core::PointCloud> scan() const { return m_scan; }
   [[nodiscard]] std::shared_ptr<const core::PointCloud> part() const { return m_part; }
-  [[nodiscard]] std::shared_ptr<const core::TaughtModel> model() const { return m_model; }
+  /// The first view, as loaded or taught (null before any).
+  [[nodiscard]] std::shared_ptr<const core::TaughtModel> model() const {
+    return m_loaded_views.empty() ? nullptr : m_loaded_views.front();
+  }
   /// The part's views as Recognize searches them (joined; the first one is model()'s).
   [[nodiscard]] const std::vector<std::shared_ptr<const core::TaughtModel>>& views() const {
     return m_views;
@@ -271,9 +274,8 @@ private:
   std::shared_ptr<const core::PointCloud> m_part;  // working cloud of the teach workflow
   quint64 m_part_version = 0;
   std::vector<core::GripPoint> m_grips;            // scan frame
-  std::shared_ptr<const core::TaughtModel> m_model; // the first view, as loaded or taught
-  QString m_model_path;
-  // The part's views: as loaded or taught (m_model first), their files, and as searched.
+  // The part's views: as loaded or taught (model() first), their files (empty for a view not
+  // saved), and as searched.
   std::vector<std::shared_ptr<const core::TaughtModel>> m_loaded_views;
   QStringList m_view_paths;
   std::vector<std::shared_ptr<const core::TaughtModel>> m_views;

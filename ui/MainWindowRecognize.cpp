@@ -50,7 +50,7 @@ QString timingsText(const core::StageTimings& t) {
 } // namespace
 
 void MainWindow::recognize() {
-  if (!m_model)
+  if (!model())
     return showError(tr("Recognize"), tr("Teach a model or open one (.spmodel) first."));
   if (!m_scan)
     return showError(tr("Recognize"), tr("Open or capture a scene first."));
@@ -60,7 +60,7 @@ void MainWindow::recognize() {
   const QStringList paths = m_view_paths;
   const core::RecognitionParams params = m_params->params();
   // The scene's own sensor when its grid tells, otherwise the one the model was taught with.
-  const core::SensorModel sensor = sensorOfGrid(*scene).value_or(m_model->sensor);
+  const core::SensorModel sensor = sensorOfGrid(*scene).value_or(model()->sensor);
   statusBar()->showMessage(tr("Recognizing…"));
   const quint64 gen = m_recognize_jobs->run<core::RecognitionResult>(
       [scene, recognizer, views, params, sensor](const core::ProgressFn& progress) {
@@ -181,7 +181,7 @@ void MainWindow::setLiveRunning(bool running) {
     return;
   }
 #ifdef SCANPICK_UI_WITH_DEVICES
-  if (!m_model || !m_devices->camera()) {
+  if (!model() || !m_devices->camera()) {
     m_live_action->setChecked(false);
     showError(tr("Live"), tr("Live needs a model and an open camera (Capture panel)."));
     return;
@@ -199,7 +199,7 @@ void MainWindow::setLiveRunning(bool running) {
 void MainWindow::runLiveCycle() {
 #ifdef SCANPICK_UI_WITH_DEVICES
   const auto camera = m_devices->camera();
-  if (!m_live || !camera || !m_model) {
+  if (!m_live || !camera || !model()) {
     m_live_action->setChecked(false);
     return;
   }
@@ -207,7 +207,7 @@ void MainWindow::runLiveCycle() {
   const auto views = m_views;
   const QStringList paths = m_view_paths;
   const core::RecognitionParams params = m_params->params();
-  const core::SensorModel model_sensor = m_model->sensor;
+  const core::SensorModel model_sensor = model()->sensor;
   // Each cycle schedules the next one when it ends, so cycles never overlap.
   m_recognize_jobs->run<LiveCycle>(
       [camera, recognizer, views, params, model_sensor](const core::ProgressFn& progress) {
