@@ -89,18 +89,22 @@ void MainWindow::buildTeachDock() {
   // The part's name (views of one part share it) and, optionally, its pose in the scan (so that
   // views taught from scans of its other sides are joined).
   auto* part_form = new QFormLayout();
-  m_part_name = new QLineEdit(panel);
-  m_part_name->setObjectName(QStringLiteral("partNameEdit"));
-  m_part_name->setPlaceholderText(tr("the scan's file name"));
-  m_part_name->setToolTip(tr("Give every view of one part the same name: only views of one part "
-                             "are searched together"));
-  part_form->addRow(tr("Part name:"), m_part_name);
-  m_part_pose = new QLineEdit(panel);
-  m_part_pose->setObjectName(QStringLiteral("partPoseEdit"));
-  m_part_pose->setPlaceholderText(tr("x, y, z (mm), qw, qx, qy, qz (optional)"));
-  m_part_pose->setToolTip(tr("Where the part lies in this scan (from a fixture, or the robot that "
-                             "placed it): views that know it are joined, each knowing the others"));
-  part_form->addRow(tr("Part pose:"), m_part_pose);
+  const auto field = [&](const char* object_name, const QString& label, const QString& placeholder,
+                         const QString& tip) {
+    auto* edit = new QLineEdit(panel);
+    edit->setObjectName(QString::fromLatin1(object_name));
+    edit->setPlaceholderText(placeholder);
+    edit->setToolTip(tip);
+    part_form->addRow(label, edit);
+    return edit;
+  };
+  m_part_name = field("partNameEdit", tr("Part name:"), tr("the scan's file name"),
+                      tr("Give every view of one part the same name: only views of one part are "
+                         "searched together"));
+  m_part_pose =
+      field("partPoseEdit", tr("Part pose:"), tr("x, y, z (mm), qw, qx, qy, qz (optional)"),
+            tr("Where the part lies in this scan (from a fixture, or the robot that placed it): "
+               "views that know it are joined, each knowing the others"));
   layout->addLayout(part_form);
   layout->addWidget(new QLabel(tr("Grip points (double-click to rename):"), panel));
   m_grip_list = new QListWidget(panel);
@@ -382,19 +386,8 @@ void MainWindow::teach() {
                  : m_scan_path.isEmpty() ? "part"
                                          : QFileInfo(m_scan_path).completeBaseName().toStdString();
   if (const QString pose = m_part_pose->text().trimmed(); !pose.isEmpty()) {
-    std::vector<double> p;
-    bool numbers = true;
-    for (const QString& field : pose.split(QLatin1Char(','))) {
-      p.push_back(field.trimmed().toDouble(&numbers));
-      if (!numbers)
-        break;
-    }
     try {
-      if (!numbers || p.size() != 7)
-        throw core::Error("give the part pose as 7 numbers separated by commas: x, y, z (mm), qw, "
-                          "qx, qy, qz");
-      options.T_scan_part = core::partPose(Eigen::Vector3d(p[0], p[1], p[2]),
-                                           Eigen::Quaterniond(p[3], p[4], p[5], p[6]));
+      options.T_scan_part = core::partPose(pose.toStdString());
     } catch (const core::Error& e) {
       showError(tr("Teach"), QString::fromUtf8(e.what()));
       return;

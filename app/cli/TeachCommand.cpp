@@ -68,10 +68,8 @@ void registerTeachCommand(CLI::App& app) {
       teachOptionsFromTruth(o->crop_truth, options);
     }
     if (!o->part_pose.empty()) {
-      const auto p = parseNumbers(o->part_pose, 7, "--part-pose");
       try {
-        options.T_scan_part = core::partPose(Eigen::Vector3d(p[0], p[1], p[2]),
-                                             Eigen::Quaterniond(p[3], p[4], p[5], p[6]));
+        options.T_scan_part = core::partPose(o->part_pose);
       } catch (const core::Error& e) {
         throw core::Error(std::string("--part-pose: ") + e.what());
       }

@@ -7,7 +7,9 @@
 #include "core/preprocess/FloorRemoval.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace scanpick::core {
 
@@ -113,6 +115,26 @@ Eigen::Isometry3d partPose(const Eigen::Vector3d& position_mm, const Eigen::Quat
   T_scan_part.linear() = q.normalized().toRotationMatrix();
   T_scan_part.translation() = position_mm;
   return T_scan_part;
+}
+
+Eigen::Isometry3d partPose(const std::string& text) {
+  std::vector<double> p;
+  std::stringstream fields(text);
+  for (std::string field; std::getline(fields, field, ',');) {
+    std::size_t used = 0;
+    try {
+      p.push_back(std::stod(field, &used));
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || field.find_first_not_of(" \t", used) != std::string::npos)
+      throw Error("the part pose: '" + field + "' is not a number");
+  }
+  if (p.size() != 7)
+    throw Error("the part pose needs 7 numbers separated by commas, x, y, z (mm), qw, qx, qy, qz; "
+                "got " +
+                std::to_string(p.size()));
+  return partPose(Eigen::Vector3d(p[0], p[1], p[2]), Eigen::Quaterniond(p[3], p[4], p[5], p[6]));
 }
 
 void requireOnePart(const std::vector<std::shared_ptr<const TaughtModel>>& models) {

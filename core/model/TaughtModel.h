@@ -102,6 +102,9 @@ joinViews(const std::vector<std::shared_ptr<const TaughtModel>>& models);
 /// part). Throws Error when the quaternion's length is off 1 by more than 0.001; it is normalized
 /// otherwise.
 Eigen::Isometry3d partPose(const Eigen::Vector3d& position_mm, const Eigen::Quaterniond& q);
+/// The same from text as an operator types it: "x, y, z, qw, qx, qy, qz" (mm, then the
+/// quaternion). Throws Error for anything but seven numbers separated by commas, and as above.
+Eigen::Isometry3d partPose(const std::string& text);
 
 /// Throws Error naming the first two names that differ when `models` are not all views of one
 /// part: the models searched together (recognizeViews) must be.
