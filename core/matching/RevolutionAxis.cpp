@@ -175,6 +175,12 @@ bool RevolvedBody::occupied(float h, float r) const {
          m_cells[std::size_t(row) * std::size_t(m_columns) + std::size_t(column)] != 0;
 }
 
+bool RevolvedBody::contains(const Eigen::Vector3f& p_mm) const {
+  const Eigen::Vector3f d = p_mm - m_origin;
+  const float h = d.dot(m_along);
+  return occupied(h, (d - h * m_along).norm());
+}
+
 bool RevolvedBody::blocks(const Eigen::Vector3f& from_mm, const Eigen::Vector3f& to_mm) const {
   if (m_cells.empty())
     return false;

@@ -75,6 +75,10 @@ public:
   /// the model frame, mm) passes through the body once it has left the cells it starts in.
   [[nodiscard]] bool blocks(const Eigen::Vector3f& from_mm, const Eigen::Vector3f& to_mm) const;
 
+  /// Whether `p_mm` (model frame) lies in a cell of the body: on its surface, turned to any angle
+  /// about the axis, within about a cell.
+  [[nodiscard]] bool contains(const Eigen::Vector3f& p_mm) const;
+
 private:
   [[nodiscard]] bool occupied(float h, float r) const;
 

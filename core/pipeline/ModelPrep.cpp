@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <tbb/parallel_for.h>
+#include <tuple>
 
 namespace scanpick::core::detail {
 namespace {
@@ -90,15 +91,14 @@ std::optional<RevolutionAxis> rimAxis(const std::vector<Eigen::Vector3f>& points
 /// At most about this many points make a joined detail (the cup's views' own details hold 92–222):
 /// its turn search then costs about what the view's own does.
 constexpr std::size_t kJoinedDetailPoints = 250;
+/// At most about this many points make a joined body (its differing points under a cup's turn end
+/// over end, about a quarter of them, are tallied at 25 places along the axis per detection).
+constexpr std::size_t kJoinedBodyPoints = 2000;
 
-/// The detail of a view that is a surface of revolution but for it (a cup's handle), as the view
-/// and the views joined to it (TaughtModel::joined_views) saw it, in the view's frame: the points
-/// of all of them (each strided to about `points`, with normals facing its own teach camera) that
-/// lie off the surface they turn about `axis` (detailPoints), strided to about
-/// kJoinedDetailPoints, with the view's body.
-std::shared_ptr<const VerifyModel> joinedDetail(const TaughtModel& model, const VerifyModel& view,
-                                                const RevolutionAxis& axis, int points,
-                                                double normal_radius_mm) {
+/// The points of a view and of the views joined to it (TaughtModel::joined_views), in the view's
+/// frame: each strided to about `points`, with normals facing its own teach camera.
+VerifyModel joinedPoints(const TaughtModel& model, const VerifyModel& view, int points,
+                         double normal_radius_mm) {
   VerifyModel all = view;
   for (const JoinedView& other : model.joined_views) {
     SceneIndexOptions options;
@@ -108,16 +108,78 @@ std::shared_ptr<const VerifyModel> joinedDetail(const TaughtModel& model, const 
     all.points.insert(all.points.end(), seen->points.begin(), seen->points.end());
     all.normals.insert(all.normals.end(), seen->normals.begin(), seen->normals.end());
   }
-  auto detail = std::make_shared<VerifyModel>();
-  const auto indices = detailPoints(all.points, axis, kDetailCellMm);
-  const std::size_t stride = (indices.size() + kJoinedDetailPoints - 1) / kJoinedDetailPoints;
+  all.body = nullptr;
+  return all;
+}
+
+/// The points of `all` listed in `indices`, every `stride`-th, with `body`.
+std::shared_ptr<VerifyModel> pick(const VerifyModel& all, const std::vector<std::uint32_t>& indices,
+                                  std::size_t stride, std::shared_ptr<const RevolvedBody> body) {
+  auto picked = std::make_shared<VerifyModel>();
   for (std::size_t k = 0; k < indices.size(); k += std::max<std::size_t>(1, stride)) {
-    const std::uint32_t i = indices[k];
-    detail->points.push_back(all.points[i]);
-    detail->normals.push_back(all.normals[i]);
+    picked->points.push_back(all.points[indices[k]]);
+    picked->normals.push_back(all.normals[indices[k]]);
   }
-  detail->body = view.body;
-  return detail;
+  picked->body = std::move(body);
+  return picked;
+}
+
+/// The joined views' detail (a cup's handle from every side) and body (its mouth and its bottom),
+/// from `all` (joinedPoints): the points off the surface the view turns about `axis`
+/// (detailPoints), strided to about kJoinedDetailPoints, with the view's body; and the others,
+/// with the body they make.
+std::pair<std::shared_ptr<const VerifyModel>, std::shared_ptr<const VerifyModel>>
+joinedDetailAndBody(const VerifyModel& all, const VerifyModel& view, const RevolutionAxis& axis) {
+  const auto detail = detailPoints(all.points, axis, kDetailCellMm);
+  std::vector<bool> in_detail(all.points.size(), false);
+  for (const std::uint32_t i : detail)
+    in_detail[i] = true;
+  std::vector<std::uint32_t> body;
+  for (std::uint32_t i = 0; i < all.points.size(); ++i)
+    if (!in_detail[i])
+      body.push_back(i);
+  const std::size_t detail_stride = (detail.size() + kJoinedDetailPoints - 1) / kJoinedDetailPoints;
+  const std::size_t body_stride = (body.size() + kJoinedBodyPoints - 1) / kJoinedBodyPoints;
+  return {pick(all, detail, detail_stride, view.body),
+          pick(all, body, body_stride,
+               std::make_shared<const RevolvedBody>(all.points, axis, kBodyCellMm, detail))};
+}
+
+/// The points of `body` that `S` (model frame → model frame) moves out of its body's cells.
+std::vector<std::uint32_t> movedOffBody(const VerifyModel& body, const Eigen::Isometry3d& S) {
+  const Eigen::Isometry3f S_f = S.cast<float>();
+  std::vector<std::uint32_t> off;
+  for (std::uint32_t k = 0; k < body.points.size(); ++k)
+    if (!body.body->contains(S_f * body.points[k]))
+      off.push_back(k);
+  return off;
+}
+
+/// Which pose of a detection and its turn by a near symmetry the scan rules out.
+enum class Ruling { Neither, Found, Turned };
+
+/// A view seen from the side holds its part's place along the axis loosely (a cylinder slides
+/// along itself); the joined body's ends are looked for within this distance of it, mm, in steps
+/// of kBodySlideStepMm.
+constexpr double kBodySlideMm = 6.0;
+constexpr double kBodySlideStepMm = 0.5;
+
+/// (confirmed − violations) of the `subset` of `body`'s points at `T_scene_model` slid along
+/// `axis` (by up to kBodySlideMm) to where it is best, as a share of those facing the camera (at
+/// least 8).
+double bodyScore(const VerifyModel& body, const RevolutionAxis& axis, const VerifyScene& scene,
+                 const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
+                 const std::vector<std::uint32_t>& subset) {
+  double best = -std::numeric_limits<double>::infinity();
+  const int steps = static_cast<int>(std::lround(kBodySlideMm / kBodySlideStepMm));
+  for (int step = -steps; step <= steps; ++step) {
+    const Eigen::Isometry3d T =
+        T_scene_model * Eigen::Translation3d(step * kBodySlideStepMm * axis.direction);
+    const PointTally t = tallyPoints(body, scene, T, tolerance_mm, &subset);
+    best = std::max(best, (double(t.confirmed) - double(t.violations)) /
+                              double(std::max<std::size_t>(8, t.points - t.turned_away)));
+  }
+  return best;
 }
 
 /// A turn the detail chooses is taken only while the pose verifies at most this much worse.
@@ -207,10 +269,12 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
       prep->verify = std::move(verify);
     }
     if (prep->near_axis && !model->joined_views.empty()) {
-      prep->joined_detail = joinedDetail(*model, *prep->verify, *prep->near_axis, points, radius);
-      logger()->debug("model '{}': its detail holds {} points with {} views joined ({} alone)",
+      std::tie(prep->joined_detail, prep->joined_body) = joinedDetailAndBody(
+          joinedPoints(*model, *prep->verify, points, radius), *prep->verify, *prep->near_axis);
+      logger()->debug("model '{}': its detail holds {} points with {} views joined ({} alone), "
+                      "its body {}",
                       model->name, prep->joined_detail->points.size(), model->joined_views.size(),
-                      prep->near_axis_detail.size());
+                      prep->near_axis_detail.size(), prep->joined_body->points.size());
     }
   }
   // Refinement's surface is verification's when their normals agree (the same radius and
@@ -239,6 +303,18 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
       logger()->debug("model '{}': {} near symmetries are turns about its axis, {} others",
                       model->name, turns, prep->symmetries.size());
     }
+    prep->joined_body_differing.clear();
+    if (prep->joined_body)
+      for (const NearSymmetry& s : prep->symmetries) {
+        prep->joined_body_differing.push_back(
+            {movedOffBody(*prep->joined_body, s.S_model),
+             movedOffBody(*prep->joined_body, s.S_model.inverse())});
+        logger()->debug(
+            "model '{}': a near symmetry moves {} / {} of the joined body's {} points off it",
+            model->name, prep->joined_body_differing.back().differing.size(),
+            prep->joined_body_differing.back().differing_inverse.size(),
+            prep->joined_body->points.size());
+      }
     prep->symmetry_key = symmetry_key;
   }
   constexpr std::size_t kKeptModels = 8;
@@ -386,7 +462,8 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
     // lie at unknown turns: they rule neither out.
     const bool turn_unseen =
         prep.near_axis && !seesDetail(prep, scene, d.T_scene_model, params.verify_tolerance_mm);
-    for (const NearSymmetry& s : prep.symmetries) {
+    for (std::size_t j = 0; j < prep.symmetries.size(); ++j) {
+      const NearSymmetry& s = prep.symmetries[j];
       if (s.differing.size() < min_seen && s.differing_inverse.size() < min_seen) {
         // The view repeats itself under S: nothing in any scan can tell T from T·S. (Verifying
         // T·S would not tell either: the view's own self-occlusion, seen from the teach camera,
@@ -415,11 +492,33 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
       logger()->trace("detection {}: {:.2f} of the differing points contradicted as found, {:.2f} "
                       "turned",
                       k, as_found, turned);
+      // The view's differing points rule a pose out only where they are seen at a known turn.
+      Ruling ruling = Ruling::Neither;
       if (!turn_unseen && turned > as_found + kTurnMargin)
-        continue; // the turned pose is ruled out
-      if (coverage < params.min_coverage)
+        ruling = Ruling::Turned;
+      else if (!turn_unseen && as_found > turned + kTurnMargin)
+        ruling = Ruling::Found;
+      // With views joined, the body they saw tells at any turn what the view cannot: a cup's
+      // mouth from its bottom (the scan sees into the one and onto the other). It decides when it
+      // can.
+      if (prep.joined_body) {
+        const auto& body = prep.joined_body_differing[j];
+        const double tolerance = params.verify_tolerance_mm;
+        const double body_found = bodyScore(*prep.joined_body, *prep.near_axis, scene,
+                                            d.T_scene_model, tolerance, body.differing_inverse);
+        const double body_turned = bodyScore(*prep.joined_body, *prep.near_axis, scene, T_turned,
+                                             tolerance, body.differing);
+        logger()->trace("detection {}: the joined body's differing points score {:.2f} as found, "
+                        "{:.2f} turned",
+                        k, body_found, body_turned);
+        if (body_found > body_turned + kTurnMargin)
+          ruling = Ruling::Turned;
+        else if (body_turned > body_found + kTurnMargin)
+          ruling = Ruling::Found;
+      }
+      if (ruling == Ruling::Turned || coverage < params.min_coverage)
         continue;
-      if (!turn_unseen && as_found > turned + kTurnMargin) {
+      if (ruling == Ruling::Found) {
         logger()->debug("detection {} turned by a near symmetry: {:.2f} of the differing points "
                         "contradicted as found, {:.2f} turned; coverage {:.3f} -> {:.3f}",
                         k, as_found, turned, d.coverage, coverage);

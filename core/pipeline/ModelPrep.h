@@ -48,6 +48,17 @@ struct ModelPrep {
   /// view's frame, with this view's body (null otherwise): a cup's handle from every side, where
   /// this view alone saw it from one.
   std::shared_ptr<const VerifyModel> joined_detail;
+  /// With views joined, the body as all of them saw it (their points on the surface this view
+  /// turns about its near axis, in this view's frame, with the body they make turned about it):
+  /// a cup's mouth and its bottom, which a side view alone does not hold. Null otherwise.
+  std::shared_ptr<const VerifyModel> joined_body;
+  /// Per near symmetry (`symmetries[k]`), the points of joined_body it moves off that body and
+  /// those its inverse does (as NearSymmetry::differing and differing_inverse): a cup turned end
+  /// over end puts its bottom where its mouth was.
+  struct BodyDiffering {
+    std::vector<std::uint32_t> differing, differing_inverse;
+  };
+  std::vector<BodyDiffering> joined_body_differing;
   std::shared_ptr<const RefineModel> refine;   ///< when ICP or surface voting needs it
   double surface_sampling_mm = 0;              ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on

@@ -202,3 +202,16 @@ TEST(RevolvedBody, LeavesOutTheDetailAndHasNoBodyWithoutPoints) {
   EXPECT_TRUE(RevolvedBody(handled.points, axis, 2.0).blocks(flange, source));
   EXPECT_FALSE(RevolvedBody({}, axis, 2.0).blocks(flange, source));
 }
+
+TEST(RevolvedBody, ContainsItsSurfaceAtEveryTurnButNotWhatItEncloses) {
+  // The flanged pipe seen from one side (angles 0-180°) stands for the whole pipe: its wall at
+  // -90° is in the body, the pipe's bore and the gap between its flanges are not.
+  const RevolutionAxis axis{Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), 1.0};
+  const RevolvedBody body(flangedPipeSide().points, axis, 2.0);
+  EXPECT_TRUE(body.contains({0, -20, 50})); // the pipe's wall, on the side the view did not see
+  EXPECT_TRUE(body.contains({-31.8, -31.8, 4})); // a flange, turned 225°
+  EXPECT_FALSE(body.contains({0, 0, 50}));       // the bore
+  EXPECT_FALSE(body.contains({0, -35, 50}));     // between the flanges
+  EXPECT_FALSE(body.contains({0, -20, 110}));    // beyond the pipe's end
+  EXPECT_FALSE(RevolvedBody({}, axis, 2.0).contains({0, -20, 50}));
+}
