@@ -516,6 +516,12 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
         else if (body_turned > body_found + kTurnMargin)
           ruling = Ruling::Found;
       }
+      // The found pose's detail is confirmed at no turn about its axis (resolveDetailTurns); a
+      // turned pose whose detail the scan confirms explains the handle the found one leaves
+      // unexplained.
+      if (ruling == Ruling::Neither && turn_unseen &&
+          seesDetail(prep, scene, T_turned, params.verify_tolerance_mm))
+        ruling = Ruling::Found;
       if (ruling == Ruling::Turned || coverage < params.min_coverage)
         continue;
       if (ruling == Ruling::Found) {
