@@ -63,10 +63,27 @@ GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& sourc
     if (scene.contains("seed") && scene["seed"].is_number_unsigned())
       truth.seed = scene["seed"].get<std::uint64_t>();
     truth.cloud = scene.value("cloud", "");
+    if (scene.contains("bin")) {
+      const std::string at = source + ": scene.bin";
+      const auto& bin = scene["bin"];
+      const auto positive = [&](const char* name) {
+        const double mm = readNumber(requireField(bin, name, at), at + "." + name);
+        if (!(mm > 0.0))
+          throw Error(at + "." + name + " must be positive");
+        return mm;
+      };
+      truth.bin = TruthBin{positive("inner_x_mm"), positive("inner_y_mm"),
+                           positive("wall_height_mm"), positive("wall_thickness_mm")};
+    }
   }
-  if (doc.contains("sensor") && doc["sensor"].is_object() && doc["sensor"].contains("preset") &&
-      doc["sensor"]["preset"].is_string())
-    truth.sensor_preset = doc["sensor"]["preset"].get<std::string>();
+  if (doc.contains("sensor") && doc["sensor"].is_object()) {
+    const auto& sensor = doc["sensor"];
+    if (sensor.contains("preset") && sensor["preset"].is_string())
+      truth.sensor_preset = sensor["preset"].get<std::string>();
+    if (sensor.contains("T_scene_world"))
+      truth.T_scene_world =
+          readRigidTransform(sensor["T_scene_world"], source + ": sensor.T_scene_world");
+  }
 
   const auto& parts = requireField(doc, "parts", source);
   if (!parts.is_object())

@@ -62,6 +62,11 @@ struct TruthCropBox {
   Eigen::Vector3d min_mm = Eigen::Vector3d::Zero(), max_mm = Eigen::Vector3d::Zero();
 };
 
+/// A bin scene's bin (scene.bin): inner size, wall height and thickness, mm.
+struct TruthBin {
+  double inner_x_mm = 0, inner_y_mm = 0, wall_height_mm = 0, wall_thickness_mm = 0;
+};
+
 /// A ground-truth file's content.
 struct GroundTruth {
   std::string source; ///< file it came from (for messages)
@@ -72,6 +77,11 @@ struct GroundTruth {
   std::map<std::string, PartInfo> parts;
   std::vector<TruthInstance> instances;
   std::optional<TruthCropBox> crop_box; ///< teach scenes
+  /// sensor.T_scene_world: the simulated world (its floor at z = 0, a bin centred on its origin)
+  /// in the scene frame; none when not written.
+  std::optional<Eigen::Isometry3d> T_scene_world;
+  /// scene.bin (bin scenes); none when not written (ground truth written before it was).
+  std::optional<TruthBin> bin;
 };
 
 /// Validates and converts a parsed ground-truth document. Throws Error for a wrong format, a

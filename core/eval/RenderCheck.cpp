@@ -28,6 +28,19 @@ TruthRenderer::TruthRenderer(const GroundTruth& truth) {
   if (truth.sensor_preset.empty())
     throw Error(truth.source + ": names no sensor preset, so its scan cannot be rendered again");
   m_sensor = sensorPreset(truth.sensor_preset);
+  // The environment (a bin and the ground, or a table) where the truth places the world: it hides
+  // and shadows parts, and shows behind a part moved off its place. Without the world's place, the
+  // scene frame is taken for it and the parts are rendered alone.
+  if (truth.T_scene_world && !truth.kind.empty()) {
+    m_scene.layout = layoutFromName(truth.kind);
+    BinGeometry bin; // the simulator's only bin, for ground truth written before scene.bin was
+    if (truth.bin)
+      bin = {truth.bin->inner_x_mm, truth.bin->inner_y_mm, truth.bin->wall_height_mm,
+             truth.bin->wall_thickness_mm};
+    m_scene.environment_mm = environmentMesh(m_scene.layout, bin);
+    m_scene.T_camera_world = *truth.T_scene_world;
+    m_T_world_scene = truth.T_scene_world->inverse();
+  }
   std::map<std::string, std::size_t> part_index;
   for (const auto& instance : truth.instances) {
     auto [it, added] = part_index.try_emplace(instance.part, m_scene.parts.size());
@@ -40,10 +53,9 @@ TruthRenderer::TruthRenderer(const GroundTruth& truth) {
                     "--render-check");
       }
     }
-    // The scene frame is the camera frame: the world is taken to be it. The renderer labels
-    // instances by their index.
-    m_scene.instances.push_back(
-        {static_cast<int>(m_truth_ids.size()), it->second, instance.T_scene_part});
+    // The renderer labels instances by their index.
+    m_scene.instances.push_back({static_cast<int>(m_truth_ids.size()), it->second,
+                                 m_T_world_scene * instance.T_scene_part});
     m_truth_ids.push_back(instance.id);
   }
   const RenderResult render = renderScene(m_scene, m_sensor, SensorNoise{}, 0);
@@ -60,7 +72,7 @@ RenderDifference TruthRenderer::difference(int instance_id, const Eigen::Isometr
     throw Error("render check: the ground truth has no instance " + std::to_string(instance_id));
   const auto label = static_cast<std::int32_t>(it - m_truth_ids.begin());
   Scene moved = m_scene;
-  moved.instances[static_cast<std::size_t>(label)].T_world_part = T_scene_part;
+  moved.instances[static_cast<std::size_t>(label)].T_world_part = m_T_world_scene * T_scene_part;
   const RenderResult render = renderScene(moved, m_sensor, SensorNoise{}, 0);
   const std::vector<float> depth = depthOf(render);
   RenderDifference out;
@@ -85,7 +97,7 @@ int TruthRenderer::instanceAt(const std::string& part,
     if (p.name != part)
       continue;
     const double distance =
-        (instance.T_world_part * p.center_mm() - T_scene_part * p.center_mm()).norm();
+        (m_scene.T_scene_part(instance) * p.center_mm() - T_scene_part * p.center_mm()).norm();
     if (distance < best_distance) {
       best_distance = distance;
       best = m_truth_ids[static_cast<std::size_t>(instance.id)];

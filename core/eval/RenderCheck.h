@@ -29,9 +29,12 @@ struct RenderDifference {
   }
 };
 
-/// Renders the instances of a scene's ground truth (built-in parts by name, no bin or floor, no
-/// sensor noise) with its sensor preset, and compares it with the same scene with one instance
-/// moved. The environment is left out: it only shades the parts near the bin walls.
+/// Renders the instances of a scene's ground truth (built-in parts by name, no sensor noise) with
+/// its sensor preset, and compares it with the same scene with one instance moved. Where the truth
+/// places the simulated world (sensor.T_scene_world), its environment is rendered too: the bin's
+/// walls hide and shadow parts, and its floor shows behind a part moved off its place (a bin of
+/// scene.bin's size, or for ground truth written before that was, the simulator's only bin).
+/// Otherwise the parts are rendered alone.
 class TruthRenderer {
 public:
   /// Throws Error when the truth names no sensor preset or a part that is not built in.
@@ -52,6 +55,7 @@ public:
 
 private:
   Scene m_scene; ///< the renderer's instance k is the truth's instance m_truth_ids[k]
+  Eigen::Isometry3d m_T_world_scene = Eigen::Isometry3d::Identity();
   std::vector<int> m_truth_ids;
   SensorModel m_sensor;
   std::vector<float> m_depth_mm;      ///< per pixel, NaN where nothing is measured

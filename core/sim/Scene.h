@@ -57,6 +57,7 @@ struct Scene {
   std::vector<Part> parts;
   std::vector<PartInstance> instances;
   TriangleMesh environment_mm;  ///< floor or table and bin walls, world frame (closed boxes)
+  BinGeometry bin;              ///< the bin's size (bin layouts)
   /// World in the camera (= scene) frame: the camera looks straight down at the origin.
   Eigen::Isometry3d T_camera_world = Eigen::Isometry3d::Identity();
   /// Teach scenes: the box an operator would draw around the part, world frame (axis-aligned).
@@ -73,6 +74,10 @@ inline constexpr int kTeachSides = 4;
 
 /// The turn applied to a part's usual rest pose before a teach scene drops it on side `side`.
 Eigen::Matrix3d teachSideTurn(int side);
+
+/// The environment of a layout, world frame (closed boxes): for a bin, its floor and walls and the
+/// ground it stands on; otherwise a table top at z = 0.
+TriangleMesh environmentMesh(LayoutKind layout, const BinGeometry& bin);
 
 /// Default camera height above the floor (mm) for a sensor and layout (see SceneSpec).
 double defaultCameraHeight_mm(const SensorModel& sensor, LayoutKind layout);

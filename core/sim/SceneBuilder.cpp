@@ -151,6 +151,8 @@ void simulate(World& w, double seconds, std::size_t first_dynamic, bool stop_whe
   }
 }
 
+} // namespace
+
 TriangleMesh environmentMesh(LayoutKind layout, const BinGeometry& bin) {
   TriangleMesh env;
   if (layout != LayoutKind::Bin) {
@@ -168,8 +170,6 @@ TriangleMesh environmentMesh(LayoutKind layout, const BinGeometry& bin) {
   env.append(boxMesh({-hx, hy, 0}, {hx, hy + t, h}));
   return env;
 }
-
-} // namespace
 
 std::string layoutName(LayoutKind layout) {
   switch (layout) {
@@ -222,6 +222,7 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
   scene.seed = spec.seed;
   scene.parts = spec.parts;
   scene.environment_mm = environmentMesh(spec.layout, spec.bin);
+  scene.bin = spec.bin;
   std::mt19937_64 rng(spec.seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
 

@@ -102,6 +102,11 @@ std::string groundTruthJson(const SynthScene& s, const std::string& cloud_file,
                 {"seed", s.seed},
                 {"cloud", cloud_file},
                 {"picture", picture_file}};
+  if (scene.layout == LayoutKind::Bin)
+    j["scene"]["bin"] = {{"inner_x_mm", scene.bin.inner_x_mm},
+                         {"inner_y_mm", scene.bin.inner_y_mm},
+                         {"wall_height_mm", scene.bin.wall_height_mm},
+                         {"wall_thickness_mm", scene.bin.wall_thickness_mm}};
   Eigen::Isometry3d T_camera_projector = s.sensor.T_camera_projector;
   j["sensor"] = {{"preset", s.sensor.preset},
                  {"width", s.sensor.width},

@@ -210,6 +210,31 @@ TEST(EvalFiles, ATeachScenesCropBoxAndGripPointsAreRead) {
   expectError([&] { core::eval::parseGroundTruth(inside_out, "teach"); }, "min_mm exceeds max_mm");
 }
 
+TEST(EvalFiles, ABinScenesWorldAndBinAreRead) {
+  json bin = truthJson("bin", {pose({0, 0, 800})});
+  const Eigen::Isometry3d T_scene_world = pose({0, 0, 850}, 180, Eigen::Vector3d::UnitX());
+  bin["sensor"] = {{"preset", "phoxi-m-1032"}, {"T_scene_world", transformToJson(T_scene_world)}};
+  bin["scene"]["bin"] = {
+      {"inner_x_mm", 360}, {"inner_y_mm", 280}, {"wall_height_mm", 150}, {"wall_thickness_mm", 10}};
+  const core::eval::GroundTruth truth = core::eval::parseGroundTruth(bin, "bin");
+  ASSERT_TRUE(truth.T_scene_world);
+  EXPECT_TRUE(truth.T_scene_world->isApprox(T_scene_world, 1e-12));
+  ASSERT_TRUE(truth.bin);
+  EXPECT_EQ(truth.bin->inner_y_mm, 280.0);
+  EXPECT_EQ(truth.bin->wall_thickness_mm, 10.0);
+  // Written before the bin was: neither is there.
+  const core::eval::GroundTruth older = core::eval::parseGroundTruth(truthJson("bin", {}), "old");
+  EXPECT_FALSE(older.T_scene_world);
+  EXPECT_FALSE(older.bin);
+
+  json flat = bin;
+  flat["scene"]["bin"]["wall_height_mm"] = 0;
+  expectError([&] { core::eval::parseGroundTruth(flat, "bin"); }, "scene.bin.wall_height_mm");
+  json sheared = bin;
+  sheared["sensor"]["T_scene_world"][0][1] = 0.3;
+  expectError([&] { core::eval::parseGroundTruth(sheared, "bin"); }, "sensor.T_scene_world");
+}
+
 TEST(EvalFiles, SuiteModeAggregatesScenes) {
   test::TempDir suite, results;
   const json teach = truthJson("teach", {pose({0, 0, 700})});

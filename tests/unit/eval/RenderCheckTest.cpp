@@ -90,3 +90,40 @@ TEST(RenderCheck, FindsTheInstanceADetectionLiesOnAndRejectsBadInput) {
     EXPECT_NE(message.find("without --render-check"), std::string::npos) << message;
   }
 }
+
+TEST(RenderCheck, TheBinsWallShadowsWhatTheProjectorCannotReach) {
+  // A cup lying on the bin's floor (the camera 850 mm above its middle, as the simulator puts it)
+  // with its handle towards the wall on the projector's side, 1.5 mm from it: the wall keeps the
+  // projector's light off the handle, so the scan cannot tell the cup's turn while the handle stays
+  // there. Rendered alone, the parts would show the handle and its turn.
+  core::eval::GroundTruth truth;
+  truth.source = "bin-wall";
+  truth.sensor_preset = "phoxi-m-1032";
+  truth.kind = "bin";
+  Eigen::Isometry3d T_world_scene = Eigen::Isometry3d::Identity();
+  T_world_scene.linear() = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  T_world_scene.translation() = Eigen::Vector3d(0, 0, 850);
+  truth.T_scene_world = T_world_scene.inverse();
+  truth.parts["cup"] = test::makePart("cup", 165);
+  // Part x (the handle) along the world's x, its axis (part z) along the world's y, lying on the
+  // floor (z = 0) with its handle's outside 1.5 mm from the wall at x = 180.
+  Eigen::Isometry3d T_world_cup = Eigen::Isometry3d::Identity();
+  T_world_cup.linear().col(0) = Eigen::Vector3d::UnitX();
+  T_world_cup.linear().col(1) = -Eigen::Vector3d::UnitZ();
+  T_world_cup.linear().col(2) = Eigen::Vector3d::UnitY();
+  T_world_cup.translation() = Eigen::Vector3d(110, -47.5, 40);
+  truth.instances.push_back({1, "cup", *truth.T_scene_world * T_world_cup, 1.0, 1000});
+  const auto& cup = truth.instances[0];
+  const Eigen::Isometry3d turned = cup.T_scene_part * pose({0, 0, 0}, 40);
+  auto alone = truth;
+  alone.T_scene_world.reset();
+  const double in_bin = core::eval::TruthRenderer(truth).difference(cup.id, turned, 3.0).fraction();
+  const double parts_alone =
+      core::eval::TruthRenderer(alone).difference(cup.id, turned, 3.0).fraction();
+  std::printf("turned 40°: %.3f of the cup's pixels differ in the bin, %.3f rendered alone\n",
+              in_bin, parts_alone);
+  EXPECT_LT(in_bin, 0.05) << "the handle stays in the wall's shadow";
+  EXPECT_GT(parts_alone, 0.08) << "alone, the handle shows elsewhere";
+  EXPECT_EQ(core::eval::TruthRenderer(truth).difference(cup.id, cup.T_scene_part, 3.0).differing,
+            0u);
+}
