@@ -126,8 +126,13 @@ void resolveDetailTurns(std::vector<Detection>& detections, const ModelPrep& pre
 /// it). Confirmed points tell less: both poses' differing points can lie near other surface of the
 /// part. The detection takes the turned pose when the scan rules its own out; when neither is
 /// ruled out (the differing points are hidden or unseen) and the turned pose verifies too, it is
-/// reported as an alternative. A symmetry under which the view repeats itself (too few differing
-/// points to tell) always gives an alternative: T·S as it is.
+/// reported as an alternative. With views joined (ModelPrep::joined_body), the points of their
+/// body that T and T·S place differently decide first, at any turn of a detail: confirmed minus
+/// contradicted, slid along the near axis to where they fit best, a clear share better rules the
+/// other pose out (a cup seen into its mouth is not the cup turned end over end, whose bottom the
+/// scan would see through). Failing that, a detection whose detail is confirmed at no turn takes
+/// T·S when T·S's detail is confirmed. A symmetry under which the view repeats itself (too few
+/// differing points to tell) always gives an alternative: T·S as it is.
 void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& prep,
                            const VerifyScene& scene, const MatchingParams& params,
                            const PoseVerifier& verify, const PosePolisher& polish);
