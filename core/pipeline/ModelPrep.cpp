@@ -112,6 +112,21 @@ VerifyModel joinedPoints(const TaughtModel& model, const VerifyModel& view, int 
   return all;
 }
 
+/// The ICP model of a view and the views joined to it (`all`, joinedPoints): at most `points` of
+/// theirs, each with the normal it had facing its own teach camera.
+std::shared_ptr<const RefineModel> joinedRefineModel(const VerifyModel& all, int points) {
+  PointCloud cloud;
+  cloud.points_mm = all.points;
+  cloud.normals = all.normals;
+  cloud.width = static_cast<std::uint32_t>(cloud.points_mm.size());
+  cloud.height = 1;
+  SceneIndexOptions options;
+  options.orient_cloud_normals = false;
+  options.normal_radius_mm = RefineModel::kNormalRadiusMm;
+  return std::make_shared<const RefineModel>(std::make_shared<const SceneIndex>(cloud, options),
+                                             points);
+}
+
 /// The points of `all` listed in `indices`, every `stride`-th, with `body`.
 std::shared_ptr<VerifyModel> pick(const VerifyModel& all, const std::vector<std::uint32_t>& indices,
                                   std::size_t stride, std::shared_ptr<const RevolvedBody> body) {
@@ -219,12 +234,22 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
   auto found = std::find_if(preps.begin(), preps.end(), [&](const auto& p) {
     return p->model == model && p->points == points && p->normal_radius_mm == radius;
   });
+  // Refinement fits the views joined to this one too, when there are any.
+  const bool joined_refine = params.refine.enabled && !model->joined_views.empty();
   if (found != preps.end() && (!needs_refine || (*found)->refine) &&
+      (!joined_refine || (*found)->joined_refine) &&
       (sampling <= 0 || ((*found)->pairs && (*found)->surface_sampling_mm == sampling)) &&
       (!symmetry_key || (*found)->symmetry_key == symmetry_key))
     return *found;
   auto prep = std::make_shared<ModelPrep>();
   std::shared_ptr<const SceneIndex> surface; // the model's points and normals, when made here
+  // The views joined to this one, made once when something needs them.
+  const auto joined = [&]() -> const VerifyModel& {
+    if (!prep->joined_points)
+      prep->joined_points =
+          std::make_shared<const VerifyModel>(joinedPoints(*model, *prep->verify, points, radius));
+    return *prep->joined_points;
+  };
   if (found != preps.end()) {
     *prep = **found;
     preps.erase(found);
@@ -269,8 +294,8 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
       prep->verify = std::move(verify);
     }
     if (prep->near_axis && !model->joined_views.empty()) {
-      std::tie(prep->joined_detail, prep->joined_body) = joinedDetailAndBody(
-          joinedPoints(*model, *prep->verify, points, radius), *prep->verify, *prep->near_axis);
+      std::tie(prep->joined_detail, prep->joined_body) =
+          joinedDetailAndBody(joined(), *prep->verify, *prep->near_axis);
       logger()->debug("model '{}': its detail holds {} points with {} views joined ({} alone), "
                       "its body {}",
                       model->name, prep->joined_detail->points.size(), model->joined_views.size(),
@@ -285,6 +310,8 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
                        : std::make_shared<const RefineModel>(
                              model->cloud_mm, points,
                              Eigen::Vector3d(model->T_teach_model.inverse().translation()));
+  if (joined_refine && !prep->joined_refine)
+    prep->joined_refine = joinedRefineModel(joined(), points);
   if (sampling > 0 && (!prep->pairs || prep->surface_sampling_mm != sampling)) {
     prep->pairs = std::make_shared<const PointPairModel>(
         sampleOriented(prep->verify->points, prep->verify->normals, sampling), sampling);

@@ -60,6 +60,13 @@ struct ModelPrep {
   };
   std::vector<BodyDiffering> joined_body_differing;
   std::shared_ptr<const RefineModel> refine;   ///< when ICP or surface voting needs it
+  /// With views joined and refinement on, the ICP model of all of them in this view's frame: the
+  /// other views hold the surfaces that pin down what this one alone leaves loose (a plate seen
+  /// face-on slides in its own plane).
+  std::shared_ptr<const RefineModel> joined_refine;
+  /// With views joined, the points of all of them in this view's frame (each view's with normals
+  /// facing its own teach camera), when something needs them.
+  std::shared_ptr<const VerifyModel> joined_points;
   double surface_sampling_mm = 0;              ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on
   /// Near symmetries, and what they were found with (unset when not searched).

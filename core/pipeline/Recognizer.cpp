@@ -601,7 +601,10 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
       Detection& d = result.detections[k];
       if (d.refined)
         return; // a surface-voting pose ICP has polished already
-      const RefinementResult r = icp(d.T_scene_model);
+      const RefinementResult r =
+          prep->joined_refine
+              ? refinePose(*prep->joined_refine, *cache.scene_index, d.T_scene_model, params.refine)
+              : icp(d.T_scene_model);
       if (!verifying) {
         d.T_scene_model = r.T_scene_model;
         d.refined = true;

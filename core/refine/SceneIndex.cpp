@@ -168,7 +168,8 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
         const Eigen::Vector3f n = scene_mm.normals[src];
         if (n.allFinite() && n.norm() > 0.5f) {
           Eigen::Vector3f unit = n.normalized();
-          if (unit.cast<double>().dot(viewpoint - p.cast<double>()) < 0)
+          if (options.orient_cloud_normals &&
+              unit.cast<double>().dot(viewpoint - p.cast<double>()) < 0)
             unit = -unit;
           m_normals[i] = unit;
           continue;

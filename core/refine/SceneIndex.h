@@ -33,6 +33,9 @@ struct SceneIndexOptions {
   int neighbours = 12;
   /// Use the cloud's own normals when it has them (re-oriented towards the viewpoint).
   bool use_cloud_normals = true;
+  /// False: the cloud's own normals are taken as they are, not turned towards the viewpoint (a
+  /// model joined from views, each facing its own teach camera).
+  bool orient_cloud_normals = true;
   /// False: no normals at all (normals() all NaN), for an index used for nearest points only.
   bool estimate_normals = true;
   /// The sensor that took an organized cloud of its size: when the cloud's points lie within

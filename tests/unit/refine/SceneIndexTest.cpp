@@ -70,6 +70,24 @@ TEST(SceneIndex, OrganizedAndUnorganizedNormalsFaceTheCamera) {
   }
 }
 
+TEST(SceneIndex, ACloudsOwnNormalsFaceTheViewpointUnlessTakenAsTheyAre) {
+  // Two points whose normals face the viewpoint (the origin) and away from it: a model joined from
+  // views keeps each view's normals facing its own teach camera.
+  core::PointCloud cloud;
+  cloud.points_mm = {{0, 0, 500}, {10, 0, 500}};
+  cloud.normals = {{0, 0, -1}, {0, 0, 1}};
+  cloud.width = 2;
+  cloud.height = 1;
+  core::SceneIndexOptions options;
+  const core::SceneIndex oriented(cloud, options);
+  options.orient_cloud_normals = false;
+  const core::SceneIndex as_they_are(cloud, options);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(oriented.normals()[i], Eigen::Vector3f(0, 0, -1)) << i;
+    EXPECT_EQ(as_they_are.normals()[i], cloud.normals[i]) << i;
+  }
+}
+
 TEST(SceneIndex, NearestRespectsTheDistanceBoundAndSurvivesAMove) {
   core::SceneIndex index(floorScan(0.0));
   const core::SceneIndex moved(std::move(index));
