@@ -260,9 +260,11 @@ std::vector<ParamInfo> buildTable() {
            "contradicts clearly less is kept, or both are reported when it cannot tell. Needs "
            "verification; 0 = off.")));
   // --- Refinement (beyond the thesis) ---
-  t.push_back(entry(&RP::refine, &RefineParams::enabled,
-      make("refine.enabled", "ICP refinement", "", Stage::Refine, B, 0, 1, 1,
-           "Refine each detection's pose with ICP against the scene points.")));
+  t.push_back(
+      entry(&RP::refine, &RefineParams::enabled,
+            make("refine.enabled", "ICP refinement", "", Stage::Refine, B, 0, 1, 1,
+                 "Refine each detection's pose with ICP against the scene points; views that know "
+                 "their place in the part fit the other views' points too.")));
   t.push_back(entry(&RP::refine, &RefineParams::max_iterations,
       make("refine.max_iterations", "ICP iterations", "", Stage::Refine, I, 1, 500, 1,
            "Upper bound on ICP iterations.")));
