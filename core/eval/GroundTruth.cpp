@@ -72,8 +72,8 @@ GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& sourc
           throw Error(at + "." + name + " must be positive");
         return mm;
       };
-      truth.bin = TruthBin{positive("inner_x_mm"), positive("inner_y_mm"),
-                           positive("wall_height_mm"), positive("wall_thickness_mm")};
+      truth.bin = BinGeometry{positive("inner_x_mm"), positive("inner_y_mm"),
+                              positive("wall_height_mm"), positive("wall_thickness_mm")};
     }
   }
   if (doc.contains("sensor") && doc["sensor"].is_object()) {

@@ -4,6 +4,8 @@
 /// scanner; format in docs/file-formats.md): the parts with their diameter, grip points and
 /// symmetries, and the instances with their poses and visible fractions.
 
+#include "core/sim/Scene.h"
+
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <filesystem>
@@ -62,11 +64,6 @@ struct TruthCropBox {
   Eigen::Vector3d min_mm = Eigen::Vector3d::Zero(), max_mm = Eigen::Vector3d::Zero();
 };
 
-/// A bin scene's bin (scene.bin): inner size, wall height and thickness, mm.
-struct TruthBin {
-  double inner_x_mm = 0, inner_y_mm = 0, wall_height_mm = 0, wall_thickness_mm = 0;
-};
-
 /// A ground-truth file's content.
 struct GroundTruth {
   std::string source; ///< file it came from (for messages)
@@ -81,7 +78,7 @@ struct GroundTruth {
   /// in the scene frame; none when not written.
   std::optional<Eigen::Isometry3d> T_scene_world;
   /// scene.bin (bin scenes); none when not written (ground truth written before it was).
-  std::optional<TruthBin> bin;
+  std::optional<BinGeometry> bin;
 };
 
 /// Validates and converts a parsed ground-truth document. Throws Error for a wrong format, a

@@ -33,14 +33,11 @@ TruthRenderer::TruthRenderer(const GroundTruth& truth) {
   // scene frame is taken for it and the parts are rendered alone.
   if (truth.T_scene_world && !truth.kind.empty()) {
     m_scene.layout = layoutFromName(truth.kind);
-    BinGeometry bin; // the simulator's only bin, for ground truth written before scene.bin was
-    if (truth.bin)
-      bin = {truth.bin->inner_x_mm, truth.bin->inner_y_mm, truth.bin->wall_height_mm,
-             truth.bin->wall_thickness_mm};
-    m_scene.environment_mm = environmentMesh(m_scene.layout, bin);
+    // The simulator's only bin, for ground truth written before scene.bin was.
+    m_scene.environment_mm = environmentMesh(m_scene.layout, truth.bin.value_or(BinGeometry{}));
     m_scene.T_camera_world = *truth.T_scene_world;
-    m_T_world_scene = truth.T_scene_world->inverse();
   }
+  const Eigen::Isometry3d T_world_scene = m_scene.T_camera_world.inverse();
   std::map<std::string, std::size_t> part_index;
   for (const auto& instance : truth.instances) {
     auto [it, added] = part_index.try_emplace(instance.part, m_scene.parts.size());
@@ -54,8 +51,8 @@ TruthRenderer::TruthRenderer(const GroundTruth& truth) {
       }
     }
     // The renderer labels instances by their index.
-    m_scene.instances.push_back({static_cast<int>(m_truth_ids.size()), it->second,
-                                 m_T_world_scene * instance.T_scene_part});
+    m_scene.instances.push_back(
+        {static_cast<int>(m_truth_ids.size()), it->second, T_world_scene * instance.T_scene_part});
     m_truth_ids.push_back(instance.id);
   }
   const RenderResult render = renderScene(m_scene, m_sensor, SensorNoise{}, 0);
@@ -72,7 +69,8 @@ RenderDifference TruthRenderer::difference(int instance_id, const Eigen::Isometr
     throw Error("render check: the ground truth has no instance " + std::to_string(instance_id));
   const auto label = static_cast<std::int32_t>(it - m_truth_ids.begin());
   Scene moved = m_scene;
-  moved.instances[static_cast<std::size_t>(label)].T_world_part = m_T_world_scene * T_scene_part;
+  moved.instances[static_cast<std::size_t>(label)].T_world_part =
+      m_scene.T_camera_world.inverse() * T_scene_part;
   const RenderResult render = renderScene(moved, m_sensor, SensorNoise{}, 0);
   const std::vector<float> depth = depthOf(render);
   RenderDifference out;

@@ -55,7 +55,6 @@ public:
 
 private:
   Scene m_scene; ///< the renderer's instance k is the truth's instance m_truth_ids[k]
-  Eigen::Isometry3d m_T_world_scene = Eigen::Isometry3d::Identity();
   std::vector<int> m_truth_ids;
   SensorModel m_sensor;
   std::vector<float> m_depth_mm;      ///< per pixel, NaN where nothing is measured

@@ -601,10 +601,10 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
       Detection& d = result.detections[k];
       if (d.refined)
         return; // a surface-voting pose ICP has polished already
+      // With views joined, ICP fits all of them (ModelPrep::joined_refine).
       const RefinementResult r =
-          prep->joined_refine
-              ? refinePose(*prep->joined_refine, *cache.scene_index, d.T_scene_model, params.refine)
-              : icp(d.T_scene_model);
+          refinePose(prep->joined_refine ? *prep->joined_refine : *prep->refine, *cache.scene_index,
+                     d.T_scene_model, params.refine);
       if (!verifying) {
         d.T_scene_model = r.T_scene_model;
         d.refined = true;
