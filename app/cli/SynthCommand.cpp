@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace scanpick::cli {
@@ -20,7 +21,7 @@ namespace {
 struct SynthOptions {
   std::vector<std::string> parts;
   std::string mesh, layout = "bin", sensor = "phoxi-m-1032", out;
-  int count = 8;
+  std::optional<int> count; ///< default: 1 in a teach scene, else 8
   int teach_side = 0;
   std::uint64_t seed = 0;
   double noise_sigma_mm = -1;
@@ -79,7 +80,7 @@ int runSynth(const SynthOptions& o) {
   }
   r.layout = core::layoutFromName(o.layout);
   r.teach_side = o.teach_side;
-  r.count = o.count;
+  r.count = o.count.value_or(r.layout == core::LayoutKind::Teach ? 1 : 8);
   r.sensor = o.sensor;
   r.seed = o.seed;
   r.noiseless = o.noiseless;
@@ -122,7 +123,7 @@ void registerSynthCommands(CLI::App& app) {
                     "teach layout: side the part rests on, 0 = usual, 1 = turned over, 2 = on its side, "
                     "3 = on its end (one taught view per side)")
       ->capture_default_str();
-  synth->add_option("--count", o->count, "number of instances (teach: 1)")->capture_default_str();
+  synth->add_option("--count", o->count, "number of instances (default: 8; teach: 1)");
   synth->add_option("--sensor", o->sensor, "phoxi-m-1032, phoxi-m-2064 or kinect-v1")->capture_default_str();
   synth->add_option("--seed", o->seed, "random seed: same seed, same files")->capture_default_str();
   synth->add_option("--noise-sigma", o->noise_sigma_mm, "depth noise sigma in mm (default: the sensor's)");

@@ -258,3 +258,23 @@ TEST(CliSynth, OpenMeshIsRefusedUnlessItsHolesAreClosed) {
       0);
   EXPECT_NE(readText(log).find("--mesh"), std::string::npos) << readText(log);
 }
+
+TEST(CliSynth, ATeachSceneHoldsOnePartUnlessTheCountSaysOtherwise) {
+  if (!fs::exists(kCli))
+    GTEST_SKIP() << kCli << " is not built (build the scanpick-cli target first)";
+  const scanpick::test::TempDir dir;
+  const fs::path log = dir.path() / "log.txt";
+  ASSERT_EQ(
+      runCli({"synth", "--part", "cup", "--layout", "teach", "--out", quoted(dir.path() / "teach")},
+             log),
+      0)
+      << readText(log);
+  std::ifstream truth(dir.path() / "teach.gt.json");
+  EXPECT_EQ(nlohmann::json::parse(truth).at("instances").size(), 1u);
+  // A count other than one is still refused, with what to give instead.
+  EXPECT_NE(runCli({"synth", "--part", "cup", "--layout", "teach", "--count", "2", "--out",
+                    quoted(dir.path() / "two")},
+                   log),
+            0);
+  EXPECT_NE(readText(log).find("--count 1"), std::string::npos) << readText(log);
+}
