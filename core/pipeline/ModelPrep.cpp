@@ -521,6 +521,7 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
                       k, as_found, turned);
       // The view's differing points rule a pose out only where they are seen at a known turn.
       Ruling ruling = Ruling::Neither;
+      const char* ruled_by = "the view's differing points";
       if (!turn_unseen && turned > as_found + kTurnMargin)
         ruling = Ruling::Turned;
       else if (!turn_unseen && as_found > turned + kTurnMargin)
@@ -542,19 +543,24 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
           ruling = Ruling::Turned;
         else if (body_turned > body_found + kTurnMargin)
           ruling = Ruling::Found;
+        if (std::abs(body_found - body_turned) > kTurnMargin)
+          ruled_by = "the joined body";
       }
       // The found pose's detail is confirmed at no turn about its axis (resolveDetailTurns); a
       // turned pose whose detail the scan confirms explains the handle the found one leaves
       // unexplained.
       if (ruling == Ruling::Neither && turn_unseen &&
-          seesDetail(prep, scene, T_turned, params.verify_tolerance_mm))
+          seesDetail(prep, scene, T_turned, params.verify_tolerance_mm)) {
         ruling = Ruling::Found;
+        ruled_by = "the turned pose's detail";
+      }
       if (ruling == Ruling::Turned || coverage < params.min_coverage)
         continue;
       if (ruling == Ruling::Found) {
-        logger()->debug("detection {} turned by a near symmetry: {:.2f} of the differing points "
-                        "contradicted as found, {:.2f} turned; coverage {:.3f} -> {:.3f}",
-                        k, as_found, turned, d.coverage, coverage);
+        logger()->debug("detection {} turned by a near symmetry, ruled by {} ({:.2f} of the "
+                        "view's differing points contradicted as found, {:.2f} turned); coverage "
+                        "{:.3f} -> {:.3f}",
+                        k, ruled_by, as_found, turned, d.coverage, coverage);
         d.T_scene_model = T_turned;
         d.coverage = coverage;
         d.score = coverage;
