@@ -310,12 +310,16 @@ PointPairModel::ReferencePeak PointPairModel::peakOf(const ScenePairs::Pair* beg
         ++cell;
     }
   }
-  const auto peak = std::max_element(accumulator.begin(), accumulator.end());
+  // The most votes (a loop the compiler vectorizes), then the first cell holding them.
+  std::uint16_t most = 0;
+  for (const std::uint16_t votes : accumulator)
+    most = std::max(most, votes);
   ReferencePeak out;
-  out.votes = *peak;
+  out.votes = most;
   if (out.votes == 0)
     return out;
-  const auto cell = static_cast<std::size_t>(peak - accumulator.begin());
+  const auto cell = static_cast<std::size_t>(
+      std::find(accumulator.begin(), accumulator.end(), most) - accumulator.begin());
   const std::size_t m = cell / bins;
   const float alpha = (float(cell % bins) + 0.5f) * (kTwoPi / float(bins));
   out.T = to_local.inverse() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) * m_to_local[m];

@@ -370,16 +370,47 @@ struct DetailTally {
   }
 };
 
+/// The highest DetailTally::score() that `which` detail's tally `t` can reach with `left` points
+/// not looked at: each of them facing the camera and confirmed (as that raises the score while
+/// fewer are confirmed than face the camera); with none left, the score.
+double detailScoreBound(Detail which, const PointTally& t, std::size_t left) {
+  const double points = double(t.points + left);
+  const double reachable = double(t.confirmed) - double(t.violations) + double(left);
+  if (which == Detail::Own)
+    return reachable / std::max(1.0, points);
+  const double facing = double(t.points - t.turned_away + left);
+  return reachable / std::max({1.0, facing, 0.25 * points});
+}
+
 DetailTally tallyDetail(const ModelPrep& prep, Detail which, const VerifyScene& scene,
-                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm) {
+                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
+                        const TallyStop& stop = {}) {
   if (which == Detail::Own) {
     const PointTally t =
-        tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm, &prep.near_axis_detail);
+        tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm, &prep.near_axis_detail, stop);
     return {t, double(std::max<std::size_t>(1, t.points))};
   }
-  const PointTally t = tallyPoints(*prep.joined_detail, scene, T_scene_model, tolerance_mm);
+  const PointTally t =
+      tallyPoints(*prep.joined_detail, scene, T_scene_model, tolerance_mm, nullptr, stop);
   const double facing = double(t.points - t.turned_away);
   return {t, std::max({1.0, facing, 0.25 * double(t.points)})};
+}
+
+/// `which` detail's score at `T_scene_model` when it is above `beat`; none otherwise, its tally
+/// stopped as soon as it cannot be.
+std::optional<double> detailScoreAbove(const ModelPrep& prep, Detail which,
+                                       const VerifyScene& scene,
+                                       const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
+                                       double beat) {
+  const std::size_t total =
+      which == Detail::Own ? prep.near_axis_detail.size() : prep.joined_detail->points.size();
+  const auto cannot_beat = [&](const PointTally& so_far, std::size_t left) {
+    return detailScoreBound(which, so_far, left) <= beat;
+  };
+  const DetailTally t = tallyDetail(prep, which, scene, T_scene_model, tolerance_mm, cannot_beat);
+  if (t.tally.points < total || !(t.score() > beat))
+    return std::nullopt;
+  return t.score();
 }
 
 /// The turn about the view's near axis (1° steps) at which `which` detail scores best, if it
@@ -391,9 +422,9 @@ std::optional<DetailTurn> bestTurn(const ModelPrep& prep, Detail which, const Ve
   DetailTurn turn{T_scene_model, 0.0, as_found, as_found, false};
   for (int degrees = 1; degrees < 360; ++degrees) {
     const Eigen::Isometry3d T = T_scene_model * axis.turn(degrees * M_PI / 180.0);
-    if (const double score = tallyDetail(prep, which, scene, T, tolerance_mm).score();
-        score > turn.detail_confirmed) {
-      turn.detail_confirmed = score;
+    if (const auto score =
+            detailScoreAbove(prep, which, scene, T, tolerance_mm, turn.detail_confirmed)) {
+      turn.detail_confirmed = *score;
       turn.T_scene_model = T;
     }
   }

@@ -12,6 +12,9 @@ namespace {
 /// parts must not score as a whole part.
 constexpr double kMinExpectedShare = 0.75;
 
+/// A tally with a stop asks it after this many points and every as many more.
+constexpr std::size_t kStopCheckPoints = 16;
+
 /// cos 60°: model and scene normals closer than this agree.
 constexpr float kMinNormalAgreement = 0.5f;
 
@@ -108,7 +111,7 @@ std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
 
 PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
-                       const std::vector<std::uint32_t>* subset) {
+                       const std::vector<std::uint32_t>* subset, const TallyStop& stop) {
   const SceneIndex& index = *scene.index;
   const PointCloud& scan = *scene.scan;
   const SensorModel& sensor = *scene.sensor;
@@ -170,13 +173,24 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     else if (s.z() < p.z() - margin)
       ++tally.hidden;
   };
-  if (subset)
-    for (const std::uint32_t k : *subset)
-      look(k);
-  else
-    for (std::size_t k = 0; k < model.points.size(); ++k)
-      look(k);
+  const std::size_t total = subset ? subset->size() : model.points.size();
+  for (std::size_t j = 0; j < total; ++j) {
+    look(subset ? std::size_t{(*subset)[j]} : j);
+    if (stop && (j + 1) % kStopCheckPoints == 0 && j + 1 < total && stop(tally, total - j - 1))
+      break;
+  }
   return tally;
+}
+
+double surfaceScoreBound(const PointTally& tally, std::size_t left) {
+  // Each point left can add one confirmation, or else be shadowed and lower the expected count;
+  // with fewer confirmations than points not shadowed, confirming all of them scores highest.
+  const double seeable = double(tally.points + left) - double(tally.shadowed);
+  if (seeable <= 0.0)
+    return 1.0;
+  return std::clamp((double(tally.confirmed) - double(tally.violations) + double(left)) /
+                        (kMinExpectedShare * seeable),
+                    0.0, 1.0);
 }
 
 PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const SensorModel& sensor) {
@@ -210,7 +224,14 @@ double verifyPose(const VerifyModel& model, const VerifyScene& scene,
                   const EdgeCheck& edges, double drop_below) {
   if (model.points.empty())
     return 0.0;
-  const PointTally t = tallyPoints(model, scene, T_scene_model, tolerance_mm);
+  const auto cannot_reach = [&](const PointTally& so_far, std::size_t left) {
+    return surfaceScoreBound(so_far, left) < drop_below;
+  };
+  const PointTally t =
+      drop_below > 0 ? tallyPoints(model, scene, T_scene_model, tolerance_mm, nullptr, cannot_reach)
+                     : tallyPoints(model, scene, T_scene_model, tolerance_mm);
+  if (const std::size_t left = model.points.size() - t.points; left > 0)
+    return surfaceScoreBound(t, left); // stopped: under drop_below
   const double seeable = double(t.points - t.shadowed);
   const double expected = std::max(seeable - double(t.hidden), kMinExpectedShare * seeable);
   if (expected <= 0.0)

@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -68,6 +69,9 @@ struct PointTally {
   std::size_t shadowed = 0;
 };
 
+/// Whether a tally of points may stop (tallyPoints): given the tally so far and the points left.
+using TallyStop = std::function<bool(const PointTally& so_far, std::size_t left)>;
+
 /// Where a structured-light scan's projector light reached: for each projector pixel, the depth
 /// (along the projector's axis) of the nearest measured point. A point without a measurement lay
 /// in the projector's shadow when measured surface lies between the projector and it (the inside
@@ -117,9 +121,18 @@ struct VerifyScene {
 /// hidden when the model's own body lies between it and the camera, and shadowed when scene.shadow
 /// says the projector's light to it was blocked or the model's body lies between it and the
 /// projector.
+/// A caller that needs a tally only while it can still reach something stops it: `stop` is asked
+/// every few points with the tally so far and the number of points left, and true ends the tally
+/// there (it then counts the points looked at).
 PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
-                       const std::vector<std::uint32_t>* subset = nullptr);
+                       const std::vector<std::uint32_t>* subset = nullptr,
+                       const TallyStop& stop = {});
+
+/// The highest surface score (verifyPose's, before the edge agreement) that a tally can still
+/// reach with `left` points not looked at: each of them confirmed, and the expected count at its
+/// lowest (75 % of the points not shadowed so far).
+double surfaceScoreBound(const PointTally& tally, std::size_t left);
 
 /// Verification score in [0, 1]: (confirmed − violations) ÷ the points expected to be seen,
 /// times the edge agreement (the share of model keypoints on confirmed surface with a scene
@@ -128,9 +141,11 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
 /// never taken below 75 % of the points not shadowed, so a pose that turns the taught side away (a
 /// flip), or is confirmed on one leg of a bracket whose other leg falls behind other parts, cannot
 /// score on the few points left.
-/// A caller that drops every pose scoring under `drop_below` lets verification skip the edge check
-/// of a pose whose surface alone scores under it: that pose gets its surface score, no lower than
-/// its full score and still under `drop_below`. Scores from `drop_below` up are the full ones.
+/// A caller that drops every pose scoring under `drop_below` lets verification stop looking at a
+/// pose's points once its surface can no longer score `drop_below` (surfaceScoreBound), and skip
+/// the edge check of a pose whose surface alone scores under it: that pose gets the bound or its
+/// surface score, no lower than its full score and still under `drop_below`. Scores from
+/// `drop_below` up are the full ones.
 double verifyPose(const VerifyModel& model, const VerifyScene& scene,
                   const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                   const EdgeCheck& edges, double drop_below = 0.0);

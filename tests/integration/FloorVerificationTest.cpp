@@ -40,9 +40,10 @@ TEST(FloorVerification, APoseSunkIntoTheTableIsContradicted) {
 }
 
 // A search that drops every pose scoring under a bound lets verification skip those poses' edge
-// check: under the bound a pose gets its surface score (no lower than its full score), from the
-// bound up always the full score. Here the only scene keypoints lie 5 m away, so no model keypoint
-// finds one and the full score is 0.
+// check: under the bound a pose gets its surface score or less than the bound that its points
+// could still reach (never lower than its full score), from the bound up always the full score.
+// Here the only scene keypoints lie 5 m away, so no model keypoint finds one and the full score
+// is 0.
 TEST(VerificationDropBelow, OnlyPosesUnderTheBoundSkipTheEdgeCheck) {
   const RecognitionParams params = test::bundledPreset("phoxi-bin");
   const test::VerifyCase c = test::verifyCase("support", params, 5, 9, 0);
@@ -57,6 +58,44 @@ TEST(VerificationDropBelow, OnlyPosesUnderTheBoundSkipTheEdgeCheck) {
   EXPECT_EQ(verifyPose(*c.view, scene, c.T_true, tolerance, edges), 0.0);
   EXPECT_EQ(verifyPose(*c.view, scene, c.T_true, tolerance, edges, 0.7), 0.0)
       << "a surface score over the bound gets the edge check";
-  EXPECT_EQ(verifyPose(*c.view, scene, c.T_true, tolerance, edges, 1.01), surface)
-      << "a surface score under the bound is returned as it is";
+  const double under = verifyPose(*c.view, scene, c.T_true, tolerance, edges, 1.01);
+  EXPECT_GE(under, surface) << "a score under the bound is never lower than the surface score";
+  EXPECT_LT(under, 1.01);
+}
+
+// Verification under a bound stops looking at a pose's points once they cannot reach it, with the
+// verdict and the full scores unchanged: a pose 30 mm off is dropped after part of its points,
+// the true pose looks at all of them.
+TEST(VerificationDropBelow, APoseThatCannotReachTheBoundStopsEarlyWithTheSameVerdict) {
+  const RecognitionParams params = test::bundledPreset("phoxi-bin");
+  const test::VerifyCase c = test::verifyCase("support", params, 5, 9, 0);
+  const VerifyScene scene{c.index.get(), &c.scan.render.cloud, &c.scan.sensor,
+                          c.floor.planes.front()};
+  const double tolerance = params.matching.verify_tolerance_mm;
+  const Eigen::Isometry3d T_off = Eigen::Translation3d(30.0, 0.0, 0.0) * c.T_true;
+  const std::size_t all = c.view->points.size();
+  for (const double bound : {0.3, 0.6}) {
+    const auto cannot_reach = [&](const PointTally& so_far, std::size_t left) {
+      return surfaceScoreBound(so_far, left) < bound;
+    };
+    const PointTally off = tallyPoints(*c.view, scene, T_off, tolerance, nullptr, cannot_reach);
+    const PointTally at_truth =
+        tallyPoints(*c.view, scene, c.T_true, tolerance, nullptr, cannot_reach);
+    std::printf("bound %.1f: the pose 30 mm off stopped after %zu of %zu points\n", bound,
+                off.points, all);
+    EXPECT_LT(off.points, all);
+    EXPECT_EQ(at_truth.points, all);
+    const double full_off = verifyPose(*c.view, scene, T_off, tolerance, {});
+    const double off_score = verifyPose(*c.view, scene, T_off, tolerance, {}, bound);
+    EXPECT_LT(full_off, bound);
+    EXPECT_LT(off_score, bound);
+    EXPECT_GE(off_score, full_off);
+    EXPECT_EQ(verifyPose(*c.view, scene, c.T_true, tolerance, {}, bound),
+              verifyPose(*c.view, scene, c.T_true, tolerance, {}));
+  }
+  // With nothing looked at yet the bound is 1; with every point looked at it is still no lower
+  // than the surface score (it takes the expected count at its lowest).
+  EXPECT_EQ(surfaceScoreBound(PointTally{}, all), 1.0);
+  const PointTally full = tallyPoints(*c.view, scene, c.T_true, tolerance);
+  EXPECT_GE(surfaceScoreBound(full, 0), verifyPose(*c.view, scene, c.T_true, tolerance, {}));
 }
