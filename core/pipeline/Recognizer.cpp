@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cstring>
 #include <functional>
+#include <iterator>
 #include <optional>
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
@@ -211,6 +212,76 @@ sharedPairings(const std::vector<std::shared_ptr<const ModelPrep>>& preps,
   }
   std::erase_if(all, [](const SharedPairing& p) { return p.views < 2; });
   return all;
+}
+
+/// Refines each detection that ICP has not polished yet, with the view's joined ICP model when it
+/// has one (ModelPrep::joined_refine), and keeps the refined pose when it verifies as well
+/// (keepsRefinedPose; always without `verify`). Best first again.
+void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
+                      const SceneIndex& scene_index, const RefineParams& params,
+                      const PoseVerifier& verify) {
+  tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
+    Detection& d = detections[k];
+    if (d.refined)
+      return; // a surface-voting pose ICP has polished already
+    const RefinementResult r = refinePose(prep.joined_refine ? *prep.joined_refine : *prep.refine,
+                                          scene_index, d.T_scene_model, params);
+    if (!verify) {
+      d.T_scene_model = r.T_scene_model;
+      d.refined = true;
+      return;
+    }
+    const double coverage = verify(r.T_scene_model);
+    logger()->trace("ICP of detection {}: coverage {:.3f} -> {:.3f}, moved {:.2f} mm, {} "
+                    "iterations, converged {}",
+                    k, d.coverage, coverage,
+                    (r.T_scene_model.translation() - d.T_scene_model.translation()).norm(),
+                    r.iterations, r.converged);
+    if (keepsRefinedPose(d.coverage, coverage)) {
+      // An alternative T·S becomes T'·S: the same move, taken in the scene frame.
+      const Eigen::Isometry3d move = r.T_scene_model * d.T_scene_model.inverse();
+      for (auto& T_alternative : d.alternative_poses)
+        T_alternative = move * T_alternative;
+      d.T_scene_model = r.T_scene_model;
+      d.refined = true;
+      d.coverage = coverage;
+      d.score = coverage;
+    }
+  });
+  sortBestFirst(detections);
+}
+
+/// What each detection reports at its pose: its centre, its grip points in the scene frame and the
+/// turns about the view's axis the scan does not see (`scene`: null without verification).
+void placeDetections(std::vector<Detection>& detections, const TaughtModel& model,
+                     const ModelPrep* prep, const VerifyScene* scene, double tolerance_mm) {
+  // The turn about the view's axis is not seen at a pose where the view is a surface of
+  // revolution, or one but for a detail that the scan does not confirm there.
+  const auto freeTurnAt = [&](const Eigen::Isometry3d& T) -> std::optional<FreeTurnAxis> {
+    if (!prep || !(prep->axis || (scene && prep->near_axis &&
+                                  !detail::seesDetail(*prep, *scene, T, tolerance_mm))))
+      return std::nullopt;
+    const RevolutionAxis& axis = prep->axis ? *prep->axis : *prep->near_axis;
+    return FreeTurnAxis{T * axis.point_mm, T.linear() * axis.direction};
+  };
+  // A view that is a surface of revolution but for a detail is placed by its axis: turned about it
+  // by its detail, the view's own origin moves round the axis, the instance does not.
+  const std::optional<RevolutionAxis> placing_axis =
+      prep ? prep->near_axis : std::optional<RevolutionAxis>();
+  for (auto& d : detections) {
+    d.centre_mm = placing_axis ? d.T_scene_model * placing_axis->point_mm
+                               : Eigen::Vector3d(d.T_scene_model.translation());
+    d.grip_points_scene.clear();
+    for (const auto& g : model.grip_points)
+      d.grip_points_scene.push_back({g.name, d.T_scene_model * g.position_mm});
+    d.free_turn_axis = freeTurnAt(d.T_scene_model);
+    d.alternative_free_turn_axes.clear();
+    for (const auto& T_alternative : d.alternative_poses)
+      d.alternative_free_turn_axes.push_back(freeTurnAt(T_alternative));
+    if (std::none_of(d.alternative_free_turn_axes.begin(), d.alternative_free_turn_axes.end(),
+                     [](const auto& axis) { return axis.has_value(); }))
+      d.alternative_free_turn_axes.clear();
+  }
 }
 
 /// Another try for a pose that verified under the minimum but at least half of it: may replace
@@ -597,65 +668,12 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
   result.timings.matching_ms += msSince(t_match);
   if (params.refine.enabled && prep) {
     const auto t0 = Clock::now();
-    tbb::parallel_for(std::size_t{0}, result.detections.size(), [&](std::size_t k) {
-      Detection& d = result.detections[k];
-      if (d.refined)
-        return; // a surface-voting pose ICP has polished already
-      // With views joined, ICP fits all of them (ModelPrep::joined_refine).
-      const RefinementResult r =
-          refinePose(prep->joined_refine ? *prep->joined_refine : *prep->refine, *cache.scene_index,
-                     d.T_scene_model, params.refine);
-      if (!verifying) {
-        d.T_scene_model = r.T_scene_model;
-        d.refined = true;
-        return;
-      }
-      const double coverage = verify(r.T_scene_model);
-      logger()->trace("ICP of detection {}: coverage {:.3f} -> {:.3f}, moved {:.2f} mm, {} "
-                      "iterations, converged {}",
-                      k, d.coverage, coverage,
-                      (r.T_scene_model.translation() - d.T_scene_model.translation()).norm(),
-                      r.iterations, r.converged);
-      if (keepsRefinedPose(d.coverage, coverage)) {
-        // An alternative T·S becomes T'·S: the same move, taken in the scene frame.
-        const Eigen::Isometry3d move = r.T_scene_model * d.T_scene_model.inverse();
-        for (auto& T_alternative : d.alternative_poses)
-          T_alternative = move * T_alternative;
-        d.T_scene_model = r.T_scene_model;
-        d.refined = true;
-        d.coverage = coverage;
-        d.score = coverage;
-      }
-    });
-    sortBestFirst(result.detections);
+    refineDetections(result.detections, *prep, *cache.scene_index, params.refine,
+                     verifying ? verify : PoseVerifier());
     result.timings.refine_ms = msSince(t0);
   }
-  // The turn about the view's axis is not seen at a pose where the view is a surface of
-  // revolution, or one but for a detail that the scan does not confirm there.
-  const auto freeTurnAt = [&](const Eigen::Isometry3d& T) -> std::optional<FreeTurnAxis> {
-    if (!prep || !(prep->axis || (verify && prep->near_axis &&
-                                  !detail::seesDetail(*prep, verify_scene, T,
-                                                      params.matching.verify_tolerance_mm))))
-      return std::nullopt;
-    const RevolutionAxis& axis = prep->axis ? *prep->axis : *prep->near_axis;
-    return FreeTurnAxis{T * axis.point_mm, T.linear() * axis.direction};
-  };
-  // A view that is a surface of revolution but for a detail is placed by its axis: turned about it
-  // by its detail, the view's own origin moves round the axis, the instance does not.
-  const std::optional<RevolutionAxis> placing_axis =
-      prep ? prep->near_axis : std::optional<RevolutionAxis>();
-  for (auto& d : result.detections) {
-    d.centre_mm = placing_axis ? d.T_scene_model * placing_axis->point_mm
-                               : Eigen::Vector3d(d.T_scene_model.translation());
-    for (const auto& g : model->grip_points)
-      d.grip_points_scene.push_back({g.name, d.T_scene_model * g.position_mm});
-    d.free_turn_axis = freeTurnAt(d.T_scene_model);
-    for (const auto& T_alternative : d.alternative_poses)
-      d.alternative_free_turn_axes.push_back(freeTurnAt(T_alternative));
-    if (std::none_of(d.alternative_free_turn_axes.begin(), d.alternative_free_turn_axes.end(),
-                     [](const auto& axis) { return axis.has_value(); }))
-      d.alternative_free_turn_axes.clear();
-  }
+  placeDetections(result.detections, *model, prep.get(), verify ? &verify_scene : nullptr,
+                  params.matching.verify_tolerance_mm);
   reportProgress(progress, 1.0);
 
   result.preprocessed = cache.pre;
@@ -668,6 +686,46 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
   return result;
 }
 
+void Recognizer::refine(const std::shared_ptr<const TaughtModel>& model,
+                        std::vector<Detection>& detections, const PointCloud& scene_mm,
+                        const SensorModel& sensor, const RecognitionParams& requested) {
+  requireModel(model, "refine");
+  const RecognitionParams params = withViewParams(requested, model->view_params);
+  if (!params.refine.enabled || detections.empty())
+    return;
+  Cache cache = cacheSnapshot();
+  const PreKey pre_key{sceneHash(scene_mm), params.floor, params.downsample, params.seed};
+  if (cache.pre_key != pre_key || !cache.pre)
+    throw Error("refinement needs the scene recognized first, with the same floor, downsampling "
+                "and seed");
+  const std::pair index_key{pre_key, sensorHash(sensor)};
+  if (cache.index_key != index_key || !cache.scene_index) {
+    SceneIndexOptions options;
+    options.normal_radius_mm = params.keypoints.normal_radius_mm;
+    options.sensor = sensor;
+    cache.scene_index = std::make_shared<const SceneIndex>(*cache.pre, options);
+    cache.index_key = index_key;
+  }
+  const std::shared_ptr<const ModelPrep> prep =
+      detail::prepareModel(cache.model_preps, model, params);
+  {
+    const std::lock_guard lock(m_mutex);
+    m_cache = std::make_shared<Cache>(cache);
+  }
+  const double tolerance = params.matching.verify_tolerance_mm;
+  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane,
+                                 cache.shadow.get()};
+  const EdgeCheck edges{params.matching.edge_tolerance_mm > 0 ? cache.edge_index.get() : nullptr,
+                        params.matching.edge_tolerance_mm};
+  PoseVerifier verify;
+  if (tolerance > 0)
+    verify = [&](const Eigen::Isometry3d& T) {
+      return verifyPose(*prep->verify, verify_scene, T, tolerance, edges);
+    };
+  refineDetections(detections, *prep, *cache.scene_index, params.refine, verify);
+  placeDetections(detections, *model, prep.get(), verify ? &verify_scene : nullptr, tolerance);
+}
+
 RecognitionResult recognizeViews(Recognizer& recognizer,
                                  const std::vector<std::shared_ptr<const TaughtModel>>& models,
                                  const PointCloud& scene_mm, const SensorModel& sensor,
@@ -676,10 +734,13 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
     throw Error("no model to recognize: give at least one .spmodel");
   RecognitionResult merged;
   double diameter_mm = 0.0;
+  // Refinement waits for the merge (Recognizer::refine).
+  RecognitionParams unrefined = params;
+  unrefined.refine.enabled = false;
   for (std::size_t m = 0; m < models.size(); ++m) {
     const double begin = double(m) / double(models.size());
     RecognitionResult r =
-        recognizer.recognize(models[m], scene_mm, sensor, params,
+        recognizer.recognize(models[m], scene_mm, sensor, unrefined,
                              subProgress(progress, begin, begin + 1.0 / double(models.size())));
     diameter_mm = std::max(diameter_mm, models[m]->diameter_mm);
     for (auto& d : r.detections) {
@@ -709,6 +770,22 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
   if (params.matching.max_detections > 0 &&
       merged.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
     merged.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
+  if (params.refine.enabled) {
+    const auto t0 = Clock::now();
+    std::vector<Detection> refined;
+    for (std::size_t m = 0; m < models.size(); ++m) {
+      std::vector<Detection> of_view;
+      for (auto& d : merged.detections)
+        if (d.model_index == static_cast<int>(m))
+          of_view.push_back(std::move(d));
+      recognizer.refine(models[m], of_view, scene_mm, sensor, params);
+      std::move(of_view.begin(), of_view.end(), std::back_inserter(refined));
+    }
+    sortBestFirst(refined);
+    merged.detections = std::move(refined);
+    merged.timings.refine_ms = msSince(t0);
+    merged.timings.total_ms += merged.timings.refine_ms;
+  }
   return merged;
 }
 

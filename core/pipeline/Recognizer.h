@@ -77,6 +77,15 @@ public:
   /// null `model`.
   void prepare(const std::shared_ptr<const TaughtModel>& model, const RecognitionParams& params);
 
+  /// Refines `detections` of `model` found in `scene_mm` by the last recognize() call (its scene
+  /// stages cached), as recognize() does with params.refine.enabled: ICP from each detection not
+  /// polished yet, kept when it verifies as well; then their centres, grip points and free turns
+  /// again. Nothing is done when params.refine.enabled is false. Throws Error without a model or
+  /// when `scene_mm` is not the scene last recognized with these parameters.
+  void refine(const std::shared_ptr<const TaughtModel>& model, std::vector<Detection>& detections,
+              const PointCloud& scene_mm, const SensorModel& sensor,
+              const RecognitionParams& params);
+
   /// How many model preparations the cache holds (at most 8: views alternate scene after scene).
   [[nodiscard]] std::size_t preparedModels() const;
 
@@ -102,8 +111,11 @@ double prepareViews(Recognizer& recognizer,
 /// another side it can rest on (one model sees one side only). The scene stages run once (the
 /// recognizer's cache), matching per model; detections are merged best first, and one whose
 /// position (Detection::centre_mm) lies within 0.3 × the larger model diameter of a better one's
-/// is dropped (the same instance seen through another view). Views that know their place in the
-/// part should be joined first (joinViews, TaughtModel.h). Detection::model_index names the model.
+/// is dropped (the same instance seen through another view). With params.refine.enabled the
+/// detections left are refined after the merge (Recognizer::refine), so that ICP polishes the
+/// detections reported and cannot change which of them the merge keeps. Views that know their
+/// place in the part should be joined first (joinViews, TaughtModel.h). Detection::model_index
+/// names the model.
 /// The recognizer's own model is left as it is.
 /// Throws as Recognizer::recognize, and Error for an empty `models`.
 RecognitionResult recognizeViews(Recognizer& recognizer,
