@@ -264,7 +264,8 @@ std::vector<ParamInfo> buildTable() {
       entry(&RP::refine, &RefineParams::enabled,
             make("refine.enabled", "ICP refinement", "", Stage::Refine, B, 0, 1, 1,
                  "Refine each detection's pose with ICP against the scene points; views that know "
-                 "their place in the part fit the other views' points too.")));
+                 "their place in the part fit the other views' points too, and several views' "
+                 "detections are refined after they are merged.")));
   t.push_back(entry(&RP::refine, &RefineParams::max_iterations,
       make("refine.max_iterations", "ICP iterations", "", Stage::Refine, I, 1, 500, 1,
            "Upper bound on ICP iterations.")));
