@@ -669,7 +669,7 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
   if (params.refine.enabled && prep) {
     const auto t0 = Clock::now();
     refineDetections(result.detections, *prep, *cache.scene_index, params.refine,
-                     verifying ? verify : PoseVerifier());
+                     verify);
     result.timings.refine_ms = msSince(t0);
   }
   placeDetections(result.detections, *model, prep.get(), verify ? &verify_scene : nullptr,
