@@ -780,6 +780,7 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
           of_view.push_back(std::move(d));
       recognizer.refine(models[m], of_view, scene_mm, sensor, params);
       std::move(of_view.begin(), of_view.end(), std::back_inserter(refined));
+      reportProgress(progress, 1.0); // a last chance to stop
     }
     sortBestFirst(refined);
     merged.detections = std::move(refined);
