@@ -39,17 +39,22 @@ TEST(FloorVerification, APoseSunkIntoTheTableIsContradicted) {
   EXPECT_GT(verifyPose(*c.view, knowing, c.T_true, tolerance, {}), 0.9);
 }
 
-// A search that drops every pose scoring under a bound lets verification skip those poses' edge
-// check: under the bound a pose gets its surface score or less than the bound that its points
-// could still reach (never lower than its full score), from the bound up always the full score.
-// Here the only scene keypoints lie 5 m away, so no model keypoint finds one and the full score
-// is 0.
-TEST(VerificationDropBelow, OnlyPosesUnderTheBoundSkipTheEdgeCheck) {
+/// A scan of the support resting on a table as taught, its floor known.
+class VerificationDropBelow : public ::testing::Test {
+protected:
   const RecognitionParams params = test::bundledPreset("phoxi-bin");
   const test::VerifyCase c = test::verifyCase("support", params, 5, 9, 0);
   const VerifyScene scene{c.index.get(), &c.scan.render.cloud, &c.scan.sensor,
                           c.floor.planes.front()};
   const double tolerance = params.matching.verify_tolerance_mm;
+};
+
+// A search that drops every pose scoring under a bound lets verification skip those poses' edge
+// check: under the bound a pose gets its surface score or less than the bound that its points
+// could still reach (never lower than its full score), from the bound up always the full score.
+// Here the only scene keypoints lie 5 m away, so no model keypoint finds one and the full score
+// is 0.
+TEST_F(VerificationDropBelow, OnlyPosesUnderTheBoundSkipTheEdgeCheck) {
   const SceneIndex far_keypoints(PointCloud::fromPoints(
       {Eigen::Vector3f(0, 0, 5000), Eigen::Vector3f(10, 0, 5000), Eigen::Vector3f(0, 10, 5000)}));
   const EdgeCheck edges{&far_keypoints, 2.0};
@@ -66,12 +71,7 @@ TEST(VerificationDropBelow, OnlyPosesUnderTheBoundSkipTheEdgeCheck) {
 // Verification under a bound stops looking at a pose's points once they cannot reach it, with the
 // verdict and the full scores unchanged: a pose 30 mm off is dropped after part of its points,
 // the true pose looks at all of them.
-TEST(VerificationDropBelow, APoseThatCannotReachTheBoundStopsEarlyWithTheSameVerdict) {
-  const RecognitionParams params = test::bundledPreset("phoxi-bin");
-  const test::VerifyCase c = test::verifyCase("support", params, 5, 9, 0);
-  const VerifyScene scene{c.index.get(), &c.scan.render.cloud, &c.scan.sensor,
-                          c.floor.planes.front()};
-  const double tolerance = params.matching.verify_tolerance_mm;
+TEST_F(VerificationDropBelow, APoseThatCannotReachTheBoundStopsEarlyWithTheSameVerdict) {
   const Eigen::Isometry3d T_off = Eigen::Translation3d(30.0, 0.0, 0.0) * c.T_true;
   const std::size_t all = c.view->points.size();
   for (const double bound : {0.3, 0.6}) {
