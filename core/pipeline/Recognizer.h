@@ -123,6 +123,9 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
                                  const PointCloud& scene_mm, const SensorModel& sensor,
                                  const RecognitionParams& params, const ProgressFn& progress = {});
 
+/// Highest score first; equal scores keep their order.
+void sortBestFirst(std::vector<Detection>& detections);
+
 /// Where a detection lies, for suppressDuplicates (scene frame, mm).
 using DetectionPosition = std::function<Eigen::Vector3d(const Detection&)>;
 
