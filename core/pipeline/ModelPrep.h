@@ -65,7 +65,7 @@ struct ModelPrep {
   /// face-on slides in its own plane).
   std::shared_ptr<const RefineModel> joined_refine;
   /// With views joined, the points of all of them in this view's frame (each view's with normals
-  /// facing its own teach camera), when something needs them.
+  /// facing its own teach camera); null without joined views.
   std::shared_ptr<const VerifyModel> joined_points;
   double surface_sampling_mm = 0;              ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on

@@ -3,8 +3,10 @@
 /// scene stages, their detections merged, and the merged ones refined.
 
 #include "core/common/Error.h"
+#include "core/common/Log.h"
 #include "core/common/Progress.h"
 #include "core/pipeline/Recognizer.h"
+#include "core/refine/SceneIndex.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,6 +14,7 @@
 
 namespace scanpick::core {
 namespace {
+using Clock = std::chrono::steady_clock;
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -65,8 +68,30 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
     }
   }
   sortBestFirst(merged.detections);
-  merged.detections = suppressDuplicates(std::move(merged.detections), 0.3 * diameter_mm,
-                                         [](const Detection& d) { return d.centre_mm; });
+  const auto t_merge = Clock::now();
+  // Two views' poses of one instance that differ: the one the whole part bears out better.
+  PartScorer on_part; // made when first needed
+  const SameInstanceArbiter prefer = [&](const Detection& kept, const Detection& candidate) {
+    if (!on_part)
+      on_part = recognizer.partScorer(models, scene_mm, sensor, unrefined);
+    const double kept_score = on_part(kept), candidate_score = on_part(candidate);
+    const bool take = candidate_score > kept_score + kPartScoreMargin; // false for NaN
+    logger()->debug("view {}'s pose at ({:.0f}, {:.0f}, {:.0f}) mm scores {:.3f} on the whole "
+                    "part, view {}'s pose of that instance {:.3f}: {}",
+                    candidate.model_index, candidate.centre_mm.x(), candidate.centre_mm.y(),
+                    candidate.centre_mm.z(), candidate_score, kept.model_index, kept_score,
+                    take ? "it takes the other's place" : "it is dropped");
+    return take;
+  };
+  const std::size_t found = merged.detections.size();
+  merged.detections =
+      mergeViewDetections(std::move(merged.detections), models, 0.3 * diameter_mm, prefer);
+  sortBestFirst(merged.detections);
+  const double merge_ms = msSince(t_merge);
+  logger()->debug("the views' {} detections merged into {} in {:.1f} ms", found,
+                  merged.detections.size(), merge_ms);
+  merged.timings.matching_ms += merge_ms;
+  merged.timings.total_ms += merge_ms;
   if (params.matching.max_detections > 0 &&
       merged.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
     merged.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
@@ -88,6 +113,117 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
     merged.timings.total_ms += merged.timings.refine_ms;
   }
   return merged;
+}
+
+namespace {
+
+/// The points of a view and of the views joined to it (its frame, mm), every stride-th so that
+/// about `count` remain; empty when no views are joined (the part's other sides are unknown).
+std::vector<Eigen::Vector3f> partPoints(const TaughtModel& model, std::size_t count) {
+  if (model.joined_views.empty())
+    return {};
+  std::vector<const PointCloud*> clouds{&model.cloud_mm};
+  for (const auto& view : model.joined_views)
+    clouds.push_back(&view.cloud_mm);
+  std::size_t total = 0;
+  for (const PointCloud* cloud : clouds)
+    total += cloud->points_mm.size();
+  const std::size_t stride = std::max<std::size_t>(1, total / count);
+  std::vector<Eigen::Vector3f> points;
+  std::size_t k = 0;
+  for (const PointCloud* cloud : clouds)
+    for (const auto& p : cloud->points_mm)
+      if (k++ % stride == 0 && isValid(p))
+        points.push_back(p);
+  return points;
+}
+
+/// `points` moved by `T`, as an unorganized cloud.
+PointCloud moved(const std::vector<Eigen::Vector3f>& points, const Eigen::Isometry3d& T) {
+  const Eigen::Isometry3f Tf = T.cast<float>();
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(points.size());
+  for (const auto& p : points)
+    out.push_back(Tf * p);
+  return PointCloud::fromPoints(std::move(out));
+}
+
+/// Whether two views' detections put the part (TaughtModel::T_part_model) at poses more than
+/// kSameInstanceMm or kSameInstanceDeg apart; false when a view does not know its place in the
+/// part.
+bool posesDiffer(const Detection& a, const Detection& b,
+                 const std::vector<std::shared_ptr<const TaughtModel>>& models) {
+  const auto& part_a = models[static_cast<std::size_t>(a.model_index)]->T_part_model;
+  const auto& part_b = models[static_cast<std::size_t>(b.model_index)]->T_part_model;
+  if (!part_a || !part_b)
+    return false;
+  const Eigen::Isometry3d T_a = a.T_scene_model * part_a->inverse();
+  const Eigen::Isometry3d T_b = b.T_scene_model * part_b->inverse();
+  const double angle = Eigen::AngleAxisd(T_a.linear().transpose() * T_b.linear()).angle();
+  return (T_a.translation() - T_b.translation()).norm() > kSameInstanceMm ||
+         angle > kSameInstanceDeg * EIGEN_PI / 180.0;
+}
+
+} // namespace
+
+std::vector<Detection>
+mergeViewDetections(std::vector<Detection> detections,
+                    const std::vector<std::shared_ptr<const TaughtModel>>& models,
+                    double min_distance_mm, const SameInstanceArbiter& prefer) {
+  // Each candidate's part points are looked for among about four times as many of the kept one.
+  std::vector<std::vector<Eigen::Vector3f>> sample(models.size()), surface(models.size());
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    sample[m] = partPoints(*models[m], kSameInstanceSample);
+    surface[m] = partPoints(*models[m], 4 * kSameInstanceSample);
+  }
+  const auto part = [&](const std::vector<std::vector<Eigen::Vector3f>>& points,
+                        const Detection& d) -> const std::vector<Eigen::Vector3f>& {
+    if (d.model_index < 0 || static_cast<std::size_t>(d.model_index) >= models.size())
+      throw Error("a detection names model " + std::to_string(d.model_index) + " of " +
+                  std::to_string(models.size()));
+    return points[static_cast<std::size_t>(d.model_index)];
+  };
+  std::vector<Detection> kept;
+  std::vector<std::unique_ptr<const SceneIndex>> kept_surface; // made when first asked
+  SceneIndexOptions nearest_only;
+  nearest_only.estimate_normals = false;
+  const auto max_sq = static_cast<float>(kSameSurfaceMm * kSameSurfaceMm);
+  for (auto& d : detections) {
+    const auto& candidate = part(sample, d);
+    bool duplicate = false;
+    for (std::size_t k = 0; k < kept.size() && !duplicate; ++k) {
+      if ((kept[k].centre_mm - d.centre_mm).norm() >= min_distance_mm)
+        continue;
+      const auto& kept_points = part(surface, kept[k]);
+      if (candidate.empty() || kept_points.empty()) {
+        duplicate = true; // the part's other sides are unknown: near is the same
+        break;
+      }
+      if (!kept_surface[k])
+        kept_surface[k] = std::make_unique<const SceneIndex>(
+            moved(kept_points, kept[k].T_scene_model), nearest_only);
+      const Eigen::Isometry3f T = d.T_scene_model.cast<float>();
+      std::size_t shared = 0;
+      for (const auto& p : candidate)
+        shared += kept_surface[k]->nearest(T * p, max_sq) >= 0 ? 1 : 0;
+      const double share = double(shared) / double(candidate.size());
+      duplicate = share >= kSameInstanceShare;
+      logger()->debug("view {}'s detection at ({:.0f}, {:.0f}, {:.0f}) mm shares {:.2f} of the "
+                      "part's surface with view {}'s there: {}",
+                      d.model_index, d.centre_mm.x(), d.centre_mm.y(), d.centre_mm.z(), share,
+                      kept[k].model_index, duplicate ? "the same instance" : "another instance");
+      if (duplicate && prefer && kept[k].score - d.score <= kSameInstanceTie &&
+          posesDiffer(kept[k], d, models) && prefer(kept[k], d)) {
+        kept[k] = std::move(d);
+        kept_surface[k].reset();
+      }
+    }
+    if (!duplicate) {
+      kept.push_back(std::move(d));
+      kept_surface.emplace_back();
+    }
+  }
+  return kept;
 }
 
 std::vector<Detection> suppressDuplicates(std::vector<Detection> detections, double min_distance_mm,

@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
@@ -670,18 +671,14 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
   return result;
 }
 
-void Recognizer::refine(const std::shared_ptr<const TaughtModel>& model,
-                        std::vector<Detection>& detections, const PointCloud& scene_mm,
-                        const SensorModel& sensor, const RecognitionParams& requested) {
-  requireModel(model, "refine");
-  const RecognitionParams params = withViewParams(requested, model->view_params);
-  if (!params.refine.enabled || detections.empty())
-    return;
+Recognizer::Cache Recognizer::recognizedScene(const PointCloud& scene_mm, const SensorModel& sensor,
+                                              const RecognitionParams& params,
+                                              const char* action) const {
   Cache cache = cacheSnapshot();
   const PreKey pre_key{sceneHash(scene_mm), params.floor, params.downsample, params.seed};
   if (cache.pre_key != pre_key || !cache.pre)
-    throw Error("refinement needs the scene recognized first, with the same floor, downsampling "
-                "and seed");
+    throw Error(std::string(action) + " needs the scene recognized first, with the same floor, "
+                                      "downsampling and seed");
   const std::pair index_key{pre_key, sensorHash(sensor)};
   if (cache.index_key != index_key || !cache.scene_index) {
     SceneIndexOptions options;
@@ -690,6 +687,17 @@ void Recognizer::refine(const std::shared_ptr<const TaughtModel>& model,
     cache.scene_index = std::make_shared<const SceneIndex>(*cache.pre, options);
     cache.index_key = index_key;
   }
+  return cache;
+}
+
+void Recognizer::refine(const std::shared_ptr<const TaughtModel>& model,
+                        std::vector<Detection>& detections, const PointCloud& scene_mm,
+                        const SensorModel& sensor, const RecognitionParams& requested) {
+  requireModel(model, "refine");
+  const RecognitionParams params = withViewParams(requested, model->view_params);
+  if (!params.refine.enabled || detections.empty())
+    return;
+  Cache cache = recognizedScene(scene_mm, sensor, params, "refinement");
   const std::shared_ptr<const ModelPrep> prep =
       detail::prepareModel(cache.model_preps, model, params);
   {
@@ -708,6 +716,46 @@ void Recognizer::refine(const std::shared_ptr<const TaughtModel>& model,
     };
   refineDetections(detections, *prep, *cache.scene_index, params.refine, verify);
   placeDetections(detections, *model, prep.get(), verify ? &verify_scene : nullptr, tolerance);
+}
+
+PartScorer Recognizer::partScorer(const std::vector<std::shared_ptr<const TaughtModel>>& models,
+                                  const PointCloud& scene_mm, const SensorModel& sensor,
+                                  const RecognitionParams& requested) {
+  auto cache = std::make_shared<Cache>(
+      recognizedScene(scene_mm, sensor, requested, "scoring on the whole part"));
+  // Each view's preparation, found (or made) when first asked for.
+  std::vector<std::shared_ptr<const ModelPrep>> preps(models.size());
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    requireModel(models[m], "score on the whole part");
+    preps[m] = detail::prepareModel(cache->model_preps, models[m],
+                                    withViewParams(requested, models[m]->view_params));
+  }
+  {
+    const std::lock_guard lock(m_mutex);
+    m_cache = std::make_shared<Cache>(*cache);
+  }
+  const VerifyScene scene{cache->scene_index.get(), &scene_mm, &sensor, cache->floor_plane,
+                          cache->shadow.get()};
+  return [cache, preps = std::move(preps), scene, models, requested](const Detection& d) {
+    const int view = d.model_index;
+    if (view < 0 || static_cast<std::size_t>(view) >= preps.size())
+      throw Error("a detection names view " + std::to_string(view) + " of " +
+                  std::to_string(preps.size()));
+    const ModelPrep& prep = *preps[static_cast<std::size_t>(view)];
+    const double tolerance =
+        withViewParams(requested, models[static_cast<std::size_t>(view)]->view_params)
+            .matching.verify_tolerance_mm;
+    if (!prep.joined_points || !(tolerance > 0))
+      return std::numeric_limits<double>::quiet_NaN();
+    const VerifyModel& part = *prep.joined_points;
+    const std::size_t stride = std::max<std::size_t>(1, part.points.size() / kPartScorePoints);
+    std::vector<std::uint32_t> every;
+    for (std::size_t k = 0; k < part.points.size(); k += stride)
+      every.push_back(static_cast<std::uint32_t>(k));
+    const PointTally t = tallyPoints(part, scene, d.T_scene_model, tolerance, &every);
+    const double expected = double(t.points) - double(t.hidden) - double(t.shadowed);
+    return expected > 0 ? (double(t.confirmed) - double(t.violations)) / expected : 0.0;
+  };
 }
 
 } // namespace scanpick::core

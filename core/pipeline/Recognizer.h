@@ -42,6 +42,9 @@ struct RecognitionResult {
   std::shared_ptr<const std::vector<FeatureList>> object_features;
 };
 
+/// A detection's score on the whole part (Recognizer::partScorer).
+using PartScorer = std::function<double(const Detection&)>;
+
 /// Runs recognition of one taught model. recognize() may be called from any thread; concurrent
 /// calls are allowed (the cache is locked only while read or written).
 class Recognizer {
@@ -86,6 +89,18 @@ public:
               const PointCloud& scene_mm, const SensorModel& sensor,
               const RecognitionParams& params);
 
+  /// Scores detections of the views `models` (Detection::model_index naming the view) on the
+  /// whole part, in `scene_mm` as the last recognize() call found it: of the points of the view
+  /// and of the views joined to it (TaughtModel::joined_views) at the detection's pose, every few
+  /// of them (about kPartScorePoints), (confirmed − violations) ÷ those the camera should see
+  /// (tallyPoints; neither hidden, turned away nor shadowed). Two views' poses of one instance
+  /// verify each on its own view's points, so their scores do not compare; these do. The scorer
+  /// gives NaN for a view without joined views, throws Error for a view index out of range, and
+  /// holds `scene_mm` and `sensor` by reference. Throws Error as refine() does.
+  [[nodiscard]] PartScorer partScorer(const std::vector<std::shared_ptr<const TaughtModel>>& models,
+                                      const PointCloud& scene_mm, const SensorModel& sensor,
+                                      const RecognitionParams& params);
+
   /// How many model preparations the cache holds (at most 8: views alternate scene after scene).
   [[nodiscard]] std::size_t preparedModels() const;
 
@@ -96,6 +111,10 @@ private:
   struct Cache;
   /// A copy of the cache, taken under the lock.
   [[nodiscard]] Cache cacheSnapshot() const;
+  /// The cache of `scene_mm` as the last recognize() call left it, with the scene indexed for
+  /// verification; throws Error naming `action` when that call recognized another scene.
+  [[nodiscard]] Cache recognizedScene(const PointCloud& scene_mm, const SensorModel& sensor,
+                                      const RecognitionParams& params, const char* action) const;
   mutable std::mutex m_mutex;
   std::shared_ptr<const TaughtModel> m_model;
   std::shared_ptr<Cache> m_cache;
@@ -109,12 +128,13 @@ double prepareViews(Recognizer& recognizer,
 
 /// Finds any of several models in one scene: views of one part, each taught from a scan of
 /// another side it can rest on (one model sees one side only). The scene stages run once (the
-/// recognizer's cache), matching per model; detections are merged best first, and one whose
-/// position (Detection::centre_mm) lies within 0.3 × the larger model diameter of a better one's
-/// is dropped (the same instance seen through another view). With params.refine.enabled the
+/// recognizer's cache), matching per model; detections are merged best first by
+/// mergeViewDetections within 0.3 × the larger model diameter (the same instance seen through
+/// another view). With params.refine.enabled the
 /// detections left are refined after the merge (Recognizer::refine), so that ICP polishes the
 /// detections reported and cannot change which of them the merge keeps. Views that know their
-/// place in the part should be joined first (joinViews, TaughtModel.h). Detection::model_index
+/// place in the part should be joined first (joinViews, TaughtModel.h): only then are two parts
+/// lying close together told apart. Detection::model_index
 /// names the model.
 /// The recognizer's own model is left as it is.
 /// Throws as Recognizer::recognize, and Error for an empty `models`.
@@ -125,6 +145,45 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
 
 /// Highest score first; equal scores keep their order.
 void sortBestFirst(std::vector<Detection>& detections);
+
+/// Two detections near each other are one instance when this share of the later one's part points
+/// lie within kSameSurfaceMm of the earlier one's (mergeViewDetections). On phoxi-bin the same
+/// instance found through two views shares 0.7–1.0, two neighbours 0.0.
+inline constexpr double kSameInstanceShare = 0.2;
+inline constexpr double kSameSurfaceMm = 3.0;
+/// About this many of a candidate's part points are compared (mergeViewDetections).
+inline constexpr std::size_t kSameInstanceSample = 400;
+/// Two views' poses of one instance closer than this (the part's origin, and its rotation) are
+/// the same pose: either is kept (mergeViewDetections).
+inline constexpr double kSameInstanceMm = 3.0;
+inline constexpr double kSameInstanceDeg = 3.0;
+/// Two views' differing poses of one instance whose scores lie this close are a tie that their own
+/// verification cannot break (mergeViewDetections asks its `prefer`).
+inline constexpr double kSameInstanceTie = 0.01;
+/// About this many of the whole part's points are tallied (Recognizer::partScores).
+inline constexpr std::size_t kPartScorePoints = 2000;
+/// A later view's pose of an instance takes the place of a better-verified one when it scores this
+/// much higher on the whole part (recognizeViews).
+inline constexpr double kPartScoreMargin = 0.05;
+
+/// Whether `candidate`, a later (lower-scoring) detection of the instance `kept` is, should take
+/// its place (mergeViewDetections).
+using SameInstanceArbiter = std::function<bool(const Detection& kept, const Detection& candidate)>;
+
+/// Merges the detections of several views of one part (`detections` sorted best first,
+/// Detection::model_index naming the view in `models`): a detection whose Detection::centre_mm
+/// lies within `min_distance_mm` of a kept one's is dropped as the same instance, except where the
+/// views are joined (TaughtModel::joined_views), which give each view the part's other sides: then
+/// it is dropped only when its part's points, at its pose, lie on the kept one's surface
+/// (kSameInstanceShare within kSameSurfaceMm). Parts cannot pass through each other, so two lying
+/// close together share little of their surface, while a view's pose of an instance another view
+/// found, right or wrong, shares a face or more. Where the two poses differ (kSameInstanceMm,
+/// kSameInstanceDeg), `prefer` (when set) may give the later one the earlier one's place. Keeps
+/// the input order otherwise. Throws Error for a model index out of range.
+std::vector<Detection>
+mergeViewDetections(std::vector<Detection> detections,
+                    const std::vector<std::shared_ptr<const TaughtModel>>& models,
+                    double min_distance_mm, const SameInstanceArbiter& prefer = {});
 
 /// Where a detection lies, for suppressDuplicates (scene frame, mm).
 using DetectionPosition = std::function<Eigen::Vector3d(const Detection&)>;

@@ -143,6 +143,96 @@ TEST(Recognizer, SuppressesDuplicatesCloserThanTheDistance) {
   EXPECT_EQ(kept[1].score, 0.7);
 }
 
+namespace {
+/// A 60 x 40 x 10 mm block's face at z = 10 (x, y in [0, 60] x [0, 40]) or at x = 0, as a view
+/// would scan it, 1 mm apart.
+PointCloud blockFace(bool top) {
+  std::vector<Eigen::Vector3f> points;
+  for (int i = 0; i <= (top ? 60 : 10); ++i)
+    for (int j = 0; j <= 40; ++j)
+      points.emplace_back(top ? float(i) : 0.0f, float(j), top ? 10.0f : float(i));
+  return PointCloud::fromPoints(std::move(points));
+}
+
+Detection detectionAt(int view, double score, const Eigen::Isometry3d& T_scene_model) {
+  Detection d;
+  d.model_index = view;
+  d.score = score;
+  d.T_scene_model = T_scene_model;
+  d.centre_mm = T_scene_model * Eigen::Vector3d(30, 20, 5);
+  return d;
+}
+
+/// Two views of one block, its top and a side, each knowing the other's points and its place in
+/// the block (both frames the block's); unjoined: knowing neither.
+std::vector<std::shared_ptr<const TaughtModel>> blockViews(bool joined) {
+  auto top = std::make_shared<TaughtModel>(), side = std::make_shared<TaughtModel>();
+  top->cloud_mm = blockFace(true);
+  side->cloud_mm = blockFace(false);
+  if (joined) {
+    top->joined_views = {{"side.pcd", side->cloud_mm, Eigen::Vector3d(-500, 20, 5)}};
+    side->joined_views = {{"top.pcd", top->cloud_mm, Eigen::Vector3d(30, 20, 500)}};
+    top->T_part_model = side->T_part_model = Eigen::Isometry3d::Identity();
+  }
+  return {top, side};
+}
+} // namespace
+
+TEST(Recognizer, JoinedViewsKeepTwoPartsLyingCloseButDropOneInstanceFoundTwice) {
+  const std::vector<std::shared_ptr<const TaughtModel>> views = blockViews(true);
+  Eigen::Isometry3d beside = Eigen::Isometry3d::Identity();
+  beside.translation() = Eigen::Vector3d(0, 45, 0);         // 5 mm between the blocks
+  Eigen::Isometry3d turned = Eigen::Isometry3d::Identity(); // half a turn about its own centre
+  turned.linear() = Eigen::AngleAxisd(EIGEN_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  turned.translation() = Eigen::Vector3d(60, 40, 0);
+  const std::vector<Detection> found{
+      detectionAt(0, 0.9, Eigen::Isometry3d::Identity()),
+      detectionAt(1, 0.8, Eigen::Isometry3d::Identity()), // the same block through the side view
+      detectionAt(0, 0.7, beside),                        // its neighbour, 45 mm away
+      detectionAt(1, 0.6, turned)};                       // the first block turned: same surface
+  const auto kept = mergeViewDetections(found, views, 50.0);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].score, 0.9);
+  EXPECT_EQ(kept[1].score, 0.7);
+
+  // Without the joined views nothing tells the neighbour from the block: near is the same.
+  const auto alone = mergeViewDetections(found, blockViews(false), 50.0);
+  ASSERT_EQ(alone.size(), 1u);
+  EXPECT_EQ(alone[0].score, 0.9);
+  EXPECT_THROW(mergeViewDetections({detectionAt(2, 0.5, beside)}, views, 50.0), Error);
+}
+
+TEST(Recognizer, ATieBetweenTwoViewsDifferingPosesOfOneInstanceIsLeftToPrefer) {
+  const std::vector<std::shared_ptr<const TaughtModel>> views = blockViews(true);
+  // The block turned 5° about its own centre: the same instance at another pose.
+  const Eigen::Isometry3d turned =
+      Eigen::Translation3d(30, 20, 5) *
+      Eigen::AngleAxisd(5.0 * EIGEN_PI / 180.0, Eigen::Vector3d::UnitZ()) *
+      Eigen::Translation3d(-30, -20, -5);
+  int asked = 0;
+  const SameInstanceArbiter later_wins = [&](const Detection& kept, const Detection& candidate) {
+    ++asked;
+    EXPECT_GT(kept.score, candidate.score);
+    return true;
+  };
+  const Detection first = detectionAt(0, 0.900, Eigen::Isometry3d::Identity());
+  // A tie at another pose: `prefer` decides, and the later one takes the place.
+  auto kept = mergeViewDetections({first, detectionAt(1, 0.895, turned)}, views, 50.0, later_wins);
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].model_index, 1);
+  EXPECT_EQ(asked, 1);
+  // Not a tie: the better one stays without asking.
+  kept = mergeViewDetections({first, detectionAt(1, 0.880, turned)}, views, 50.0, later_wins);
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].model_index, 0);
+  // A tie at the same pose: either will do, nothing to ask.
+  kept = mergeViewDetections({first, detectionAt(1, 0.899, Eigen::Isometry3d::Identity())}, views,
+                             50.0, later_wins);
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].model_index, 0);
+  EXPECT_EQ(asked, 1);
+}
+
 TEST(Recognizer, PooledSearchFindsEveryCopyInOneUnsplitScene) {
   // No clustering: the three copies are one object, as touching parts in a bin are.
   RecognitionParams params = test::idealParams(0.001);
