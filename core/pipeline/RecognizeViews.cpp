@@ -15,15 +15,15 @@
 namespace scanpick::core {
 namespace {
 using Clock = std::chrono::steady_clock;
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 } // namespace
 
 double prepareViews(Recognizer& recognizer,
                     const std::vector<std::shared_ptr<const TaughtModel>>& models,
                     const RecognitionParams& params) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   for (const auto& model : models)
     recognizer.prepare(model, params);
   return msSince(t0);
@@ -96,7 +96,7 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
       merged.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
     merged.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
   if (params.refine.enabled) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     std::vector<Detection> refined;
     for (std::size_t m = 0; m < models.size(); ++m) {
       std::vector<Detection> of_view;
@@ -226,15 +226,13 @@ mergeViewDetections(std::vector<Detection> detections,
   return kept;
 }
 
-std::vector<Detection> suppressDuplicates(std::vector<Detection> detections, double min_distance_mm,
-                                          const DetectionPosition& position) {
-  const auto at = [&](const Detection& d) {
-    return position ? position(d) : Eigen::Vector3d(d.T_scene_model.translation());
-  };
+std::vector<Detection> suppressDuplicates(std::vector<Detection> detections,
+                                          double min_distance_mm) {
   std::vector<Detection> kept;
   for (auto& d : detections) {
     const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const Detection& k) {
-      return (at(k) - at(d)).norm() < min_distance_mm;
+      return (k.T_scene_model.translation() - d.T_scene_model.translation()).norm() <
+             min_distance_mm;
     });
     if (!duplicate)
       kept.push_back(std::move(d));

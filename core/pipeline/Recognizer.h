@@ -185,13 +185,9 @@ mergeViewDetections(std::vector<Detection> detections,
                     const std::vector<std::shared_ptr<const TaughtModel>>& models,
                     double min_distance_mm, const SameInstanceArbiter& prefer = {});
 
-/// Where a detection lies, for suppressDuplicates (scene frame, mm).
-using DetectionPosition = std::function<Eigen::Vector3d(const Detection&)>;
-
-/// Removes duplicates: detections (sorted best first) whose positions are closer than
-/// `min_distance_mm` to a better one's are dropped; the position is `position`'s, or the model
-/// origin when it is empty. Keeps the input order otherwise.
-std::vector<Detection> suppressDuplicates(std::vector<Detection> detections, double min_distance_mm,
-                                          const DetectionPosition& position = {});
+/// Removes duplicates: detections (sorted best first) whose model origins (scene frame) lie
+/// closer than `min_distance_mm` to a better one's are dropped. Keeps the input order otherwise.
+std::vector<Detection> suppressDuplicates(std::vector<Detection> detections,
+                                          double min_distance_mm);
 
 } // namespace scanpick::core
