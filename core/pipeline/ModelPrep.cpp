@@ -321,7 +321,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
   if (joined_refine && !prep->joined_refine)
     prep->joined_refine = joinedRefineModel(joined(), kJoinedRefineViews * points);
   if (!model->joined_views.empty())
-    joined(); // the whole part, for the views' merge (Recognizer::partScores)
+    joined(); // the whole part, for the views' merge (Recognizer::partScorer)
   if (sampling > 0 && (!prep->pairs || prep->surface_sampling_mm != sampling)) {
     prep->pairs = std::make_shared<const PointPairModel>(
         sampleOriented(prep->verify->points, prep->verify->normals, sampling), sampling);

@@ -723,12 +723,27 @@ PartScorer Recognizer::partScorer(const std::vector<std::shared_ptr<const Taught
                                   const RecognitionParams& requested) {
   auto cache = std::make_shared<Cache>(
       recognizedScene(scene_mm, sensor, requested, "scoring on the whole part"));
-  // Each view's preparation, found (or made) when first asked for.
-  std::vector<std::shared_ptr<const ModelPrep>> preps(models.size());
+  // What each view is scored with: its preparation's whole part, every few of its points, and the
+  // view's verification tolerance.
+  struct ViewPart {
+    std::shared_ptr<const VerifyModel> points; ///< null: the view has no joined views
+    std::vector<std::uint32_t> every;
+    double tolerance_mm = 0.0;
+  };
+  std::vector<ViewPart> views(models.size());
   for (std::size_t m = 0; m < models.size(); ++m) {
     requireModel(models[m], "score on the whole part");
-    preps[m] = detail::prepareModel(cache->model_preps, models[m],
-                                    withViewParams(requested, models[m]->view_params));
+    const RecognitionParams params = withViewParams(requested, models[m]->view_params);
+    const auto prep = detail::prepareModel(cache->model_preps, models[m], params);
+    ViewPart& view = views[m];
+    view.tolerance_mm = params.matching.verify_tolerance_mm;
+    if (!prep->joined_points || !(view.tolerance_mm > 0))
+      continue;
+    view.points = prep->joined_points;
+    const std::size_t count = view.points->points.size();
+    const std::size_t stride = std::max<std::size_t>(1, count / kPartScorePoints);
+    for (std::size_t k = 0; k < count; k += stride)
+      view.every.push_back(static_cast<std::uint32_t>(k));
   }
   {
     const std::lock_guard lock(m_mutex);
@@ -736,23 +751,16 @@ PartScorer Recognizer::partScorer(const std::vector<std::shared_ptr<const Taught
   }
   const VerifyScene scene{cache->scene_index.get(), &scene_mm, &sensor, cache->floor_plane,
                           cache->shadow.get()};
-  return [cache, preps = std::move(preps), scene, models, requested](const Detection& d) {
-    const int view = d.model_index;
-    if (view < 0 || static_cast<std::size_t>(view) >= preps.size())
-      throw Error("a detection names view " + std::to_string(view) + " of " +
-                  std::to_string(preps.size()));
-    const ModelPrep& prep = *preps[static_cast<std::size_t>(view)];
-    const double tolerance =
-        withViewParams(requested, models[static_cast<std::size_t>(view)]->view_params)
-            .matching.verify_tolerance_mm;
-    if (!prep.joined_points || !(tolerance > 0))
+  // `cache` keeps what `scene` points to alive.
+  return [cache, views = std::move(views), scene](const Detection& d) {
+    if (d.model_index < 0 || static_cast<std::size_t>(d.model_index) >= views.size())
+      throw Error("a detection names view " + std::to_string(d.model_index) + " of " +
+                  std::to_string(views.size()));
+    const ViewPart& view = views[static_cast<std::size_t>(d.model_index)];
+    if (!view.points)
       return std::numeric_limits<double>::quiet_NaN();
-    const VerifyModel& part = *prep.joined_points;
-    const std::size_t stride = std::max<std::size_t>(1, part.points.size() / kPartScorePoints);
-    std::vector<std::uint32_t> every;
-    for (std::size_t k = 0; k < part.points.size(); k += stride)
-      every.push_back(static_cast<std::uint32_t>(k));
-    const PointTally t = tallyPoints(part, scene, d.T_scene_model, tolerance, &every);
+    const PointTally t =
+        tallyPoints(*view.points, scene, d.T_scene_model, view.tolerance_mm, &view.every);
     const double expected = double(t.points) - double(t.hidden) - double(t.shadowed);
     return expected > 0 ? (double(t.confirmed) - double(t.violations)) / expected : 0.0;
   };

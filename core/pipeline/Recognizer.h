@@ -160,7 +160,7 @@ inline constexpr double kSameInstanceDeg = 3.0;
 /// Two views' differing poses of one instance whose scores lie this close are a tie that their own
 /// verification cannot break (mergeViewDetections asks its `prefer`).
 inline constexpr double kSameInstanceTie = 0.01;
-/// About this many of the whole part's points are tallied (Recognizer::partScores).
+/// About this many of the whole part's points are tallied (Recognizer::partScorer).
 inline constexpr std::size_t kPartScorePoints = 2000;
 /// A later view's pose of an instance takes the place of a better-verified one when it scores this
 /// much higher on the whole part (recognizeViews).
@@ -178,8 +178,9 @@ using SameInstanceArbiter = std::function<bool(const Detection& kept, const Dete
 /// (kSameInstanceShare within kSameSurfaceMm). Parts cannot pass through each other, so two lying
 /// close together share little of their surface, while a view's pose of an instance another view
 /// found, right or wrong, shares a face or more. Where the two poses differ (kSameInstanceMm,
-/// kSameInstanceDeg), `prefer` (when set) may give the later one the earlier one's place. Keeps
-/// the input order otherwise. Throws Error for a model index out of range.
+/// kSameInstanceDeg), `prefer` (when set) may give the later one the earlier one's place (and its
+/// place in the order). Keeps the input order otherwise. Throws Error for a model index out of
+/// range.
 std::vector<Detection>
 mergeViewDetections(std::vector<Detection> detections,
                     const std::vector<std::shared_ptr<const TaughtModel>>& models,
