@@ -56,26 +56,27 @@ std::vector<Eigen::Vector3f> pointNormals(const PointCloud& cloud, const detail:
                    std::all_of(valid.begin(), valid.end(), [&](int i) {
                      return cloud.normals[static_cast<std::size_t>(i)].allFinite();
                    });
-  forEachValid(valid.size(), progress, 0.0, 1.0, [&](std::size_t j, std::vector<int>& neighbours) {
+  forEachValid(valid.size(), progress, 0.0, 1.0, [&](std::size_t j, std::vector<int>& /*scratch*/) {
     const auto i = static_cast<std::size_t>(valid[j]);
     const Eigen::Vector3f& p = cloud.points_mm[i];
     Eigen::Vector3f n;
     if (own) {
       n = cloud.normals[i].normalized();
     } else {
-      nb.radius(valid[j], radius_mm, neighbours);
-      if (neighbours.size() < 3)
-        return;
       // One pass, relative to the point itself: offsets are at most the radius, so float sums
       // keep their precision.
       Eigen::Vector3f sum = Eigen::Vector3f::Zero();
       Eigen::Matrix3f outer = Eigen::Matrix3f::Zero();
-      for (int k : neighbours) {
+      std::size_t found = 0;
+      nb.forEachWithin(valid[j], radius_mm, [&](int k) {
         const Eigen::Vector3f d = cloud.points_mm[static_cast<std::size_t>(k)] - p;
         sum += d;
         outer.noalias() += d * d.transpose();
-      }
-      const double count = static_cast<double>(neighbours.size());
+        ++found;
+      });
+      if (found < 3)
+        return;
+      const double count = static_cast<double>(found);
       const Eigen::Vector3d mean = sum.cast<double>() / count;
       const Eigen::Matrix3d cov = outer.cast<double>() / count - mean * mean.transpose();
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
@@ -106,12 +107,14 @@ Keypoints neighbourhoodAnalysis(const PointCloud& cloud_mm, const KeypointParams
   const auto& valid = nb.validIndices();
   std::vector<char> keep(valid.size(), 0);
   const double range_sq = params.position_range_mm * params.position_range_mm;
-  forEachValid(valid.size(), progress, 0.0, 1.0, [&](std::size_t j, std::vector<int>& neighbours) {
-    nb.radius(valid[j], params.neighbourhood_radius_mm, neighbours);
+  forEachValid(valid.size(), progress, 0.0, 1.0, [&](std::size_t j, std::vector<int>& /*scratch*/) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (int k : neighbours)
+    std::size_t found = 0;
+    nb.forEachWithin(valid[j], params.neighbourhood_radius_mm, [&](int k) {
       sum += cloud_mm.points_mm[static_cast<std::size_t>(k)].cast<double>();
-    const Eigen::Vector3d centroid = sum / static_cast<double>(neighbours.size());
+      ++found;
+    });
+    const Eigen::Vector3d centroid = sum / static_cast<double>(found);
     keep[j] = (centroid - cloud_mm.points_mm[static_cast<std::size_t>(valid[j])].cast<double>())
                   .squaredNorm() >= range_sq;
   });

@@ -82,28 +82,22 @@ Neighbourhoods::Neighbourhoods(const PointCloud& cloud, double max_radius_mm) : 
 
 Neighbourhoods::~Neighbourhoods() = default;
 
+int Neighbourhoods::halfWindow(const Eigen::Vector3f& p, double radius_mm) const {
+  const double depth = static_cast<double>(p.norm());
+  return depth > radius_mm * 1.01
+             ? std::min(kMaxHalfWindow,
+                        static_cast<int>(std::ceil(std::asin(radius_mm / depth) / m_pixel_angle)))
+             : kMaxHalfWindow;
+}
+
 void Neighbourhoods::radius(int index, double radius_mm, std::vector<int>& out) const {
   out.clear();
-  const Eigen::Vector3f p = m_cloud.points_mm[static_cast<std::size_t>(index)];
-  const float r2 = static_cast<float>(radius_mm * radius_mm);
   if (m_organized) {
-    const double depth = static_cast<double>(p.norm());
-    const int half = depth > radius_mm * 1.01
-                         ? std::min(kMaxHalfWindow,
-                                    static_cast<int>(std::ceil(std::asin(radius_mm / depth) / m_pixel_angle)))
-                         : kMaxHalfWindow;
-    const int w = static_cast<int>(m_cloud.width), h = static_cast<int>(m_cloud.height);
-    const int row = index / w, col = index % w;
-    for (int r = std::max(0, row - half); r <= std::min(h - 1, row + half); ++r) {
-      const std::size_t base = static_cast<std::size_t>(r) * static_cast<std::size_t>(w);
-      for (int c = std::max(0, col - half); c <= std::min(w - 1, col + half); ++c) {
-        const auto& q = m_cloud.points_mm[base + static_cast<std::size_t>(c)];
-        if ((q - p).squaredNorm() <= r2)  // false for NaN
-          out.push_back(static_cast<int>(base) + c);
-      }
-    }
+    forEachWithin(index, radius_mm, [&](int j) { out.push_back(j); });
     return;
   }
+  const Eigen::Vector3f p = m_cloud.points_mm[static_cast<std::size_t>(index)];
+  const float r2 = static_cast<float>(radius_mm * radius_mm);
   std::vector<std::pair<std::uint32_t, float>> matches;
   m_tree->index.radiusSearch(p.data(), r2, matches, nanoflann::SearchParams(32, 0, false));
   out.reserve(matches.size());

@@ -5,6 +5,7 @@
 
 #include "core/cloud/PointCloud.h"
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -28,12 +29,39 @@ public:
   /// Appends to `out` the indices of all valid points within `radius_mm` of point `index`
   /// (itself included); `out` is cleared first. `radius_mm` <= the constructor's maximum.
   void radius(int index, double radius_mm, std::vector<int>& out) const;
+  /// Calls `visit(j)` for the indices radius() gives, in the same order, without collecting them.
+  template <typename Visit> void forEachWithin(int index, double radius_mm, Visit&& visit) const {
+    if (!m_organized) {
+      thread_local std::vector<int> found;
+      radius(index, radius_mm, found);
+      for (const int j : found)
+        visit(j);
+      return;
+    }
+    const Eigen::Vector3f p = m_cloud.points_mm[static_cast<std::size_t>(index)];
+    const float r2 = static_cast<float>(radius_mm * radius_mm);
+    const int half = halfWindow(p, radius_mm);
+    const int w = static_cast<int>(m_cloud.width), h = static_cast<int>(m_cloud.height);
+    const int row = index / w, col = index % w;
+    for (int r = std::max(0, row - half); r <= std::min(h - 1, row + half); ++r) {
+      const std::size_t base = static_cast<std::size_t>(r) * static_cast<std::size_t>(w);
+      for (int c = std::max(0, col - half); c <= std::min(w - 1, col + half); ++c) {
+        const auto& q = m_cloud.points_mm[base + static_cast<std::size_t>(c)];
+        if ((q - p).squaredNorm() <= r2) // false for NaN
+          visit(static_cast<int>(base) + c);
+      }
+    }
+  }
   /// The `n` nearest valid points to point `index` (itself excluded), nearest first; fewer
   /// when the cloud or the window holds fewer. Organized clouds search a pixel window
   /// holding at least 2n pixels.
   void nearest(int index, int n, std::vector<int>& out) const;
 
 private:
+  /// Organized clouds: the half size (pixels) of the window holding the ball of `radius_mm` about
+  /// `p`.
+  [[nodiscard]] int halfWindow(const Eigen::Vector3f& p, double radius_mm) const;
+
   struct Tree;
   const PointCloud& m_cloud;
   std::vector<int> m_valid;

@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <tuple>
+#include <type_traits>
 
 namespace scanpick::core {
 namespace {
@@ -160,9 +162,40 @@ std::uint32_t PairQuantizer::key(const Eigen::Vector3f& p1, const Eigen::Vector3
   return ((d_bin * half + a1) * half + a2) * half + a3;
 }
 
+void PairKeySet::add(const PointPairModel& model) {
+  const std::uint32_t end = model.keyEnd();
+  if (m_bits.size() < (end + 63) / 64)
+    m_bits.resize((end + 63) / 64, 0);
+  for (std::uint32_t key = 0; key < end; ++key)
+    if (model.inTable(key))
+      m_bits[key >> 6] |= std::uint64_t{1} << (key & 63);
+}
+
+void PairKeySet::add(const PairKeySet& other) {
+  if (m_bits.size() < other.m_bits.size())
+    m_bits.resize(other.m_bits.size(), 0);
+  for (std::size_t i = 0; i < other.m_bits.size(); ++i)
+    m_bits[i] |= other.m_bits[i];
+}
+
+bool PairKeySet::within(const PairKeySet& other) const {
+  for (std::size_t i = 0; i < m_bits.size(); ++i)
+    if ((m_bits[i] & ~(i < other.m_bits.size() ? other.m_bits[i] : 0)) != 0)
+      return false;
+  return true;
+}
+
+bool PairKeySet::covers(const PointPairModel& model) const {
+  for (std::uint32_t key = 0; key < model.keyEnd(); ++key)
+    if (model.inTable(key) && !contains(key))
+      return false;
+  return true;
+}
+
 ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantizer,
-                       int reference_stride, double radius_mm, const ProgressFn& progress)
-    : m_quantizer(quantizer), m_radius_mm(radius_mm) {
+                       int reference_stride, double radius_mm, std::optional<PairKeySet> keys,
+                       const ProgressFn& progress)
+    : m_quantizer(quantizer), m_radius_mm(radius_mm), m_keys(std::move(keys)) {
   const std::size_t n_scene = scene.points.size();
   if (scene.normals.size() != n_scene)
     throw Error("scene pairs: points and normals differ in count");
@@ -183,7 +216,7 @@ ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantiz
         m_to_local[r] = localFrame(scene.points[s], scene.normals[s]);
         pairReference(
             scene, tree, s, m_to_local[r], m_quantizer, radius_sq,
-            [](std::uint32_t) { return true; }, m_pairs[r]);
+            [&](std::uint32_t k) { return !m_keys || m_keys->contains(k); }, m_pairs[r]);
       },
       64);
 }
@@ -260,9 +293,9 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
 
 std::vector<VotedPose> PointPairModel::vote(const ScenePairs& scene, const VotingOptions& options,
                                             const ProgressFn& progress) const {
-  if (!(scene.quantizer() == m_quantizer) || scene.radius() < m_diameter_mm)
-    throw Error("point pair voting: the scene was paired with another quantization or within a "
-                "smaller radius than the model's diameter");
+  if (!scene.covers(*this))
+    throw Error("point pair voting: the scene was paired with another quantization, within a "
+                "smaller radius than the model's diameter or for other keys");
   std::vector<ReferencePeak> peaks(scene.referenceCount());
   parallelForWithProgress(
       peaks.size(), progress,
@@ -274,8 +307,9 @@ std::vector<VotedPose> PointPairModel::vote(const ScenePairs& scene, const Votin
   return clustered(std::move(peaks), options);
 }
 
-bool PointPairModel::inTable(std::uint32_t key) const {
-  return key + 1 < m_offsets.size() && m_offsets[key] != m_offsets[key + 1];
+bool ScenePairs::covers(const PointPairModel& model) const {
+  return m_quantizer == model.quantizer() && m_radius_mm >= model.diameter() &&
+         (!m_keys || m_keys->covers(model));
 }
 
 PointPairModel::ReferencePeak PointPairModel::peakOf(const ScenePairs::Pair* begin,
@@ -284,9 +318,7 @@ PointPairModel::ReferencePeak PointPairModel::peakOf(const ScenePairs::Pair* beg
                                                      const Eigen::Isometry3f& to_local,
                                                      const VotingOptions& options) const {
   const auto n_model = m_model.points.size();
-  const auto bins = static_cast<std::size_t>(m_quantizer.angleBins());
   const auto radius_sq = static_cast<float>(m_diameter_mm * m_diameter_mm);
-  std::vector<std::uint16_t> accumulator(n_model * bins, 0);
   // Self-voting: the model points near the reference, found once instead of per table entry.
   std::vector<std::uint8_t> excluded;
   if (options.exclude_self_mm > 0) {
@@ -295,35 +327,56 @@ PointPairModel::ReferencePeak PointPairModel::peakOf(const ScenePairs::Pair* beg
     for (std::size_t m = 0; m < n_model; ++m)
       excluded[m] = (m_model.points[m] - reference).squaredNorm() < exclude_sq;
   }
-  for (const ScenePairs::Pair* pair = begin; pair != end; ++pair) {
-    // Strictly within the diameter, as the radius search finds them.
-    if (pair->distance_sq >= radius_sq || !inTable(pair->key))
-      continue;
-    const Entry* last = m_table.data() + m_offsets[pair->key + 1];
-    for (const Entry* e = m_table.data() + m_offsets[pair->key]; e != last; ++e) {
-      if (!excluded.empty() && excluded[e->model_point])
+  // Strictly within the diameter, as the radius search finds them.
+  const auto voting = [&](const ScenePairs::Pair& pair) {
+    return pair.distance_sq < radius_sq && inTable(pair.key);
+  };
+  // Counters that hold every vote the reference casts, so the loop never checks them: 16 bits
+  // while they do (they stay in the first-level cache), 32 bits otherwise.
+  std::size_t votes_cast = 0;
+  for (const ScenePairs::Pair* pair = begin; pair != end; ++pair)
+    if (voting(*pair))
+      votes_cast += m_offsets[pair->key + 1] - m_offsets[pair->key];
+  if (votes_cast > std::size_t{std::numeric_limits<std::int32_t>::max()})
+    throw Error("point pair voting: one reference point casts more than 2^31 votes (raise the "
+                "surface sampling)");
+  const auto tally = [&](auto counter, auto excluding) {
+    using Count = decltype(counter);
+    const auto bins = static_cast<std::size_t>(m_quantizer.angleBins());
+    std::vector<Count> accumulator(n_model * bins, 0);
+    for (const ScenePairs::Pair* pair = begin; pair != end; ++pair) {
+      if (!voting(*pair))
         continue;
-      const auto alpha = static_cast<std::uint16_t>(e->alpha - pair->alpha); // modulo 2π
-      const std::size_t bin = (std::size_t{alpha} * bins) >> 16;
-      auto& cell = accumulator[e->model_point * bins + bin];
-      if (cell < 0xFFFF)
-        ++cell;
+      const Entry* last = m_table.data() + m_offsets[pair->key + 1];
+      for (const Entry* e = m_table.data() + m_offsets[pair->key]; e != last; ++e) {
+        if constexpr (excluding)
+          if (excluded[e->model_point])
+            continue;
+        const auto alpha = static_cast<std::uint16_t>(e->alpha - pair->alpha); // modulo 2π
+        ++accumulator[e->model_point * bins + ((std::size_t{alpha} * bins) >> 16)];
+      }
     }
-  }
-  // The most votes (a loop the compiler vectorizes), then the first cell holding them.
-  std::uint16_t most = 0;
-  for (const std::uint16_t votes : accumulator)
-    most = std::max(most, votes);
-  ReferencePeak out;
-  out.votes = most;
-  if (out.votes == 0)
+    // The most votes (a loop the compiler vectorizes), then the first cell holding them.
+    Count most = 0;
+    for (const Count votes : accumulator)
+      most = std::max(most, votes);
+    ReferencePeak out;
+    out.votes = static_cast<int>(most);
+    if (out.votes == 0)
+      return out;
+    const auto cell = static_cast<std::size_t>(
+        std::find(accumulator.begin(), accumulator.end(), most) - accumulator.begin());
+    const std::size_t m = cell / bins;
+    const float alpha = (float(cell % bins) + 0.5f) * (kTwoPi / float(bins));
+    out.T = to_local.inverse() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) * m_to_local[m];
     return out;
-  const auto cell = static_cast<std::size_t>(
-      std::find(accumulator.begin(), accumulator.end(), most) - accumulator.begin());
-  const std::size_t m = cell / bins;
-  const float alpha = (float(cell % bins) + 0.5f) * (kTwoPi / float(bins));
-  out.T = to_local.inverse() * Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()) * m_to_local[m];
-  return out;
+  };
+  const bool narrow = votes_cast <= 0xFFFF;
+  if (excluded.empty())
+    return narrow ? tally(std::uint16_t{}, std::false_type{})
+                  : tally(std::uint32_t{}, std::false_type{});
+  return narrow ? tally(std::uint16_t{}, std::true_type{})
+                : tally(std::uint32_t{}, std::true_type{});
 }
 
 std::vector<VotedPose> PointPairModel::clustered(std::vector<ReferencePeak> raw,

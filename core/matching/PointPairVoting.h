@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace scanpick::core {
@@ -88,17 +89,46 @@ private:
   std::vector<std::uint8_t> m_bin_guess;
 };
 
+class PointPairModel;
+
+/// The keys of one or more point pair tables: the scene pairs that any of them votes with. Most
+/// scene pairs have a key no view of a part holds (nine in ten for the phoxi-bin parts), and a
+/// pairing that keeps only the others needs their angles only.
+class PairKeySet {
+public:
+  /// The keys of `model`'s table, added.
+  void add(const PointPairModel& model);
+  [[nodiscard]] bool contains(std::uint32_t key) const {
+    return (key >> 6) < m_bits.size() && ((m_bits[key >> 6] >> (key & 63)) & 1u) != 0;
+  }
+  /// The keys of `other`, added.
+  void add(const PairKeySet& other);
+  /// Whether every key of `model`'s table is in the set.
+  [[nodiscard]] bool covers(const PointPairModel& model) const;
+  /// Whether every key of this set is in `other`.
+  [[nodiscard]] bool within(const PairKeySet& other) const;
+
+private:
+  std::vector<std::uint64_t> m_bits;
+};
+
 /// The scene side of the voting: each reference point's local frame and the pairs it makes with
 /// its neighbours within a radius, keyed. It depends on the scene, the reference stride, the
-/// quantizer and the radius only, so the views of a part that sample their surfaces alike vote
-/// with one ScenePairs per scene instead of pairing the scene again each. Immutable.
+/// quantizer, the radius and the keys kept only, so the views of a part that sample their
+/// surfaces alike vote with one ScenePairs per scene instead of pairing the scene again each.
+/// Immutable.
 class ScenePairs {
 public:
   /// Every `reference_stride`-th point of `scene` (scene frame, mm) pairs with its neighbours
-  /// within `radius_mm`. Parallel (TBB) and deterministic; throws Cancelled when `progress` asks
-  /// to stop.
+  /// within `radius_mm`; with `keys`, only the pairs of a key in it are kept (the views that will
+  /// vote with them: see covers()). Parallel (TBB) and deterministic; throws Cancelled when
+  /// `progress` asks to stop.
   ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantizer, int reference_stride,
-             double radius_mm, const ProgressFn& progress = {});
+             double radius_mm, std::optional<PairKeySet> keys = std::nullopt,
+             const ProgressFn& progress = {});
+  /// Whether `model` can vote with these pairs as with the scene itself: the same quantizer, a
+  /// radius of at least its diameter and, when only some keys were kept, all of its keys.
+  [[nodiscard]] bool covers(const PointPairModel& model) const;
 
   /// One keyed pair of a reference point.
   struct Pair {
@@ -125,6 +155,7 @@ public:
 private:
   PairQuantizer m_quantizer;
   double m_radius_mm;
+  std::optional<PairKeySet> m_keys; ///< the keys kept; none: every key
   std::vector<Eigen::Vector3f> m_reference_points;
   std::vector<Eigen::Isometry3f> m_to_local;
   std::vector<std::vector<Pair>> m_pairs; ///< per reference
@@ -145,9 +176,8 @@ public:
                                             const VotingOptions& options,
                                             const ProgressFn& progress = {}) const;
   /// The same with the scene already paired (its stride replaces options.reference_stride): the
-  /// same poses as vote(scene, options) when `scene` was paired with this model's quantizer and at
-  /// least its diameter() as radius (only the pairs within the diameter vote). Throws Error
-  /// otherwise.
+  /// same poses as vote(scene, options) when the pairs cover this model (ScenePairs::covers; only
+  /// the pairs within the diameter vote). Throws Error otherwise.
   [[nodiscard]] std::vector<VotedPose> vote(const ScenePairs& scene, const VotingOptions& options,
                                             const ProgressFn& progress = {}) const;
 
@@ -156,6 +186,14 @@ public:
   /// Largest distance between two sampled model points (mm): the scene search radius.
   [[nodiscard]] double diameter() const { return m_diameter_mm; }
   [[nodiscard]] const PairQuantizer& quantizer() const { return m_quantizer; }
+  /// Whether the table holds pairs of `key`.
+  [[nodiscard]] bool inTable(std::uint32_t key) const {
+    return key + 1 < m_offsets.size() && m_offsets[key] != m_offsets[key + 1];
+  }
+  /// One more than the largest key in the table (0 when empty).
+  [[nodiscard]] std::uint32_t keyEnd() const {
+    return m_offsets.empty() ? 0 : static_cast<std::uint32_t>(m_offsets.size() - 1);
+  }
 
 private:
   /// One model pair, 4 bytes so that the table streams through the cache while voting.
@@ -171,7 +209,6 @@ private:
     Eigen::Isometry3f T = Eigen::Isometry3f::Identity();
     int votes = 0;
   };
-  [[nodiscard]] bool inTable(std::uint32_t key) const;
   /// The votes of one reference point's pairs (those within the diameter).
   [[nodiscard]] ReferencePeak peakOf(const ScenePairs::Pair* begin, const ScenePairs::Pair* end,
                                      const Eigen::Vector3f& reference,

@@ -33,18 +33,24 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-/// FNV-1a over 8-byte words: the scene's identity for the cache (content, not address, so a
-/// re-captured identical scan hits and an edited buffer misses).
+/// FNV-1a over 8-byte words in four interleaved lanes (a PhoXi scan is 9 MB, hashed for each view
+/// of a part: one lane waits on each multiply): the scene's identity for the cache (content, not
+/// address, so a re-captured identical scan hits and an edited buffer misses).
 std::uint64_t hashBytes(const void* data, std::size_t size, std::uint64_t h) {
+  constexpr std::uint64_t kPrime = 1099511628211ull;
   const auto* bytes = static_cast<const unsigned char*>(data);
+  std::uint64_t lanes[4] = {h, h ^ 1, h ^ 2, h ^ 3};
   std::size_t i = 0;
-  for (; i + 8 <= size; i += 8) {
-    std::uint64_t word = 0;
-    std::memcpy(&word, bytes + i, 8);
-    h = (h ^ word) * 1099511628211ull;
-  }
+  for (; i + 32 <= size; i += 32)
+    for (int k = 0; k < 4; ++k) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, bytes + i + 8 * k, 8);
+      lanes[k] = (lanes[k] ^ word) * kPrime;
+    }
+  for (const std::uint64_t lane : lanes)
+    h = (h ^ lane) * kPrime;
   for (; i < size; ++i)
-    h = (h ^ bytes[i]) * 1099511628211ull;
+    h = (h ^ bytes[i]) * kPrime;
   return h;
 }
 
@@ -142,16 +148,19 @@ struct Recognizer::Cache {
     int stride = 0;
     PairQuantizer quantizer;
     std::shared_ptr<const ScenePairs> pairs; ///< null while one view has voted so
+    PairKeySet keys;                         ///< the keys paired
   };
   std::vector<SurfacePairing> surface_pairings;
 
-  /// The scene sampled at `sampling_mm` from scene_index (made if missing) and paired for a view
-  /// of `diameter_mm` voting with `stride` and `quantizer`: made when missing or paired within
-  /// a smaller radius, except for the first view to vote so, which pairs as it votes (null)
-  /// unless `pair_now`.
+  /// The scene sampled at `sampling_mm` from scene_index (made if missing) and paired for the
+  /// views whose table keys are `keys`, the largest `diameter_mm` across, voting with `stride` and
+  /// `quantizer`: paired again when missing, within a smaller radius or for other keys (then for
+  /// theirs too), except for the first view to vote so, which pairs as it votes (null) unless
+  /// `pair_now`.
   std::shared_ptr<const ScenePairs> pairScene(const PreKey& key, double sampling_mm, int stride,
                                               const PairQuantizer& quantizer, double diameter_mm,
-                                              bool pair_now, const ProgressFn& progress) {
+                                              PairKeySet keys, bool pair_now,
+                                              const ProgressFn& progress) {
     if (surface_scene_key != key || surface_scene_sampling != sampling_mm) {
       surface_scene = std::make_shared<const OrientedPoints>(
           sampleOriented(scene_index->points(), scene_index->normals(), sampling_mm));
@@ -163,25 +172,31 @@ struct Recognizer::Cache {
         surface_pairings.begin(), surface_pairings.end(),
         [&](const SurfacePairing& p) { return p.stride == stride && p.quantizer == quantizer; });
     if (pairing == surface_pairings.end()) {
-      pairing = surface_pairings.insert(surface_pairings.end(), {stride, quantizer, nullptr});
+      pairing = surface_pairings.insert(surface_pairings.end(), {stride, quantizer, nullptr, {}});
       if (!pair_now)
         return nullptr;
     }
-    if (!pairing->pairs || pairing->pairs->radius() < diameter_mm)
-      pairing->pairs = std::make_shared<const ScenePairs>(*surface_scene, quantizer, stride,
-                                                          kPairingMargin * diameter_mm, progress);
+    if (!pairing->pairs || pairing->pairs->radius() < diameter_mm || !keys.within(pairing->keys)) {
+      keys.add(pairing->keys);
+      pairing->keys = keys;
+      pairing->pairs = std::make_shared<const ScenePairs>(
+          *surface_scene, quantizer, stride,
+          std::max(kPairingMargin * diameter_mm, pairing->pairs ? pairing->pairs->radius() : 0.0),
+          std::move(keys), progress);
+    }
     return pairing->pairs;
   }
 };
 
 namespace {
 /// A scene pairing that two or more prepared views vote with (the same stride and quantizer, at
-/// the same sampling), and the diameter of the largest of them.
+/// the same sampling), the diameter of the largest of them and the keys of their tables.
 struct SharedPairing {
   int stride = 0;
   PairQuantizer quantizer;
   double diameter_mm = 0.0;
   int views = 0;
+  PairKeySet keys;
 };
 
 /// The pairings of the scene sampled at `sampling_mm` that two or more of the prepared views
@@ -200,8 +215,9 @@ sharedPairings(const std::vector<std::shared_ptr<const ModelPrep>>& preps,
       return p.stride == stride && p.quantizer == quantizer;
     });
     if (shared == all.end())
-      shared = all.insert(all.end(), {stride, quantizer, 0.0, 0});
+      shared = all.insert(all.end(), {stride, quantizer, 0.0, 0, {}});
     shared->diameter_mm = std::max(shared->diameter_mm, prep->pairs->diameter());
+    shared->keys.add(*prep->pairs);
     ++shared->views;
   }
   std::erase_if(all, [](const SharedPairing& p) { return p.views < 2; });
@@ -481,7 +497,8 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
                           cache.scene_index->pixelSlack(), kMaxPixelWindowSlack);
         }
         for (const SharedPairing& p : shared)
-          cache.pairScene(pre_key, sampling_mm, p.stride, p.quantizer, p.diameter_mm, true, {});
+          cache.pairScene(pre_key, sampling_mm, p.stride, p.quantizer, p.diameter_mm, p.keys, true,
+                          {});
       });
   }
   if (preparing && (cache.shadow_key != shadow_key || !cache.shadow)) {
@@ -558,9 +575,11 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
   if (surface) {
     const auto t0 = Clock::now();
     const PointPairModel& view = *prep->pairs;
-    scene_pairs =
-        cache.pairScene(pre_key, sampling_mm, std::max(1, params.matching.surface_reference_stride),
-                        view.quantizer(), view.diameter(), false, subProgress(progress, 0.8, 0.8));
+    PairKeySet keys;
+    keys.add(view);
+    scene_pairs = cache.pairScene(
+        pre_key, sampling_mm, std::max(1, params.matching.surface_reference_stride),
+        view.quantizer(), view.diameter(), std::move(keys), false, subProgress(progress, 0.8, 0.8));
     result.timings.matching_ms += msSince(t0);
   }
   {

@@ -221,7 +221,39 @@ TEST(PointPairVoting, ViewsSharingOnePairedSceneVoteAsWithTheSceneItself) {
       EXPECT_TRUE(shared[i].T_scene_model.isApprox(alone[i].T_scene_model, 0.0));
     }
   }
-  // Paired too narrowly, or with another quantization: refused, not voted wrongly.
+  // Paired for the views' keys only (most scene pairs have a key neither table holds): the same
+  // poses again, with fewer pairs kept.
+  PairKeySet both;
+  both.add(large);
+  both.add(small);
+  const ScenePairs kept(scene, large.quantizer(), options.reference_stride, 1.3 * large.diameter(),
+                        both);
+  std::size_t all_pairs = 0, kept_pairs = 0;
+  for (std::size_t r = 0; r < paired.referenceCount(); ++r) {
+    all_pairs += std::size_t(paired.pairsEnd(r) - paired.pairsBegin(r));
+    kept_pairs += std::size_t(kept.pairsEnd(r) - kept.pairsBegin(r));
+  }
+  EXPECT_LT(kept_pairs, all_pairs);
+  for (const PointPairModel* view : {&large, &small}) {
+    ASSERT_TRUE(kept.covers(*view));
+    const auto alone = view->vote(scene, options);
+    const auto shared = view->vote(kept, options);
+    ASSERT_EQ(shared.size(), alone.size());
+    for (std::size_t i = 0; i < alone.size(); ++i) {
+      EXPECT_EQ(shared[i].votes, alone[i].votes);
+      EXPECT_TRUE(shared[i].T_scene_model.isApprox(alone[i].T_scene_model, 0.0));
+    }
+  }
+  // Paired for another view's keys, too narrowly, or with another quantization: refused, not
+  // voted wrongly.
+  PairKeySet small_only;
+  small_only.add(small);
+  EXPECT_TRUE(small_only.within(both));
+  EXPECT_FALSE(both.within(small_only));
+  const ScenePairs for_small(scene, large.quantizer(), options.reference_stride,
+                             1.3 * large.diameter(), small_only);
+  EXPECT_FALSE(for_small.covers(large));
+  EXPECT_THROW((void)large.vote(for_small, options), Error);
   const ScenePairs narrow(scene, large.quantizer(), options.reference_stride,
                           0.9 * large.diameter());
   EXPECT_THROW((void)large.vote(narrow, options), Error);
