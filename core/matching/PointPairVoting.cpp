@@ -126,7 +126,7 @@ PairQuantizer::PairQuantizer(double distance_step_mm, int angle_bins)
   }
 }
 
-int PairQuantizer::bin(float cosine) const {
+[[gnu::always_inline]] inline int PairQuantizer::bin(float cosine) const {
   if (std::isnan(cosine))
     return 0;
   const int cell =

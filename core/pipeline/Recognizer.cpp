@@ -139,11 +139,11 @@ struct Recognizer::Cache {
   double surface_scene_sampling = 0.0;
   std::shared_ptr<const OrientedPoints> surface_scene;
   /// How the views have voted with surface_scene: by stride and quantizer, and the scene paired
-  /// (ScenePairs) for those alike, shared by those whose diameter its radius covers. Pairing
-  /// computes every pair's angle, more than one view voting alone needs with a sparse table: so
-  /// a view voting with its own stride (the cup's bottom view) pairs as it votes, and so does
-  /// the first of views not prepared beforehand; for prepared views that vote alike the scene
-  /// is paired beside the feature search.
+  /// (ScenePairs) for those alike, shared by those whose diameter its radius and whose keys its
+  /// keys cover. For prepared views that vote alike the scene is paired beside the feature search.
+  /// A view voting with its own stride (the cup's bottom view) pairs as it votes (paired beside
+  /// the feature search instead, it competed with it for the cores and was no faster), and so
+  /// does the first of views not prepared beforehand.
   struct SurfacePairing {
     int stride = 0;
     PairQuantizer quantizer;
