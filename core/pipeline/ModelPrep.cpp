@@ -109,6 +109,9 @@ VerifyModel joinedPoints(const TaughtModel& model, const VerifyModel& view, int 
     SceneIndexOptions options;
     options.normal_radius_mm = normal_radius_mm;
     options.viewpoint_mm = other.camera_mm;
+    // Normals for the points makeVerifyModel keeps only.
+    options.normal_stride =
+        static_cast<int>(verifyModelStride(other.cloud_mm.validCount(), points));
     const auto seen = makeVerifyModel(TaughtModel{}, SceneIndex(other.cloud_mm, options), points);
     all.points.insert(all.points.end(), seen->points.begin(), seen->points.end());
     all.normals.insert(all.normals.end(), seen->normals.begin(), seen->normals.end());

@@ -93,11 +93,15 @@ std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int
   return makeVerifyModel(model, *modelSurface(model, normal_radius_mm), points);
 }
 
+std::size_t verifyModelStride(std::size_t valid_points, int points) {
+  const auto wanted = static_cast<std::size_t>(std::max(1, points));
+  return std::max<std::size_t>(1, (valid_points + wanted - 1) / wanted);
+}
+
 std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
                                                    const SceneIndex& model_index, int points) {
   const auto& valid = model_index.points();
-  const std::size_t stride =
-      std::max<std::size_t>(1, (valid.size() + std::size_t(points) - 1) / std::size_t(points));
+  const std::size_t stride = verifyModelStride(valid.size(), points);
   auto strided = std::make_shared<VerifyModel>();
   for (std::size_t i = 0; i < valid.size(); i += stride) {
     strided->points.push_back(valid[i]);

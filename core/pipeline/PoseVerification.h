@@ -36,8 +36,11 @@ struct VerifyModel {
 std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model, int points,
                                                    double normal_radius_mm);
 /// The same from the model's points already indexed (modelSurface), which refinement can share.
+/// Only the normals of every verifyModelStride()-th indexed point are read.
 std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
                                                    const SceneIndex& model_surface, int points);
+/// The stride makeVerifyModel takes through `valid_points` points to keep about `points`.
+std::size_t verifyModelStride(std::size_t valid_points, int points);
 /// The model's valid points indexed with their normals (PCA within `normal_radius_mm`, facing the
 /// teach camera), as verification uses them.
 std::shared_ptr<const SceneIndex> modelSurface(const TaughtModel& model, double normal_radius_mm);

@@ -112,9 +112,10 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
   scene_mm.validate();
   if (!(options.normal_radius_mm > 0) || options.pixel_half_window < 1 ||
       options.pixel_half_window > 10 || options.neighbours < 5 || options.neighbours > 100 ||
-      !options.viewpoint_mm.allFinite())
+      options.normal_stride < 1 || !options.viewpoint_mm.allFinite())
     throw Error("Scene index options out of range: normal radius must be > 0 mm, pixel half "
-                "window 1-10, neighbours 5-100, and the viewpoint finite.");
+                "window 1-10, neighbours 5-100, normal stride at least 1, and the viewpoint "
+                "finite.");
   // Valid points in input order; for an organized cloud (a sensor's image, far fewer than 2^31
   // pixels), where each pixel went.
   const bool organized = scene_mm.isOrganized() &&
@@ -161,7 +162,10 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
   blockedParallel(indexed.size(), progress, [&](std::size_t begin, std::size_t end) {
     std::vector<std::uint32_t> ids(k);
     std::vector<float> dists(k);
+    const auto normal_stride = static_cast<std::size_t>(options.normal_stride);
     for (std::size_t i = begin; i < end; ++i) {
+      if (i % normal_stride != 0)
+        continue;
       const Eigen::Vector3f& p = indexed[i];
       const std::size_t src = source_index[i];
       if (own_normals) {

@@ -38,6 +38,10 @@ struct SceneIndexOptions {
   bool orient_cloud_normals = true;
   /// False: no normals at all (normals() all NaN), for an index used for nearest points only.
   bool estimate_normals = true;
+  /// Normals for every n-th indexed point only (the others NaN), for a caller that keeps only
+  /// those points (makeVerifyModel's stride): each the normal it would have with 1, at a fraction
+  /// of the cost.
+  int normal_stride = 1;
   /// The sensor that took an organized cloud of its size: when the cloud's points lie within
   /// kMaxPixelWindowSlack pixels of where it projects them (pixelSlack()), nearest() looks in the
   /// pixel window that must hold the answer instead of the kd-tree, with the same answers.

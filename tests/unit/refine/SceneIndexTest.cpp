@@ -117,6 +117,33 @@ TEST(SceneIndex, WithoutNormalsItFindsTheSameNearestPoints) {
   }
 }
 
+TEST(SceneIndex, StridedNormalsAreThoseOfEveryNthPoint) {
+  // Organized (pixel windows) and not (kd-tree): the normals kept are the full index's, bit for
+  // bit; the others are not estimated.
+  for (const auto& cloud : {floorScan(0.3), core::dropInvalid(floorScan(0.3))}) {
+    core::SceneIndexOptions strided;
+    strided.normal_stride = 7;
+    const core::SceneIndex full(cloud), part(cloud, strided);
+    ASSERT_EQ(part.size(), full.size());
+    std::size_t estimated = 0;
+    for (std::size_t k = 0; k < part.size(); ++k) {
+      if (k % 7 != 0) {
+        ASSERT_FALSE(part.normals()[k].allFinite()) << k;
+        continue;
+      }
+      ASSERT_EQ(part.normals()[k].allFinite(), full.normals()[k].allFinite()) << k;
+      if (full.normals()[k].allFinite()) {
+        EXPECT_EQ(part.normals()[k], full.normals()[k]) << k;
+        ++estimated;
+      }
+    }
+    EXPECT_GT(estimated, part.size() / 10);
+  }
+  core::SceneIndexOptions none;
+  none.normal_stride = 0;
+  EXPECT_THROW(core::SceneIndex(floorScan(0.0), none), core::Error);
+}
+
 TEST(SceneIndex, APixelWindowFindsWhatTheTreeFindsWithinIt) {
   // f 500 px at 600 mm: 1.2 mm per pixel, so points within 1 mm of a query lie within two
   // pixels of its own.
