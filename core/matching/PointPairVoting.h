@@ -98,11 +98,11 @@ class PairKeySet {
 public:
   /// The keys of `model`'s table, added.
   void add(const PointPairModel& model);
+  /// The keys of `other`, added.
+  void add(const PairKeySet& other);
   [[nodiscard]] bool contains(std::uint32_t key) const {
     return (key >> 6) < m_bits.size() && ((m_bits[key >> 6] >> (key & 63)) & 1u) != 0;
   }
-  /// The keys of `other`, added.
-  void add(const PairKeySet& other);
   /// Whether every key of `model`'s table is in the set.
   [[nodiscard]] bool covers(const PointPairModel& model) const;
   /// Whether every key of this set is in `other`.

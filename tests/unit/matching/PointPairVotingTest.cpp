@@ -209,18 +209,23 @@ TEST(PointPairVoting, ViewsSharingOnePairedSceneVoteAsWithTheSceneItself) {
   VotingOptions options;
   options.reference_stride = 3;
   options.max_poses = 20;
+  // Each view votes with `pairs` exactly as with the scene itself.
+  const auto expectVotesAsAlone = [&](const ScenePairs& pairs) {
+    for (const PointPairModel* view : {&large, &small}) {
+      ASSERT_TRUE(pairs.covers(*view));
+      const auto alone = view->vote(scene, options);
+      const auto shared = view->vote(pairs, options);
+      ASSERT_FALSE(alone.empty());
+      ASSERT_EQ(shared.size(), alone.size());
+      for (std::size_t i = 0; i < alone.size(); ++i) {
+        EXPECT_EQ(shared[i].votes, alone[i].votes);
+        EXPECT_TRUE(shared[i].T_scene_model.isApprox(alone[i].T_scene_model, 0.0));
+      }
+    }
+  };
   const ScenePairs paired(scene, large.quantizer(), options.reference_stride,
                           1.3 * large.diameter());
-  for (const PointPairModel* view : {&large, &small}) {
-    const auto alone = view->vote(scene, options);
-    const auto shared = view->vote(paired, options);
-    ASSERT_FALSE(alone.empty());
-    ASSERT_EQ(shared.size(), alone.size());
-    for (std::size_t i = 0; i < alone.size(); ++i) {
-      EXPECT_EQ(shared[i].votes, alone[i].votes);
-      EXPECT_TRUE(shared[i].T_scene_model.isApprox(alone[i].T_scene_model, 0.0));
-    }
-  }
+  expectVotesAsAlone(paired);
   // Paired for the views' keys only (most scene pairs have a key neither table holds): the same
   // poses again, with fewer pairs kept.
   PairKeySet both;
@@ -234,16 +239,7 @@ TEST(PointPairVoting, ViewsSharingOnePairedSceneVoteAsWithTheSceneItself) {
     kept_pairs += std::size_t(kept.pairsEnd(r) - kept.pairsBegin(r));
   }
   EXPECT_LT(kept_pairs, all_pairs);
-  for (const PointPairModel* view : {&large, &small}) {
-    ASSERT_TRUE(kept.covers(*view));
-    const auto alone = view->vote(scene, options);
-    const auto shared = view->vote(kept, options);
-    ASSERT_EQ(shared.size(), alone.size());
-    for (std::size_t i = 0; i < alone.size(); ++i) {
-      EXPECT_EQ(shared[i].votes, alone[i].votes);
-      EXPECT_TRUE(shared[i].T_scene_model.isApprox(alone[i].T_scene_model, 0.0));
-    }
-  }
+  expectVotesAsAlone(kept);
   // Paired for another view's keys, too narrowly, or with another quantization: refused, not
   // voted wrongly.
   PairKeySet small_only;
