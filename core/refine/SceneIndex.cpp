@@ -141,6 +141,10 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
     m_width = static_cast<int>(scene_mm.width);
     m_height = static_cast<int>(scene_mm.height);
     m_pixel_index = std::move(pixel_to_index);
+    m_pixel_points.assign(m_pixel_index.size(), invalidPoint());
+    for (std::size_t pixel = 0; pixel < m_pixel_index.size(); ++pixel)
+      if (m_pixel_index[pixel] >= 0)
+        m_pixel_points[pixel] = indexed[static_cast<std::size_t>(m_pixel_index[pixel])];
     if (options.sensor)
       m_pixel_slack = measurePixelSlack(*options.sensor);
   }
@@ -277,25 +281,28 @@ std::int64_t SceneIndex::nearestInWindow(const Eigen::Vector3f& query_mm, float 
                                          float* distance_sq) const {
   if (m_pixel_index.empty() || !(max_distance_sq > 0) || !query_mm.allFinite())
     return -1;
-  const std::vector<Eigen::Vector3f>& indexed = m_tree->points;
   float best = max_distance_sq;
   std::int64_t best_index = -1;
-  for (int r = std::max(0, v - half_v); r <= std::min(m_height - 1, v + half_v); ++r)
+  for (int r = std::max(0, v - half_v); r <= std::min(m_height - 1, v + half_v); ++r) {
+    const std::size_t row = std::size_t(r) * std::size_t(m_width);
     for (int c = std::max(0, u - half_u); c <= std::min(m_width - 1, u + half_u); ++c) {
-      const std::int32_t i = m_pixel_index[std::size_t(r) * std::size_t(m_width) + std::size_t(c)];
-      if (i < 0)
-        continue;
-      // Summed as the kd-tree's metric sums, so that both give the same distances.
+      const Eigen::Vector3f& q = m_pixel_points[row + std::size_t(c)];
+      // Summed as the kd-tree's metric sums, so that both give the same distances; NaN (no point
+      // at the pixel) compares false.
       float d_sq = 0.0f;
       for (int k = 0; k < 3; ++k) {
-        const float d = query_mm[k] - indexed[std::size_t(i)][k];
+        const float d = query_mm[k] - q[k];
         d_sq += d * d;
       }
-      if (d_sq < best || (d_sq == best && (best_index < 0 || i < best_index))) {
+      if (!(d_sq <= best))
+        continue;
+      const std::int32_t i = m_pixel_index[row + std::size_t(c)];
+      if (d_sq < best || best_index < 0 || i < best_index) {
         best = d_sq;
         best_index = i;
       }
     }
+  }
   if (best_index >= 0 && distance_sq)
     *distance_sq = best;
   return best_index;

@@ -115,6 +115,9 @@ private:
   [[nodiscard]] float measurePixelSlack(const SensorModel& sensor) const;
   SceneIndexOptions m_options;
   std::vector<std::int32_t> m_pixel_index;
+  /// Organized clouds: each pixel's indexed point (NaN where none), so that a pixel window is
+  /// read row by row without looking up each pixel's index.
+  std::vector<Eigen::Vector3f> m_pixel_points;
   int m_width = 0, m_height = 0;
   float m_pixel_slack = -1.0f;
   std::vector<Eigen::Vector3f> m_normals;
