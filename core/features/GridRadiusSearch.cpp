@@ -1,6 +1,7 @@
 #include "core/features/GridRadiusSearch.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 #include <pcl/exceptions.h>
@@ -65,44 +66,81 @@ std::vector<std::uint32_t> sortedByCell(const std::vector<std::array<std::int64_
 void GridRadiusSearch::setInputCloud(const PointCloudConstPtr& cloud,
                                      const IndicesConstPtr& indices) {
   input_ = cloud;
+  m_cells.clear();
+  m_cell_of_point.assign(cloud ? cloud->size() : 0, kNoCell);
+  m_neighbour_starts.clear();
+  m_neighbours.clear();
+  if (cloud) {
+    // Finite points only, as PCL's kd-tree keeps them.
+    std::vector<Cell> cells;
+    std::vector<std::uint32_t> finite;
+    for (std::size_t i = 0; i < cloud->size(); ++i) {
+      const pcl::PointXYZ& p = (*cloud)[i];
+      if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) {
+        cells.push_back(cellOf(p));
+        finite.push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+    for (const std::uint32_t k : sortedByCell(cells)) {
+      if (m_cells.empty() || m_cells.back() != cells[k])
+        m_cells.push_back(cells[k]);
+      m_cell_of_point[finite[k]] = static_cast<std::uint32_t>(m_cells.size() - 1);
+    }
+    m_neighbour_starts.reserve(m_cells.size() + 1);
+    for (const Cell& cell : m_cells) {
+      m_neighbour_starts.push_back(static_cast<std::uint32_t>(m_neighbours.size()));
+      forEachCellNear(cell, 1, [&](std::uint32_t c) { m_neighbours.push_back(c); });
+    }
+    m_neighbour_starts.push_back(static_cast<std::uint32_t>(m_neighbours.size()));
+  }
+  setIndices(indices);
+}
+
+void GridRadiusSearch::setIndices(const IndicesConstPtr& indices) {
   indices_ = indices;
   m_points.clear();
   m_position.clear();
-  m_index.clear();
-  m_cells.clear();
-  m_starts.clear();
-  if (!cloud)
+  m_kept.clear();
+  m_starts.assign(m_cells.size() + 1, 0);
+  if (!input_)
     return;
-  // Finite points only, as PCL's kd-tree keeps them; position = rank among those kept.
-  std::vector<Cell> cells;
-  std::vector<pcl::index_t> kept;
-  const std::size_t n = indices ? indices->size() : cloud->size();
-  cells.reserve(n);
-  kept.reserve(n);
+  // A counting sort by cell keeps the order of the indices within each cell.
+  const std::size_t n = indices ? indices->size() : input_->size();
+  const auto indexAt = [&](std::size_t k) {
+    return indices ? (*indices)[k] : static_cast<pcl::index_t>(k);
+  };
+  for (std::size_t k = 0; k < n; ++k)
+    if (const std::uint32_t c = m_cell_of_point[static_cast<std::size_t>(indexAt(k))]; c != kNoCell)
+      ++m_starts[c + 1];
+  std::partial_sum(m_starts.begin(), m_starts.end(), m_starts.begin());
+  std::vector<std::uint32_t> next(m_starts.begin(), m_starts.end() - 1);
+  m_points.resize(m_starts.back());
+  m_position.resize(m_starts.back());
+  m_kept.reserve(m_starts.back());
   for (std::size_t k = 0; k < n; ++k) {
-    const pcl::index_t i = indices ? (*indices)[k] : static_cast<pcl::index_t>(k);
-    const pcl::PointXYZ& p = (*cloud)[static_cast<std::size_t>(i)];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    const pcl::index_t i = indexAt(k);
+    const std::uint32_t c = m_cell_of_point[static_cast<std::size_t>(i)];
+    if (c == kNoCell)
       continue;
-    cells.push_back(cellOf(p));
-    kept.push_back(i);
+    const std::uint32_t slot = next[c]++;
+    m_points[slot] = (*input_)[static_cast<std::size_t>(i)];
+    m_position[slot] = static_cast<std::uint32_t>(m_kept.size());
+    m_kept.push_back(i);
   }
-  const std::vector<std::uint32_t> order = sortedByCell(cells);
-  m_points.reserve(order.size());
-  m_position.reserve(order.size());
-  m_index.reserve(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const std::uint32_t position = order[k];
-    const pcl::index_t i = kept[position];
-    m_points.push_back((*cloud)[static_cast<std::size_t>(i)]);
-    m_position.push_back(position);
-    m_index.push_back(i);
-    if (m_cells.empty() || m_cells.back() != cells[position]) {
-      m_cells.push_back(cells[position]);
-      m_starts.push_back(static_cast<std::uint32_t>(k));
+}
+
+template <typename Visit>
+void GridRadiusSearch::forEachCellNear(const Cell& centre, std::int64_t reach,
+                                       Visit&& visit) const {
+  for (std::int64_t dx = -reach; dx <= reach; ++dx)
+    for (std::int64_t dy = -reach; dy <= reach; ++dy) {
+      // The cells along z from centre − reach to centre + reach follow each other in the order.
+      const Cell last{centre[0] + dx, centre[1] + dy, centre[2] + reach};
+      for (auto cell = std::lower_bound(m_cells.begin(), m_cells.end(),
+                                        Cell{centre[0] + dx, centre[1] + dy, centre[2] - reach});
+           cell != m_cells.end() && *cell <= last; ++cell)
+        visit(static_cast<std::uint32_t>(cell - m_cells.begin()));
     }
-  }
-  m_starts.push_back(static_cast<std::uint32_t>(order.size()));
 }
 
 int GridRadiusSearch::radiusSearch(const pcl::PointXYZ& point, double radius,
@@ -115,34 +153,38 @@ int GridRadiusSearch::radiusSearch(const pcl::PointXYZ& point, double radius,
     return 0; // no neighbours (PCL's kd-tree asserts on such a query)
   // As FLANN: the radius squared in double, compared in float; distances summed from x to z.
   const auto radius_sq = static_cast<float>(radius * radius);
+  // Found points as (distance bits, position): a non-negative float's bits order as it does, and
+  // positions are unique, so sorting these numbers orders by distance, then by position.
+  thread_local std::vector<std::uint64_t> found;
+  found.clear();
+  const auto visit = [&](std::uint32_t c) {
+    for (std::uint32_t k = m_starts[c]; k < m_starts[c + 1]; ++k) {
+      const pcl::PointXYZ& p = m_points[k];
+      const float ex = point.x - p.x, ey = point.y - p.y, ez = point.z - p.z;
+      const float distance_sq = ex * ex + ey * ey + ez * ez;
+      if (distance_sq < radius_sq)
+        found.push_back(std::uint64_t{std::bit_cast<std::uint32_t>(distance_sq)} << 32 |
+                        m_position[k]);
+    }
+  };
   const Cell centre = cellOf(point);
   const auto reach = static_cast<std::int64_t>(std::ceil(radius / m_cell_mm));
-  std::vector<std::tuple<float, std::uint32_t, pcl::index_t>> found;
-  for (std::int64_t dx = -reach; dx <= reach; ++dx)
-    for (std::int64_t dy = -reach; dy <= reach; ++dy) {
-      // The cells along z from centre − reach to centre + reach follow each other in the order.
-      const Cell last{centre[0] + dx, centre[1] + dy, centre[2] + reach};
-      for (auto cell = std::lower_bound(m_cells.begin(), m_cells.end(),
-                                        Cell{centre[0] + dx, centre[1] + dy, centre[2] - reach});
-           cell != m_cells.end() && *cell <= last; ++cell) {
-        const auto c = static_cast<std::size_t>(cell - m_cells.begin());
-        for (std::uint32_t k = m_starts[c]; k < m_starts[c + 1]; ++k) {
-          const pcl::PointXYZ& p = m_points[k];
-          const float ex = point.x - p.x, ey = point.y - p.y, ez = point.z - p.z;
-          const float distance_sq = ex * ex + ey * ey + ez * ez;
-          if (distance_sq < radius_sq)
-            found.emplace_back(distance_sq, m_position[k], m_index[k]);
-        }
-      }
-    }
+  const auto cell = std::lower_bound(m_cells.begin(), m_cells.end(), centre);
+  if (reach == 1 && cell != m_cells.end() && *cell == centre) {
+    const auto c = static_cast<std::size_t>(cell - m_cells.begin());
+    for (std::uint32_t n = m_neighbour_starts[c]; n < m_neighbour_starts[c + 1]; ++n)
+      visit(m_neighbours[n]);
+  } else {
+    forEachCellNear(centre, reach, visit);
+  }
   std::sort(found.begin(), found.end());
   if (max_nn > 0 && found.size() > max_nn)
     found.resize(max_nn);
   k_indices.reserve(found.size());
   k_sqr_distances.reserve(found.size());
-  for (const auto& [distance_sq, position, index] : found) {
-    k_indices.push_back(index);
-    k_sqr_distances.push_back(distance_sq);
+  for (const std::uint64_t f : found) {
+    k_indices.push_back(m_kept[static_cast<std::uint32_t>(f)]);
+    k_sqr_distances.push_back(std::bit_cast<float>(static_cast<std::uint32_t>(f >> 32)));
   }
   return static_cast<int>(found.size());
 }

@@ -15,11 +15,14 @@ namespace scanpick::core {
 /// what `pcl::search::KdTree` (sorted results) gives over the same cloud and indices, bit for bit
 /// and in the same order: the points whose float squared distance, summed as FLANN sums it, is
 /// below the float square of the radius, nearest first and, at equal distances, in the order of
-/// the indices. Built by sorting the points by cell, with no tree: feature extraction makes one per
-/// round of its search, and building and asking FLANN's tree took two thirds of that search
-/// (perf). A radius up to the cell edge looks at 27 cells, found by 9 binary searches. With
-/// `max_nn` it keeps the nearest max_nn, at equal distances in the order of the indices, where
-/// FLANN keeps whichever its tree met first. Nearest-k search is not offered (throws).
+/// the indices. Built by sorting the points by cell, with no tree: feature extraction asks for a
+/// new subset of its keypoints each round of its search, and building and asking FLANN's tree took
+/// two thirds of that search (perf). `setInputCloud` bins the whole cloud once; `setIndices` then
+/// lays out another subset of it by a counting sort over those cells. A radius up to the cell edge
+/// looks at the query cell's occupied neighbours, listed when the cloud is binned. With `max_nn`
+/// it keeps the nearest max_nn, at equal distances in the order of the indices, where FLANN keeps
+/// whichever its tree met first. Nearest-k search is not offered (throws). Radius searches may run
+/// on several threads at once; setting the cloud or the indices may not run beside them.
 class GridRadiusSearch final : public pcl::search::Search<pcl::PointXYZ> {
 public:
   /// `cell_mm` > 0: best the radius the searches will ask for.
@@ -28,8 +31,12 @@ public:
   using pcl::search::Search<pcl::PointXYZ>::nearestKSearch;
   using pcl::search::Search<pcl::PointXYZ>::radiusSearch;
 
+  /// Bins every finite point of `cloud`, then sets `indices` (all points when null).
   void setInputCloud(const PointCloudConstPtr& cloud,
                      const IndicesConstPtr& indices = IndicesConstPtr()) override;
+
+  /// Searches another subset of the cloud last set, whose points must not have changed since.
+  void setIndices(const IndicesConstPtr& indices);
 
   int radiusSearch(const pcl::PointXYZ& point, double radius, pcl::Indices& k_indices,
                    std::vector<float>& k_sqr_distances, unsigned int max_nn = 0) const override;
@@ -40,14 +47,24 @@ public:
 
 private:
   using Cell = std::array<std::int64_t, 3>;
+  static constexpr std::uint32_t kNoCell = ~std::uint32_t{0};
   [[nodiscard]] Cell cellOf(const pcl::PointXYZ& p) const;
+  /// Calls `visit(cell)` for each occupied cell within `reach` cells of `centre` along each axis.
+  template <typename Visit>
+  void forEachCellNear(const Cell& centre, std::int64_t reach, Visit&& visit) const;
 
   double m_cell_mm;
-  std::vector<pcl::PointXYZ> m_points;   ///< sorted by cell, then by position in the indices
-  std::vector<std::uint32_t> m_position; ///< each point's position in the indices
-  std::vector<pcl::index_t> m_index;     ///< each point's index in the cloud
-  std::vector<Cell> m_cells;             ///< the occupied cells, sorted
-  std::vector<std::uint32_t> m_starts;   ///< each cell's first point; one more at the end
+  // The cloud binned: the occupied cells sorted, each point's cell (kNoCell if not finite), and
+  // each cell's occupied neighbours (those within one cell along each axis, itself included).
+  std::vector<Cell> m_cells;
+  std::vector<std::uint32_t> m_cell_of_point;
+  std::vector<std::uint32_t> m_neighbour_starts, m_neighbours;
+  // The finite points of the indices (their positions are their ranks among them), laid out by
+  // cell and, within a cell, by position.
+  std::vector<pcl::index_t> m_kept;      ///< each position's index in the cloud
+  std::vector<pcl::PointXYZ> m_points;   ///< the laid-out points
+  std::vector<std::uint32_t> m_position; ///< each laid-out point's position
+  std::vector<std::uint32_t> m_starts;   ///< each cell's first laid-out point; one more at the end
 };
 
 } // namespace scanpick::core

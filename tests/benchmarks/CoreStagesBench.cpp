@@ -21,6 +21,7 @@ struct Data {
   core::PointCloud scene, remaining;
   core::SceneSplit split;
   std::vector<core::Keypoints> object_keypoints;
+  core::Keypoints scene_keypoints; ///< of the whole scan as one object (parts that touch)
 };
 
 const Data& data() {
@@ -48,6 +49,7 @@ const Data& data() {
     out.split = core::splitIntoObjects(out.remaining, sensor, out.params.clustering, out.params.seed);
     for (const auto& object : out.split.objects)
       out.object_keypoints.push_back(core::extractKeypoints(object, out.params.keypoints));
+    out.scene_keypoints = core::extractKeypoints(out.remaining, out.params.keypoints);
     return out;
   }();
   return d;
@@ -116,6 +118,22 @@ void BM_Features(benchmark::State& state) {
   state.counters["circles"] = static_cast<double>(circles);
 }
 
+/// Parts that touch make one object of the whole bin: its rounds of RANSAC follow each other.
+void BM_FeaturesOneObject(benchmark::State& state) {
+  const auto& d = data();
+  core::FeatureParams params = d.params.features; // as preset phoxi-bin sets them
+  params.ransac_size = 15;
+  params.line_threshold_mm = params.circle_threshold_mm = 1.0;
+  params.sample_radius_mm = 10.0;
+  params.max_iterations = 50;
+  std::size_t features = 0;
+  for (auto _ : state)
+    features =
+        core::extractFeatures(d.scene_keypoints.points_mm, params, d.params.seed).features.size();
+  state.counters["keypoints"] = static_cast<double>(d.scene_keypoints.points_mm.size());
+  state.counters["features"] = static_cast<double>(features);
+}
+
 } // namespace
 
 BENCHMARK(BM_FloorRemoval)->Unit(benchmark::kMillisecond)->Iterations(3);
@@ -123,5 +141,6 @@ BENCHMARK(BM_ObjectCount)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_SceneSplit)->Arg(0)->Arg(1)->ArgName("method")->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Keypoints)->Arg(0)->Arg(1)->Arg(2)->ArgName("method")->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_Features)->Arg(0)->Arg(1)->Arg(2)->ArgName("estimator")->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FeaturesOneObject)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 BENCHMARK_MAIN();

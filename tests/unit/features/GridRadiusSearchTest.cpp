@@ -1,6 +1,7 @@
 #include "core/features/GridRadiusSearch.h"
 
 #include <algorithm>
+#include <cmath>
 #include <gtest/gtest.h>
 #include <limits>
 #include <numeric>
@@ -16,13 +17,9 @@ using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 /// Asks PCL's sorted kd-tree and the grid, over the same cloud and indices, for the neighbours
 /// of every query point within `radius`, and expects the same indices and distances in the
 /// same order. Returns how many neighbours were found in all.
-std::size_t expectSameAsKdTree(const Cloud::Ptr& cloud, const pcl::IndicesPtr& indices,
-                               double cell_mm, double radius, const Cloud& queries,
-                               unsigned int max_nn = 0) {
-  pcl::search::KdTree<pcl::PointXYZ> tree(true);
-  tree.setInputCloud(cloud, indices);
-  GridRadiusSearch grid(cell_mm);
-  grid.setInputCloud(cloud, indices);
+std::size_t expectSameAnswers(const pcl::search::KdTree<pcl::PointXYZ>& tree,
+                              const GridRadiusSearch& grid, double radius, const Cloud& queries,
+                              unsigned int max_nn = 0) {
   std::size_t found = 0;
   for (const auto& q : queries) {
     pcl::Indices tree_ids, grid_ids;
@@ -34,6 +31,16 @@ std::size_t expectSameAsKdTree(const Cloud::Ptr& cloud, const pcl::IndicesPtr& i
     found += static_cast<std::size_t>(n);
   }
   return found;
+}
+
+std::size_t expectSameAsKdTree(const Cloud::Ptr& cloud, const pcl::IndicesPtr& indices,
+                               double cell_mm, double radius, const Cloud& queries,
+                               unsigned int max_nn = 0) {
+  pcl::search::KdTree<pcl::PointXYZ> tree(true);
+  tree.setInputCloud(cloud, indices);
+  GridRadiusSearch grid(cell_mm);
+  grid.setInputCloud(cloud, indices);
+  return expectSameAnswers(tree, grid, radius, queries, max_nn);
 }
 
 Cloud::Ptr scattered(std::size_t n, std::uint64_t seed) {
@@ -59,6 +66,40 @@ TEST(GridRadiusSearch, FindsWhatPclsSortedKdTreeFindsInTheSameOrder) {
   // A radius beyond the cell edge, and one well inside it.
   EXPECT_GT(expectSameAsKdTree(cloud, indices, 4.0, 10.0, queries), queries.size());
   EXPECT_GT(expectSameAsKdTree(cloud, indices, 10.0, 3.0, queries), 0u);
+}
+
+// Feature extraction bins its keypoints once and lays out another subset of them each round.
+TEST(GridRadiusSearch, AnswersForEachNewSubsetAsATreeOverThatSubset) {
+  auto cloud = scattered(4000, 6);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t i = 0; i < cloud->size(); i += 9)
+    (*cloud)[i].z = nan;
+  cloud->is_dense = false;
+  Cloud queries; // points of the cloud (in a subset or not), and points between them
+  for (std::size_t i = 1; i < cloud->size(); i += 13)
+    if (std::isfinite((*cloud)[i].z))
+      queries.push_back((*cloud)[i]);
+  queries.push_back({0.5f, -0.25f, 601.0f});
+  queries.push_back({500.0f, 500.0f, 0.0f}); // no occupied cell near
+  GridRadiusSearch grid(10.0);
+  std::mt19937_64 rng(7);
+  for (int round = 0; round < 4; ++round) {
+    // Like a round's candidates: a seeded sample (in the cloud's order), then shuffled once.
+    auto subset = std::make_shared<pcl::Indices>();
+    for (int i = 0; i < static_cast<int>(cloud->size()); ++i)
+      if (rng() % 3 == 0)
+        subset->push_back(i);
+    if (round == 2)
+      std::shuffle(subset->begin(), subset->end(), rng);
+    if (round == 0)
+      grid.setInputCloud(cloud, subset);
+    else
+      grid.setIndices(subset);
+    pcl::search::KdTree<pcl::PointXYZ> tree(true);
+    tree.setInputCloud(cloud, subset);
+    EXPECT_GT(expectSameAnswers(tree, grid, 10.0, queries), queries.size()) << "round " << round;
+    EXPECT_GT(expectSameAnswers(tree, grid, 25.0, queries), queries.size()) << "round " << round;
+  }
 }
 
 // Cells spanning more than 64 bits can number (two clusters 30 km apart in every axis, 10 mm
