@@ -443,11 +443,9 @@ FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_
   Remaining remaining;
   for (std::size_t i = 0; i < keypoints_mm.size(); ++i)
     if (isValid(keypoints_mm[i])) {
-      remaining.push_back(static_cast<int>(cloud->size()), pcl::PointXYZ(keypoints_mm[i].x(),
-                                                                         keypoints_mm[i].y(),
-                                                                         keypoints_mm[i].z()));
       cloud->push_back(
           pcl::PointXYZ(keypoints_mm[i].x(), keypoints_mm[i].y(), keypoints_mm[i].z()));
+      remaining.push_back(static_cast<int>(cloud->size() - 1), cloud->back());
     }
   // Map from the cloud (valid keypoints only) back to the caller's indices.
   std::vector<int> original;

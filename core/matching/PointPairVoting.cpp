@@ -3,6 +3,7 @@
 #include "core/cloud/PointKdTree.h"
 #include "core/common/Error.h"
 #include "core/common/ParallelProgress.h"
+#include "core/common/Rounding.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +34,7 @@ Eigen::Isometry3f localFrame(const Eigen::Vector3f& p, const Eigen::Vector3f& n)
 /// difference modulo 2π.
 std::uint16_t planeAngle(const Eigen::Vector3f& local) {
   const float radians = std::atan2(-local.z(), local.y());
-  return static_cast<std::uint16_t>(std::lround(radians * (65536.0f / kTwoPi)) & 0xFFFF);
+  return static_cast<std::uint16_t>(roundHalfAway(radians * (65536.0f / kTwoPi)) & 0xFFFF);
 }
 
 /// The sampled scene's points in a kd-tree, for the radius searches of the pairing.

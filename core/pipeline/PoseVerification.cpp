@@ -1,4 +1,5 @@
 #include "core/pipeline/PoseVerification.h"
+#include "core/common/Rounding.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,7 +65,7 @@ ProjectorShadow::projectorPixel(const Eigen::Vector3f& p) const {
     return std::nullopt;
   // Clamped far outside the image, so that points near the projector's plane cannot overflow.
   const Eigen::Vector2d uv = m_sensor.project(q.cast<double>()).cwiseMax(-1e6).cwiseMin(1e6);
-  return std::pair{Eigen::Vector2i(int(std::lround(uv.x())), int(std::lround(uv.y()))), q.z()};
+  return std::pair{Eigen::Vector2i(int(roundHalfAway(uv.x())), int(roundHalfAway(uv.y()))), q.z()};
 }
 
 bool ProjectorShadow::shadowed(const Eigen::Vector3f& p, float margin_mm) const {
@@ -159,7 +160,7 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     if (!organized || p.z() <= 0.0f)
       return;
     const Eigen::Vector2d uv = sensor.project(p.cast<double>());
-    const long u = std::lround(uv.x()), v = std::lround(uv.y());
+    const long u = roundHalfAway(uv.x()), v = roundHalfAway(uv.y());
     if (u < 0 || v < 0 || u >= sensor.width || v >= sensor.height)
       return;
     const Eigen::Vector3f& s =
@@ -212,7 +213,7 @@ PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const Sens
     if (!(p.z() > 0))
       return list;
     const Eigen::Vector2d uv = sensor.project(p.cast<double>());
-    const long u = std::lround(uv.x()), v = std::lround(uv.y());
+    const long u = roundHalfAway(uv.x()), v = roundHalfAway(uv.y());
     if (u < 0 || v < 0 || u >= sensor.width || v >= sensor.height)
       return list;
     Eigen::Vector3f& pixel = image.points_mm[std::size_t(v) * image.width + std::size_t(u)];

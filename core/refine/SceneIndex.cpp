@@ -2,6 +2,7 @@
 
 #include "core/cloud/PointKdTree.h"
 #include "core/common/Error.h"
+#include "core/common/Rounding.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -262,8 +263,8 @@ std::int64_t SceneIndex::nearest(const Eigen::Vector3f& query_mm, float max_dist
       if (reach_u < kMaxWindowReach && reach_v < kMaxWindowReach) {
         const Eigen::Vector2d uv = sensor.project(query_mm.cast<double>());
         if (uv.allFinite() && std::abs(uv.x()) < 1e6 && std::abs(uv.y()) < 1e6)
-          return nearestInWindow(query_mm, max_distance_sq, int(std::lround(uv.x())),
-                                 int(std::lround(uv.y())), int(reach_u), int(reach_v), distance_sq);
+          return nearestInWindow(query_mm, max_distance_sq, int(roundHalfAway(uv.x())),
+                                 int(roundHalfAway(uv.y())), int(reach_u), int(reach_v), distance_sq);
       }
     }
   }
