@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -84,6 +85,63 @@ void blockedParallel(std::size_t n, const ProgressFn& progress, Body&& body) {
   }
 }
 
+/// A pixel window: columns and rows, both inclusive.
+struct PixelWindow {
+  int first_column, last_column, first_row, last_row;
+};
+
+/// SceneIndex::nearestInWindow's search over the pixels' coordinate arrays (rows of `width`, at
+/// least 8 readable values past the last pixel): the index of the nearest point within `best`
+/// (squared, lowered to its distance), at equal distances the lowest index; -1 when none. Eight
+/// pixels at a time in GCC's vector types (one AVX2 register, or two SSE ones; built also for
+/// AVX2, without fused multiply-add): their squared distances summed as the kd-tree's metric sums
+/// them (x, then y, then z), so that both give the same distances, and only the pixels within
+/// `best` looked at one by one, in the window's order.
+[[gnu::target_clones("avx2", "default")]] std::int64_t
+nearestInPixels(const float* xs, const float* ys, const float* zs, const std::int32_t* index,
+                std::size_t width, const PixelWindow& window, const Eigen::Vector3f& query,
+                float& best) {
+  using Floats = float __attribute__((vector_size(32)));
+  using Ints = std::int32_t __attribute__((vector_size(32)));
+  const Ints lane = {0, 1, 2, 3, 4, 5, 6, 7};
+  const float qx = query.x(), qy = query.y(), qz = query.z();
+  const int count = window.last_column - window.first_column + 1;
+  float best_sq = best;
+  std::int64_t best_index = -1;
+  for (int r = window.first_row; r <= window.last_row; ++r) {
+    const std::size_t first = std::size_t(r) * width + std::size_t(window.first_column);
+    for (int chunk = 0; chunk < count; chunk += 8) {
+      const std::size_t at = first + std::size_t(chunk);
+      Floats x, y, z;
+      std::memcpy(&x, xs + at, sizeof x);
+      std::memcpy(&y, ys + at, sizeof y);
+      std::memcpy(&z, zs + at, sizeof z);
+      const Floats dx = qx - x, dy = qy - y, dz = qz - z;
+      Floats d_sq = dx * dx; // 0 + dx², as the metric starts, is dx²
+      d_sq += dy * dy;
+      d_sq += dz * dz;
+      // NaN (no point at the pixel) compares false; lanes past the window's last column do not
+      // count.
+      const Ints within = (d_sq <= best_sq) & (lane < count - chunk);
+      std::uint64_t any[4];
+      std::memcpy(any, &within, sizeof any);
+      if ((any[0] | any[1] | any[2] | any[3]) == 0)
+        continue;
+      for (int k = 0; k < 8; ++k) {
+        if (within[k] == 0 || !(d_sq[k] <= best_sq))
+          continue;
+        const std::int32_t i = index[at + std::size_t(k)];
+        if (d_sq[k] < best_sq || best_index < 0 || i < best_index) {
+          best_sq = d_sq[k];
+          best_index = i;
+        }
+      }
+    }
+  }
+  best = best_sq;
+  return best_index;
+}
+
 } // namespace
 
 // The points and their kd-tree live on the heap, so the adaptor's pointer survives moves of the
@@ -142,10 +200,16 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
     m_width = static_cast<int>(scene_mm.width);
     m_height = static_cast<int>(scene_mm.height);
     m_pixel_index = std::move(pixel_to_index);
-    m_pixel_points.assign(m_pixel_index.size(), invalidPoint());
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (auto* coordinate : {&m_pixel_x, &m_pixel_y, &m_pixel_z})
+      coordinate->assign(m_pixel_index.size() + kPixelPadding, nan);
     for (std::size_t pixel = 0; pixel < m_pixel_index.size(); ++pixel)
-      if (m_pixel_index[pixel] >= 0)
-        m_pixel_points[pixel] = indexed[static_cast<std::size_t>(m_pixel_index[pixel])];
+      if (m_pixel_index[pixel] >= 0) {
+        const Eigen::Vector3f& p = indexed[static_cast<std::size_t>(m_pixel_index[pixel])];
+        m_pixel_x[pixel] = p.x();
+        m_pixel_y[pixel] = p.y();
+        m_pixel_z[pixel] = p.z();
+      }
     if (options.sensor)
       m_pixel_slack = measurePixelSlack(*options.sensor);
   }
@@ -282,28 +346,12 @@ std::int64_t SceneIndex::nearestInWindow(const Eigen::Vector3f& query_mm, float 
                                          float* distance_sq) const {
   if (m_pixel_index.empty() || !(max_distance_sq > 0) || !query_mm.allFinite())
     return -1;
+  const PixelWindow window{std::max(0, u - half_u), std::min(m_width - 1, u + half_u),
+                           std::max(0, v - half_v), std::min(m_height - 1, v + half_v)};
   float best = max_distance_sq;
-  std::int64_t best_index = -1;
-  for (int r = std::max(0, v - half_v); r <= std::min(m_height - 1, v + half_v); ++r) {
-    const std::size_t row = std::size_t(r) * std::size_t(m_width);
-    for (int c = std::max(0, u - half_u); c <= std::min(m_width - 1, u + half_u); ++c) {
-      const Eigen::Vector3f& q = m_pixel_points[row + std::size_t(c)];
-      // Summed as the kd-tree's metric sums, so that both give the same distances; NaN (no point
-      // at the pixel) compares false.
-      float d_sq = 0.0f;
-      for (int k = 0; k < 3; ++k) {
-        const float d = query_mm[k] - q[k];
-        d_sq += d * d;
-      }
-      if (!(d_sq <= best))
-        continue;
-      const std::int32_t i = m_pixel_index[row + std::size_t(c)];
-      if (d_sq < best || best_index < 0 || i < best_index) {
-        best = d_sq;
-        best_index = i;
-      }
-    }
-  }
+  const std::int64_t best_index =
+      nearestInPixels(m_pixel_x.data(), m_pixel_y.data(), m_pixel_z.data(), m_pixel_index.data(),
+                      std::size_t(m_width), window, query_mm, best);
   if (best_index >= 0 && distance_sq)
     *distance_sq = best;
   return best_index;

@@ -170,6 +170,64 @@ TEST(SceneIndex, APixelWindowFindsWhatTheTreeFindsWithinIt) {
   EXPECT_LT(unorganized.nearestInWindow(unorganized.points()[0], 1.0f, 0, 0, 2, 2), 0);
 }
 
+TEST(SceneIndex, PixelWindowsOfAnyWidthGiveTheNearestAndTheLowestIndexAtTies) {
+  // Windows narrower and wider than the eight pixels searched at a time, at the image's edges
+  // and last pixel; on a noise-free floor, queries between pixels are as near to several points.
+  for (const double sigma_mm : {0.0, 0.3}) {
+    const auto scan = floorScan(sigma_mm);
+    const core::SceneIndex index(scan);
+    const int width = index.width(), height = index.height();
+    // Every pixel of the window, nearest first, at equal distances the lowest index.
+    const auto bruteForce = [&](const Eigen::Vector3f& query, float max_sq, int u, int v, int hu,
+                                int hv, float* d_sq) {
+      std::int64_t best_index = -1;
+      float best = max_sq;
+      for (int r = std::max(0, v - hv); r <= std::min(height - 1, v + hv); ++r)
+        for (int c = std::max(0, u - hu); c <= std::min(width - 1, u + hu); ++c) {
+          const std::int32_t k = index.pixelIndex()[std::size_t(r) * std::size_t(width) + c];
+          if (k < 0)
+            continue;
+          const Eigen::Vector3f& p = index.points()[std::size_t(k)];
+          float d = 0.0f;
+          for (int a = 0; a < 3; ++a)
+            d += (query[a] - p[a]) * (query[a] - p[a]);
+          if (d < best || (d == best && (best_index < 0 || k < best_index))) {
+            best = d;
+            best_index = k;
+          }
+        }
+      *d_sq = best;
+      return best_index;
+    };
+    std::vector<int> pixels{0, width - 1, (height - 1) * width, height * width - 1};
+    for (int pixel = 13; pixel < width * height; pixel += 211)
+      pixels.push_back(pixel);
+    std::size_t found = 0, compared = 0;
+    for (const int pixel : pixels) {
+      const std::int32_t k = index.pixelIndex()[std::size_t(pixel)];
+      if (k < 0)
+        continue;
+      const int u = pixel % width, v = pixel / width;
+      for (const Eigen::Vector3f& offset :
+           {Eigen::Vector3f(0, 0, -0.5f), Eigen::Vector3f(0.6f, 0, 0), Eigen::Vector3f(0.6f, 0.6f, -0.2f)})
+        for (const auto& [hu, hv] : {std::pair{0, 0}, {1, 2}, {3, 3}, {4, 1}, {6, 6}, {9, 9}})
+          for (const float max_sq : {0.5f, 25.0f}) {
+            const Eigen::Vector3f query = index.points()[std::size_t(k)] + offset;
+            float got = -1.0f, want = -1.0f;
+            const std::int64_t near = bruteForce(query, max_sq, u, v, hu, hv, &want);
+            ASSERT_EQ(index.nearestInWindow(query, max_sq, u, v, hu, hv, &got), near)
+                << "pixel " << pixel << ", window " << hu << " x " << hv;
+            if (near >= 0) {
+              EXPECT_EQ(got, want);
+            }
+            found += near >= 0;
+            ++compared;
+          }
+    }
+    EXPECT_GT(found, compared / 3);
+  }
+}
+
 TEST(SceneIndex, WithItsSensorNearestLooksInPixelWindowsWithTheSameAnswers) {
   // The floor's camera as a sensor: each point lies on its pixel's ray (depth noise moves it
   // along the ray), so nearest() looks in pixel windows for small spheres, the tree otherwise.
