@@ -68,7 +68,7 @@ void GridRadiusSearch::setInputCloud(const PointCloudConstPtr& cloud,
   input_ = cloud;
   m_cells.clear();
   m_cell_of_point.assign(cloud ? cloud->size() : 0, kNoCell);
-  m_neighbour_starts.clear();
+  m_neighbour_count.clear();
   m_neighbours.clear();
   if (cloud) {
     // Finite points only, as PCL's kd-tree keeps them.
@@ -86,12 +86,22 @@ void GridRadiusSearch::setInputCloud(const PointCloudConstPtr& cloud,
         m_cells.push_back(cells[k]);
       m_cell_of_point[finite[k]] = static_cast<std::uint32_t>(m_cells.size() - 1);
     }
-    m_neighbour_starts.reserve(m_cells.size() + 1);
-    for (const Cell& cell : m_cells) {
-      m_neighbour_starts.push_back(static_cast<std::uint32_t>(m_neighbours.size()));
-      forEachCellNear(cell, 1, [&](std::uint32_t c) { m_neighbours.push_back(c); });
-    }
-    m_neighbour_starts.push_back(static_cast<std::uint32_t>(m_neighbours.size()));
+    // Each cell's neighbours along one column (x + dx, y + dy) follow the cells' order: one sweep
+    // per column offset instead of binary searches.
+    const std::size_t count = m_cells.size();
+    m_neighbour_count.assign(count, 0);
+    m_neighbours.resize(count * kMaxNeighbours);
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::size_t c = 0, from = 0; c < count; ++c) {
+          const Cell& cell = m_cells[c];
+          const Cell lo{cell[0] + dx, cell[1] + dy, cell[2] - 1};
+          const Cell hi{cell[0] + dx, cell[1] + dy, cell[2] + 1};
+          while (from < count && m_cells[from] < lo)
+            ++from;
+          for (std::size_t n = from; n < count && m_cells[n] <= hi; ++n)
+            m_neighbours[c * kMaxNeighbours + m_neighbour_count[c]++] = std::uint32_t(n);
+        }
   }
   setIndices(indices);
 }
@@ -172,8 +182,8 @@ int GridRadiusSearch::radiusSearch(const pcl::PointXYZ& point, double radius,
   const auto cell = std::lower_bound(m_cells.begin(), m_cells.end(), centre);
   if (reach == 1 && cell != m_cells.end() && *cell == centre) {
     const auto c = static_cast<std::size_t>(cell - m_cells.begin());
-    for (std::uint32_t n = m_neighbour_starts[c]; n < m_neighbour_starts[c + 1]; ++n)
-      visit(m_neighbours[n]);
+    for (std::uint32_t n = 0; n < m_neighbour_count[c]; ++n)
+      visit(m_neighbours[c * kMaxNeighbours + n]);
   } else {
     forEachCellNear(centre, reach, visit);
   }

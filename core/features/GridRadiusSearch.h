@@ -58,7 +58,9 @@ private:
   // each cell's occupied neighbours (those within one cell along each axis, itself included).
   std::vector<Cell> m_cells;
   std::vector<std::uint32_t> m_cell_of_point;
-  std::vector<std::uint32_t> m_neighbour_starts, m_neighbours;
+  static constexpr std::size_t kMaxNeighbours = 27;
+  std::vector<std::uint32_t> m_neighbours; ///< kMaxNeighbours slots per cell
+  std::vector<std::uint8_t> m_neighbour_count;
   // The finite points of the indices (their positions are their ranks among them), laid out by
   // cell and, within a cell, by position.
   std::vector<pcl::index_t> m_kept;      ///< each position's index in the cloud
