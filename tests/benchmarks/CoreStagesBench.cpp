@@ -4,12 +4,14 @@
 // and copy the medians to docs/benchmarks.md ("Preprocessing, keypoints, features").
 #include "core/features/FeatureExtraction.h"
 #include "core/keypoints/Keypoints.h"
+#include "core/params/ParamsJson.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "core/preprocess/ObjectCount.h"
 #include "core/preprocess/SceneSplit.h"
 #include "tests/support/RaycastScene.h"
 
 #include <benchmark/benchmark.h>
+#include <filesystem>
 
 using namespace scanpick;
 
@@ -121,11 +123,9 @@ void BM_Features(benchmark::State& state) {
 /// Parts that touch make one object of the whole bin: its rounds of RANSAC follow each other.
 void BM_FeaturesOneObject(benchmark::State& state) {
   const auto& d = data();
-  core::FeatureParams params = d.params.features; // as preset phoxi-bin sets them
-  params.ransac_size = 15;
-  params.line_threshold_mm = params.circle_threshold_mm = 1.0;
-  params.sample_radius_mm = 10.0;
-  params.max_iterations = 50;
+  const core::FeatureParams params = core::loadPreset(std::filesystem::path(SCANPICK_SOURCE_DIR) /
+                                                      "resources/presets/phoxi-bin.json")
+                                         .params.features;
   std::size_t features = 0;
   for (auto _ : state)
     features =
