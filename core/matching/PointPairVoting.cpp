@@ -1,12 +1,13 @@
 #include "core/matching/PointPairVoting.h"
 
-#include "core/cloud/PointKdTree.h"
 #include "core/common/Error.h"
 #include "core/common/ParallelProgress.h"
 #include "core/common/Rounding.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <string>
@@ -37,37 +38,180 @@ std::uint16_t planeAngle(const Eigen::Vector3f& local) {
   return static_cast<std::uint16_t>(roundHalfAway(radians * (65536.0f / kTwoPi)) & 0xFFFF);
 }
 
-/// The sampled scene's points in a kd-tree, for the radius searches of the pairing.
-struct SceneTree {
-  explicit SceneTree(const std::vector<Eigen::Vector3f>& points)
-      : source{&points}, tree(3, source, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
-    tree.buildIndex();
+/// The sampled scene's points sorted into cubic cells a little wider than the pairing radius, so
+/// that a point's neighbours within the radius lie in the 27 cells around its own, with their
+/// coordinates and normals in arrays padded for PairQuantizer::keysWithin.
+class PairingGrid {
+public:
+  PairingGrid(const OrientedPoints& scene, double radius_mm)
+      : m_cell_mm(radius_mm * (1.0 + 1e-5)) { // float sums may put a neighbour a hair past it
+    if (!(m_cell_mm > 0.0))
+      return; // nothing lies within a radius of 0
+    std::vector<std::pair<Cell, std::uint32_t>> sorted;
+    for (std::size_t i = 0; i < scene.points.size(); ++i)
+      if (scene.points[i].allFinite())
+        sorted.push_back({cellOf(scene.points[i]), static_cast<std::uint32_t>(i)});
+    std::sort(sorted.begin(), sorted.end());
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (auto* values : {&m_x, &m_y, &m_z, &m_nx, &m_ny, &m_nz})
+      values->assign(sorted.size() + kPadding, nan);
+    for (std::size_t at = 0; at < sorted.size(); ++at) {
+      const std::uint32_t i = sorted[at].second;
+      const Eigen::Vector3f &p = scene.points[i], &n = scene.normals[i];
+      m_x[at] = p.x(), m_y[at] = p.y(), m_z[at] = p.z();
+      m_nx[at] = n.x(), m_ny[at] = n.y(), m_nz[at] = n.z();
+      m_ids.push_back(i);
+      if (m_cells.empty() || m_cells.back().cell != sorted[at].first)
+        m_cells.push_back({sorted[at].first, static_cast<std::uint32_t>(at), 0});
+      m_cells.back().end = static_cast<std::uint32_t>(at + 1);
+    }
   }
-  PointVectorSource source;
-  PointKdTree tree;
+
+  /// visit(begin, end) for the points of each non-empty cell around `p` (none for a non-finite
+  /// `p`): positions in arrays().
+  template <typename Visit> void forEachCellNear(const Eigen::Vector3f& p, Visit&& visit) const {
+    if (!p.allFinite())
+      return;
+    const Cell centre = cellOf(p);
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const Cell cell{centre[0] + dx, centre[1] + dy, centre[2] + dz};
+          const auto found = std::lower_bound(
+              m_cells.begin(), m_cells.end(), cell,
+              [](const CellRange& range, const Cell& c) { return range.cell < c; });
+          if (found != m_cells.end() && found->cell == cell)
+            visit(std::size_t{found->begin}, std::size_t{found->end});
+        }
+  }
+  [[nodiscard]] PairQuantizer::PointArrays arrays() const {
+    return {m_x.data(), m_y.data(), m_z.data(), m_nx.data(), m_ny.data(), m_nz.data()};
+  }
+  /// The scene index of the point at position `at` of arrays().
+  [[nodiscard]] std::uint32_t sceneIndex(std::uint32_t at) const { return m_ids[at]; }
+
+private:
+  using Cell = std::array<std::int64_t, 3>;
+  struct CellRange {
+    Cell cell;
+    std::uint32_t begin, end;
+  };
+  static constexpr std::size_t kPadding = 8;
+
+  [[nodiscard]] Cell cellOf(const Eigen::Vector3f& p) const {
+    const auto index = [&](float v) {
+      return static_cast<std::int64_t>(std::clamp(std::floor(double(v) / m_cell_mm), -1e15, 1e15));
+    };
+    return {index(p.x()), index(p.y()), index(p.z())};
+  }
+
+  double m_cell_mm;
+  std::vector<float> m_x, m_y, m_z, m_nx, m_ny, m_nz;
+  std::vector<std::uint32_t> m_ids;
+  std::vector<CellRange> m_cells; ///< sorted by cell
 };
 
-/// The pairs of reference point `s` with its neighbours within `radius_sq` (mm²) in `tree`, in
+/// The pairs of reference point `s` with its neighbours within `radius_sq` (mm²) in `grid`, in
 /// the reference's local frame `to_local`, appended to `out`: those whose key `wanted(key)` takes
-/// (their angle is computed only for those).
+/// (their angle is computed only for those). The votes are counts: the order in which the
+/// neighbours are visited does not matter.
 template <typename Wanted>
-void pairReference(const OrientedPoints& scene, const SceneTree& tree, std::size_t s,
+void pairReference(const OrientedPoints& scene, const PairingGrid& grid, std::size_t s,
                    const Eigen::Isometry3f& to_local, const PairQuantizer& quantizer,
                    float radius_sq, Wanted&& wanted, std::vector<ScenePairs::Pair>& out) {
   const Eigen::Vector3f& p = scene.points[s];
   const Eigen::Vector3f& n = scene.normals[s];
-  std::vector<std::pair<std::uint32_t, float>> neighbours;
-  // The votes are counts: the order in which the neighbours are visited does not matter.
-  tree.tree.radiusSearch(p.data(), radius_sq, neighbours, nanoflann::SearchParams(32, 0.0f, false));
-  out.reserve(out.size() + neighbours.size());
-  for (const auto& [i, distance_sq] : neighbours) {
-    if (i == s)
+  std::vector<PairQuantizer::KeyedPoint> keyed;
+  grid.forEachCellNear(p, [&](std::size_t begin, std::size_t end) {
+    keyed.resize(std::max(keyed.size(), end - begin));
+    const std::size_t found =
+        quantizer.keysWithin(grid.arrays(), begin, end, p, n, radius_sq, keyed.data());
+    for (std::size_t k = 0; k < found; ++k) {
+      const std::uint32_t i = grid.sceneIndex(keyed[k].at);
+      if (i != s && wanted(keyed[k].key))
+        out.push_back({keyed[k].key, planeAngle(to_local * scene.points[i]), keyed[k].distance_sq});
+    }
+  });
+}
+
+/// PairQuantizer::keysWithin's work, eight points at a time (see there); `bounds` are the
+/// quantizer's decreasing bin bounds.
+[[gnu::target_clones("avx2", "default")]] std::size_t
+keysWithinRange(const PairQuantizer::PointArrays& points, std::size_t begin, std::size_t end,
+                const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, float radius_sq,
+                float step_mm, std::uint32_t half, const std::vector<float>& bounds,
+                PairQuantizer::KeyedPoint* out) {
+  using Floats = float __attribute__((vector_size(32)));
+  using Ints = std::int32_t __attribute__((vector_size(32)));
+  using Units = std::uint32_t __attribute__((vector_size(32)));
+  const Ints lane = {0, 1, 2, 3, 4, 5, 6, 7};
+  const float half_step = 0.5f * step_mm;
+  const auto across = static_cast<std::int32_t>(half / 2);
+  // (Vectors by reference: by value they would change the ABI of the default clone.)
+  const auto load = [](const float* values, std::size_t at, Floats& v) {
+    std::memcpy(&v, values + at, sizeof v);
+  };
+  // Eight correctly rounded square roots, as std::sqrt gives each (two SSE instructions).
+  const auto sqrt8 = [](Floats& v) {
+    using Floats4 = float __attribute__((vector_size(16)));
+    Floats4 low, high;
+    std::memcpy(&low, &v, sizeof low);
+    std::memcpy(&high, reinterpret_cast<const char*>(&v) + sizeof low, sizeof high);
+    low = __builtin_ia32_sqrtps(low);
+    high = __builtin_ia32_sqrtps(high);
+    std::memcpy(&v, &low, sizeof low);
+    std::memcpy(reinterpret_cast<char*>(&v) + sizeof low, &high, sizeof high);
+  };
+  const auto any = [](const Ints& flags) {
+    std::uint64_t words[4];
+    std::memcpy(words, &flags, sizeof words);
+    return (words[0] | words[1] | words[2] | words[3]) != 0;
+  };
+  std::size_t found = 0;
+  for (std::size_t at = begin; at < end; at += 8) {
+    Floats x, y, z;
+    load(points.x, at, x);
+    load(points.y, at, y);
+    load(points.z, at, z);
+    const Floats dx = x - p1.x(), dy = y - p1.y(), dz = z - p1.z();
+    // The kd-tree's metric: x, then y, then z (the signs of the differences square away).
+    Floats metric_sq = dx * dx;
+    metric_sq += dy * dy;
+    metric_sq += dz * dz;
+    Ints take = (metric_sq < radius_sq) & (lane < static_cast<std::int32_t>(end - at));
+    if (!any(take))
       continue;
-    bool valid = false;
-    const std::uint32_t k = quantizer.key(p, n, scene.points[i], scene.normals[i], &valid);
-    if (valid && wanted(k))
-      out.push_back({k, planeAngle(to_local * scene.points[i]), distance_sq});
+    // key()'s terms, each sum as Eigen's three-term sums: x + (y + z).
+    Floats distance = dx * dx + (dy * dy + dz * dz);
+    sqrt8(distance);
+    const Floats ux = dx / distance, uy = dy / distance, uz = dz / distance;
+    Floats nx, ny, nz;
+    load(points.nx, at, nx);
+    load(points.ny, at, ny);
+    load(points.nz, at, nz);
+    const Floats c1 = n1.x() * ux + (n1.y() * uy + n1.z() * uz);
+    const Floats c2 = nx * ux + (ny * uy + nz * uz);
+    const Floats c3 = n1.x() * nx + (n1.y() * ny + n1.z() * nz);
+    // A bin is the number of bounds its cosine does not exceed (PairQuantizer::bin; NaN: 0).
+    Ints a1 = {}, a2 = {}, a3 = {};
+    for (const float bound : bounds) {
+      a1 -= c1 <= bound;
+      a2 -= c2 <= bound;
+      a3 -= c3 <= bound;
+    }
+    take &= ~(distance < half_step);
+    take &= ~((a3 == 0) & (a1 == across) & (a2 == across));
+    if (!any(take))
+      continue;
+    const Units d_bin =
+        __builtin_convertvector(__builtin_convertvector(distance / step_mm, Ints), Units);
+    const Units key = ((d_bin * half + Units(a1)) * half + Units(a2)) * half + Units(a3);
+    for (int k = 0; k < 8; ++k)
+      if (take[k])
+        out[found++] = {static_cast<std::uint32_t>(at) + static_cast<std::uint32_t>(k), key[k],
+                        metric_sq[k]};
   }
+  return found;
 }
 
 } // namespace
@@ -163,6 +307,13 @@ std::uint32_t PairQuantizer::key(const Eigen::Vector3f& p1, const Eigen::Vector3
   return ((d_bin * half + a1) * half + a2) * half + a3;
 }
 
+std::size_t PairQuantizer::keysWithin(const PointArrays& points, std::size_t begin, std::size_t end,
+                                      const Eigen::Vector3f& p1, const Eigen::Vector3f& n1,
+                                      float radius_sq, KeyedPoint* out) const {
+  return keysWithinRange(points, begin, end, p1, n1, radius_sq, float(m_distance_step_mm),
+                         static_cast<std::uint32_t>(m_angle_bins / 2), m_bin_cosines, out);
+}
+
 void PairKeySet::add(const PointPairModel& model) {
   const std::uint32_t end = model.keyEnd();
   if (m_bits.size() < (end + 63) / 64)
@@ -204,7 +355,7 @@ ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantiz
   const std::size_t n_refs = n_scene < 2 ? 0 : (n_scene + stride - 1) / stride;
   if (n_refs == 0)
     return;
-  const SceneTree tree(scene.points);
+  const PairingGrid grid(scene, radius_mm);
   const auto radius_sq = static_cast<float>(radius_mm * radius_mm);
   m_reference_points.resize(n_refs);
   m_to_local.resize(n_refs);
@@ -216,7 +367,7 @@ ScenePairs::ScenePairs(const OrientedPoints& scene, const PairQuantizer& quantiz
         m_reference_points[r] = scene.points[s];
         m_to_local[r] = localFrame(scene.points[s], scene.normals[s]);
         pairReference(
-            scene, tree, s, m_to_local[r], m_quantizer, radius_sq,
+            scene, grid, s, m_to_local[r], m_quantizer, radius_sq,
             [&](std::uint32_t k) { return !m_keys || m_keys->contains(k); }, m_pairs[r]);
       },
       64);
@@ -273,7 +424,7 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
   // Each reference is paired as it votes, with its pairs of keys in the table only: without a
   // second view to share them (ScenePairs), most of a sparse table's pairs need no angle.
   const auto stride = static_cast<std::size_t>(std::max(1, options.reference_stride));
-  const SceneTree tree(scene.points);
+  const PairingGrid grid(scene, m_diameter_mm);
   const auto radius_sq = static_cast<float>(m_diameter_mm * m_diameter_mm);
   std::vector<ReferencePeak> peaks((n_scene + stride - 1) / stride);
   parallelForWithProgress(
@@ -283,7 +434,7 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
         const Eigen::Isometry3f to_local = localFrame(scene.points[s], scene.normals[s]);
         std::vector<ScenePairs::Pair> pairs;
         pairReference(
-            scene, tree, s, to_local, m_quantizer, radius_sq,
+            scene, grid, s, to_local, m_quantizer, radius_sq,
             [&](std::uint32_t k) { return inTable(k); }, pairs);
         peaks[r] =
             peakOf(pairs.data(), pairs.data() + pairs.size(), scene.points[s], to_local, options);

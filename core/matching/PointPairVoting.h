@@ -71,6 +71,26 @@ public:
   [[nodiscard]] std::uint32_t key(const Eigen::Vector3f& p1, const Eigen::Vector3f& n1,
                                   const Eigen::Vector3f& p2, const Eigen::Vector3f& n2,
                                   bool* valid) const;
+  /// Points given as coordinate arrays (mm) with their unit normals, for keysWithin(); each array
+  /// has at least 8 readable values past the last point used.
+  struct PointArrays {
+    const float *x, *y, *z, *nx, *ny, *nz;
+  };
+  /// A point of keysWithin()'s range that pairs: its position in the arrays, the pair's key and
+  /// the squared distance (mm²) summed as the kd-tree's metric sums it (x, then y, then z).
+  struct KeyedPoint {
+    std::uint32_t at;
+    std::uint32_t key;
+    float distance_sq;
+  };
+  /// The pairs of (p1, n1) with the points [begin, end) of `points` that lie strictly within
+  /// `radius_sq` (mm²) and have a valid key, with the keys key() gives them, written to `out`
+  /// (room for end - begin); returns how many. Eight pairs at a time (GCC's vector types, also
+  /// built for AVX2, without fused multiply-add), each sum in the order Eigen sums it, so that the
+  /// keys are key()'s to the bit.
+  std::size_t keysWithin(const PointArrays& points, std::size_t begin, std::size_t end,
+                         const Eigen::Vector3f& p1, const Eigen::Vector3f& n1, float radius_sq,
+                         KeyedPoint* out) const;
   [[nodiscard]] int angleBins() const { return m_angle_bins; }
   bool operator==(const PairQuantizer& other) const {
     return m_distance_step_mm == other.m_distance_step_mm && m_angle_bins == other.m_angle_bins;

@@ -2,9 +2,12 @@
 
 #include "core/common/Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <limits>
 #include <random>
+#include <vector>
 
 using namespace scanpick::core;
 
@@ -301,4 +304,75 @@ TEST(PairQuantizer, KeysBinTheDistanceAndTheAnglesOfAPair) {
   EXPECT_FALSE(valid) << "closer than half a step";
   EXPECT_THROW(PairQuantizer(0.0, 30), Error);
   EXPECT_THROW(PairQuantizer(1.0, 2), Error);
+}
+
+TEST(PairQuantizer, KeysWithinARadiusAreTheKeysOfEachPairToTheBit) {
+  // Points around a reference, some on its plane and some at its place (invalid pairs), some
+  // beyond the radius; the eight-at-a-time keys against key() and the kd-tree's metric, for ranges
+  // of every length modulo 8.
+  for (const int bins : {30, 12, 90}) {
+    const PairQuantizer quantizer(3.0, bins);
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> coordinate(-60.0f, 60.0f);
+    const auto unit = [&] {
+      return Eigen::Vector3f(coordinate(rng), coordinate(rng), coordinate(rng)).normalized();
+    };
+    const Eigen::Vector3f p1(1.5f, -2.25f, 700.0f);
+    const Eigen::Vector3f n1 = unit();
+    const std::size_t count = 1000;
+    std::vector<float> x, y, z, nx, ny, nz;
+    for (std::size_t i = 0; i < count; ++i) {
+      Eigen::Vector3f p = p1 + Eigen::Vector3f(coordinate(rng), coordinate(rng), coordinate(rng));
+      Eigen::Vector3f n = unit();
+      if (i % 7 == 0) { // on the reference's plane, facing as it does
+        const Eigen::Vector3f along = n1.unitOrthogonal() * coordinate(rng);
+        p = p1 + along;
+        n = n1;
+      }
+      if (i % 50 == 0)
+        p = p1;
+      x.push_back(p.x()), y.push_back(p.y()), z.push_back(p.z());
+      nx.push_back(n.x()), ny.push_back(n.y()), nz.push_back(n.z());
+    }
+    for (auto* values : {&x, &y, &z, &nx, &ny, &nz})
+      values->resize(count + 8, std::numeric_limits<float>::quiet_NaN());
+    const PairQuantizer::PointArrays arrays{x.data(),  y.data(),  z.data(),
+                                            nx.data(), ny.data(), nz.data()};
+    const float radius_sq = 70.0f * 70.0f;
+    std::vector<PairQuantizer::KeyedPoint> out(count);
+    std::size_t checked = 0, flat = 0;
+    for (const std::size_t begin : {std::size_t{0}, std::size_t{3}}) {
+      const std::size_t found =
+          quantizer.keysWithin(arrays, begin, count, p1, n1, radius_sq, out.data());
+      std::size_t k = 0;
+      for (std::size_t i = begin; i < count; ++i) {
+        const Eigen::Vector3f p2(x[i], y[i], z[i]), n2(nx[i], ny[i], nz[i]);
+        float metric_sq = 0.0f; // as nanoflann's L2_Simple_Adaptor sums it
+        for (int c = 0; c < 3; ++c)
+          metric_sq += (p1[c] - p2[c]) * (p1[c] - p2[c]);
+        bool valid = false;
+        const std::uint32_t key = quantizer.key(p1, n1, p2, n2, &valid);
+        flat += !valid && (p2 - p1).norm() > 2.0f;
+        if (!(metric_sq < radius_sq) || !valid)
+          continue;
+        ASSERT_LT(k, found);
+        EXPECT_EQ(out[k].at, i);
+        EXPECT_EQ(out[k].key, key) << "point " << i << ", bins " << bins;
+        EXPECT_EQ(out[k].distance_sq, metric_sq);
+        ++k, ++checked;
+      }
+      EXPECT_EQ(k, found);
+      // Ranges ending inside a group of eight: the same pairs, up to the range's end.
+      for (std::size_t end = begin; end <= begin + 17; ++end) {
+        const auto before_end = static_cast<std::size_t>(
+            std::count_if(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(found),
+                          [&](const PairQuantizer::KeyedPoint& keyed) { return keyed.at < end; }));
+        std::vector<PairQuantizer::KeyedPoint> shorter(count);
+        EXPECT_EQ(quantizer.keysWithin(arrays, begin, end, p1, n1, radius_sq, shorter.data()),
+                  before_end);
+      }
+    }
+    EXPECT_GT(checked, 500u);
+    EXPECT_GT(flat, 20u) << "the points on the reference's plane make invalid pairs";
+  }
 }
