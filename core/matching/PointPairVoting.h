@@ -216,13 +216,10 @@ public:
   }
 
 private:
-  /// One model pair, 4 bytes so that the table streams through the cache while voting.
-  struct Entry {
-    std::uint16_t model_point;
-    /// Rotation about the reference normal bringing the pair into the local plane, in turns of
-    /// 2π / 65536 (fixedAngle): differences wrap by themselves.
-    std::uint16_t alpha;
-  };
+  /// One model pair, 4 bytes so that the table streams through the cache while voting: the model
+  /// point in the low 16 bits, in the high 16 the rotation about its normal bringing the pair into
+  /// the local plane, in turns of 2π / 65536 (differences wrap by themselves).
+  using Entry = std::uint32_t;
 
   /// One reference point's best (model point, angle) as a pose (float, as voted), and its votes.
   struct ReferencePeak {
