@@ -519,6 +519,7 @@ PointPairModel::ReferencePeak PointPairModel::peakOf(const ScenePairs::Pair* beg
       cells.resize(std::max(cells.size(), count));
       voteCells(m_table.data() + first, count, pair->alpha, static_cast<std::uint32_t>(bins),
                 cells.data());
+#pragma GCC unroll 4
       for (std::size_t k = 0; k < count; ++k) {
         if constexpr (excluding)
           if (excluded[cells[k] / bins])
