@@ -59,6 +59,19 @@ bool facesViewpoint(const Eigen::Vector3f& p, const Eigen::Vector3f& n,
 /// point-to-plane); pass 0 to search every point. `pairs` must come from a call with the same
 /// stride, or be empty. Each slot is written by one task only, so the result is independent of
 /// scheduling.
+/// The squared distance (mm²) within which the nearest scene point to `p` is looked for: at most
+/// `max_distance_sq`, and no farther than the point found for it last time (`last`, -1 for none),
+/// with a little to spare (the window of a smaller ball is smaller). Every point as near as the
+/// nearest lies within it, so the search answers as within `max_distance_sq`.
+float searchBound(const SceneIndex& scene, const Eigen::Vector3f& p, std::int64_t last,
+                  float max_distance_sq) {
+  if (last < 0)
+    return max_distance_sq;
+  const Eigen::Vector3f d = p - scene.points()[static_cast<std::size_t>(last)];
+  const float last_sq = d.x() * d.x() + d.y() * d.y() + d.z() * d.z();
+  return std::min(max_distance_sq, 1.001f * last_sq + 1e-6f);
+}
+
 void findPairs(const RefineModel& model, const SceneIndex& scene, const Eigen::Isometry3d& T,
                std::size_t stride, float max_distance_sq, bool need_normals, float reuse_within_mm,
                std::vector<Pair>& pairs) {
@@ -86,7 +99,8 @@ void findPairs(const RefineModel& model, const SceneIndex& scene, const Eigen::I
                         // (NaN compares false: a point never searched is searched now.)
                         if (!((p - pair.searched_at).squaredNorm() < reuse_sq)) {
                           pair.searched_at = p;
-                          pair.scene_index = scene.nearest(p, max_distance_sq);
+                          pair.scene_index = scene.nearest(
+                              p, searchBound(scene, p, pair.scene_index, max_distance_sq));
                         }
                         const std::int64_t j = pair.scene_index;
                         if (j < 0)
