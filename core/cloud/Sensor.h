@@ -3,7 +3,11 @@
 /// Structured-light sensor geometry: pinhole camera intrinsics and where the projector sits.
 /// The scene frame is the camera frame (see docs/file-formats.md).
 
+#include "core/common/Rounding.h"
+
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +31,23 @@ struct SensorModel {
   /// Projects a camera-frame point (mm, z > 0) to pixel coordinates.
   [[nodiscard]] Eigen::Vector2d project(const Eigen::Vector3d& p_camera_mm) const {
     return {fx * p_camera_mm.x() / p_camera_mm.z() + cx, fy * p_camera_mm.y() / p_camera_mm.z() + cy};
+  }
+  /// The pixel (column, row) where a camera-frame point (mm) projects, halves rounded away from
+  /// zero, each coordinate first clamped to ±1e6 (far outside any image, so that points near the
+  /// camera's plane cannot overflow); none for z ≤ 0 or a projection that is not a number. It may
+  /// lie outside the image (inImage()).
+  [[nodiscard]] std::optional<Eigen::Vector2i> pixelOf(const Eigen::Vector3f& p_camera_mm) const {
+    if (!(p_camera_mm.z() > 0.0f))
+      return std::nullopt;
+    const Eigen::Vector2d uv = project(p_camera_mm.cast<double>());
+    if (!uv.allFinite())
+      return std::nullopt;
+    return Eigen::Vector2i(int(roundHalfAway(std::clamp(uv.x(), -1e6, 1e6))),
+                           int(roundHalfAway(std::clamp(uv.y(), -1e6, 1e6))));
+  }
+  /// Whether `pixel` (column, row) lies in the image.
+  [[nodiscard]] bool inImage(const Eigen::Vector2i& pixel) const {
+    return pixel.x() >= 0 && pixel.y() >= 0 && pixel.x() < width && pixel.y() < height;
   }
 };
 

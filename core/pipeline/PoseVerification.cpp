@@ -1,5 +1,4 @@
 #include "core/pipeline/PoseVerification.h"
-#include "core/common/Rounding.h"
 
 #include <algorithm>
 #include <cmath>
@@ -49,8 +48,7 @@ ProjectorShadow::ProjectorShadow(const PointCloud& scan, const SensorModel& sens
     if (!isValid(s))
       continue;
     const auto pixel = projectorPixel(s);
-    if (pixel && pixel->first.x() >= 0 && pixel->first.y() >= 0 &&
-        pixel->first.x() < m_sensor.width && pixel->first.y() < m_sensor.height) {
+    if (pixel && m_sensor.inImage(pixel->first)) {
       float& depth = m_depth_mm[std::size_t(pixel->first.y()) * std::size_t(m_sensor.width) +
                                 std::size_t(pixel->first.x())];
       depth = std::min(depth, pixel->second);
@@ -61,11 +59,10 @@ ProjectorShadow::ProjectorShadow(const PointCloud& scan, const SensorModel& sens
 std::optional<std::pair<Eigen::Vector2i, float>>
 ProjectorShadow::projectorPixel(const Eigen::Vector3f& p) const {
   const Eigen::Vector3f q = m_T_projector_scene * p;
-  if (q.z() <= 0.0f)
+  const auto pixel = m_sensor.pixelOf(q);
+  if (!pixel)
     return std::nullopt;
-  // Clamped far outside the image, so that points near the projector's plane cannot overflow.
-  const Eigen::Vector2d uv = m_sensor.project(q.cast<double>()).cwiseMax(-1e6).cwiseMin(1e6);
-  return std::pair{Eigen::Vector2i(int(roundHalfAway(uv.x())), int(roundHalfAway(uv.y()))), q.z()};
+  return std::pair{*pixel, q.z()};
 }
 
 bool ProjectorShadow::shadowed(const Eigen::Vector3f& p, float margin_mm) const {
@@ -157,14 +154,13 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
       ++tally.hidden;
       return;
     }
-    if (!organized || p.z() <= 0.0f)
+    if (!organized)
       return;
-    const Eigen::Vector2d uv = sensor.project(p.cast<double>());
-    const long u = roundHalfAway(uv.x()), v = roundHalfAway(uv.y());
-    if (u < 0 || v < 0 || u >= sensor.width || v >= sensor.height)
+    const auto pixel = sensor.pixelOf(p);
+    if (!pixel || !sensor.inImage(*pixel))
       return;
-    const Eigen::Vector3f& s =
-        scan.points_mm[static_cast<std::size_t>(v) * scan.width + static_cast<std::size_t>(u)];
+    const Eigen::Vector3f& s = scan.points_mm[static_cast<std::size_t>(pixel->y()) * scan.width +
+                                              static_cast<std::size_t>(pixel->x())];
     if (!isValid(s)) {
       if (model.body && model.body->blocks(model.points[k], camera_model))
         ++tally.hidden;
@@ -210,13 +206,11 @@ PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const Sens
   image.height = static_cast<std::uint32_t>(sensor.height);
   image.points_mm.assign(std::size_t(image.width) * image.height, invalidPoint());
   for (const auto& p : list.points_mm) {
-    if (!(p.z() > 0))
+    const auto at = sensor.pixelOf(p);
+    if (!at || !sensor.inImage(*at))
       return list;
-    const Eigen::Vector2d uv = sensor.project(p.cast<double>());
-    const long u = roundHalfAway(uv.x()), v = roundHalfAway(uv.y());
-    if (u < 0 || v < 0 || u >= sensor.width || v >= sensor.height)
-      return list;
-    Eigen::Vector3f& pixel = image.points_mm[std::size_t(v) * image.width + std::size_t(u)];
+    Eigen::Vector3f& pixel =
+        image.points_mm[std::size_t(at->y()) * image.width + std::size_t(at->x())];
     if (isValid(pixel) && pixel != p)
       return list;
     pixel = p;

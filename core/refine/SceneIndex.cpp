@@ -2,7 +2,6 @@
 
 #include "core/cloud/PointKdTree.h"
 #include "core/common/Error.h"
-#include "core/common/Rounding.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -325,10 +324,10 @@ std::int64_t SceneIndex::nearest(const Eigen::Vector3f& query_mm, float max_dist
       const double reach_v =
           sensor.fy * radius * (1.0 + std::abs(query_mm.y()) / z) / beyond + 0.5 + m_pixel_slack;
       if (reach_u < kMaxWindowReach && reach_v < kMaxWindowReach) {
-        const Eigen::Vector2d uv = sensor.project(query_mm.cast<double>());
-        if (uv.allFinite() && std::abs(uv.x()) < 1e6 && std::abs(uv.y()) < 1e6)
-          return nearestInWindow(query_mm, max_distance_sq, int(roundHalfAway(uv.x())),
-                                 int(roundHalfAway(uv.y())), int(reach_u), int(reach_v), distance_sq);
+        // (A pixel clamped far outside the image has no point within the radius in reach.)
+        if (const auto pixel = sensor.pixelOf(query_mm))
+          return nearestInWindow(query_mm, max_distance_sq, pixel->x(), pixel->y(), int(reach_u),
+                                 int(reach_v), distance_sq);
       }
     }
   }
