@@ -67,8 +67,7 @@ float searchBound(const SceneIndex& scene, const Eigen::Vector3f& p, std::int64_
                   float max_distance_sq) {
   if (last < 0)
     return max_distance_sq;
-  const Eigen::Vector3f d = p - scene.points()[static_cast<std::size_t>(last)];
-  const float last_sq = d.x() * d.x() + d.y() * d.y() + d.z() * d.z();
+  const float last_sq = (p - scene.points()[static_cast<std::size_t>(last)]).squaredNorm();
   return std::min(max_distance_sq, 1.001f * last_sq + 1e-6f);
 }
 
