@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,10 @@ struct SensorModel {
   /// Whether `pixel` (column, row) lies in the image.
   [[nodiscard]] bool inImage(const Eigen::Vector2i& pixel) const {
     return pixel.x() >= 0 && pixel.y() >= 0 && pixel.x() < width && pixel.y() < height;
+  }
+  /// The index of `pixel` (column, row; inImage()) in a row-major image of the sensor's width.
+  [[nodiscard]] std::size_t pixelIndex(const Eigen::Vector2i& pixel) const {
+    return std::size_t(pixel.y()) * std::size_t(width) + std::size_t(pixel.x());
   }
 };
 

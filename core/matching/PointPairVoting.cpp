@@ -121,7 +121,7 @@ void pairReference(const OrientedPoints& scene, const PairingGrid& grid, std::si
                    float radius_sq, Wanted&& wanted, std::vector<ScenePairs::Pair>& out) {
   const Eigen::Vector3f& p = scene.points[s];
   const Eigen::Vector3f& n = scene.normals[s];
-  std::vector<PairQuantizer::KeyedPoint> keyed;
+  thread_local std::vector<PairQuantizer::KeyedPoint> keyed; // no allocation per reference
   grid.forEachCellNear(p, [&](std::size_t begin, std::size_t end) {
     keyed.resize(std::max(keyed.size(), end - begin));
     const std::size_t found =
@@ -447,7 +447,8 @@ std::vector<VotedPose> PointPairModel::vote(const OrientedPoints& scene,
       [&](std::size_t r) {
         const std::size_t s = r * stride;
         const Eigen::Isometry3f to_local = localFrame(scene.points[s], scene.normals[s]);
-        std::vector<ScenePairs::Pair> pairs;
+        thread_local std::vector<ScenePairs::Pair> pairs; // no allocation per reference
+        pairs.clear();
         pairReference(
             scene, grid, s, to_local, m_quantizer, radius_sq,
             [&](std::uint32_t k) { return inTable(k); }, pairs);
@@ -487,7 +488,10 @@ PointPairModel::ReferencePeak PointPairModel::peakOf(const ScenePairs::Pair* beg
   const auto n_model = m_model.points.size();
   const auto radius_sq = static_cast<float>(m_diameter_mm * m_diameter_mm);
   // Self-voting: the model points near the reference, found once instead of per table entry.
-  std::vector<std::uint8_t> excluded;
+  // Scratch of each thread, as large as the largest model it voted for: no allocation per
+  // reference point.
+  thread_local std::vector<std::uint8_t> excluded;
+  excluded.clear();
   if (options.exclude_self_mm > 0) {
     const auto exclude_sq = static_cast<float>(options.exclude_self_mm * options.exclude_self_mm);
     excluded.resize(n_model);
@@ -510,8 +514,9 @@ PointPairModel::ReferencePeak PointPairModel::peakOf(const ScenePairs::Pair* beg
   const auto tally = [&](auto counter, auto excluding) {
     using Count = decltype(counter);
     const auto bins = static_cast<std::size_t>(m_quantizer.angleBins());
-    std::vector<Count> accumulator(n_model * bins, 0);
-    std::vector<std::uint32_t> cells; // of one pair's votes
+    thread_local std::vector<Count> accumulator;
+    accumulator.assign(n_model * bins, 0);
+    thread_local std::vector<std::uint32_t> cells; // of one pair's votes
     for (const ScenePairs::Pair* pair = begin; pair != end; ++pair) {
       if (!voting(*pair))
         continue;

@@ -169,7 +169,7 @@ RevolvedBody::RevolvedBody(const std::vector<Eigen::Vector3f>& points_mm,
   }
 }
 
-bool RevolvedBody::occupied(float h, float r) const {
+[[gnu::always_inline]] inline bool RevolvedBody::occupied(float h, float r) const {
   const float row = std::floor((h - m_h_min) / m_cell), column = std::floor(r / m_cell);
   return row >= 0.0f && column >= 0.0f && row < float(m_rows) && column < float(m_columns) &&
          m_cells[std::size_t(row) * std::size_t(m_columns) + std::size_t(column)] != 0;

@@ -49,8 +49,7 @@ ProjectorShadow::ProjectorShadow(const PointCloud& scan, const SensorModel& sens
       continue;
     const auto pixel = projectorPixel(s);
     if (pixel && m_sensor.inImage(pixel->first)) {
-      float& depth = m_depth_mm[std::size_t(pixel->first.y()) * std::size_t(m_sensor.width) +
-                                std::size_t(pixel->first.x())];
+      float& depth = m_depth_mm[m_sensor.pixelIndex(pixel->first)];
       depth = std::min(depth, pixel->second);
     }
   }
@@ -72,9 +71,8 @@ bool ProjectorShadow::shadowed(const Eigen::Vector3f& p, float margin_mm) const 
   // Within a pixel: measured points fall between the projector pixels' centres.
   for (int v = pixel->first.y() - 1; v <= pixel->first.y() + 1; ++v)
     for (int u = pixel->first.x() - 1; u <= pixel->first.x() + 1; ++u)
-      if (u >= 0 && v >= 0 && u < m_sensor.width && v < m_sensor.height &&
-          m_depth_mm[std::size_t(v) * std::size_t(m_sensor.width) + std::size_t(u)] <
-              pixel->second - margin_mm)
+      if (m_sensor.inImage({u, v}) &&
+          m_depth_mm[m_sensor.pixelIndex({u, v})] < pixel->second - margin_mm)
         return true;
   return false;
 }
@@ -159,8 +157,7 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     const auto pixel = sensor.pixelOf(p);
     if (!pixel || !sensor.inImage(*pixel))
       return;
-    const Eigen::Vector3f& s = scan.points_mm[static_cast<std::size_t>(pixel->y()) * scan.width +
-                                              static_cast<std::size_t>(pixel->x())];
+    const Eigen::Vector3f& s = scan.points_mm[sensor.pixelIndex(*pixel)]; // organized: its width
     if (!isValid(s)) {
       if (model.body && model.body->blocks(model.points[k], camera_model))
         ++tally.hidden;
@@ -209,8 +206,7 @@ PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const Sens
     const auto at = sensor.pixelOf(p);
     if (!at || !sensor.inImage(*at))
       return list;
-    Eigen::Vector3f& pixel =
-        image.points_mm[std::size_t(at->y()) * image.width + std::size_t(at->x())];
+    Eigen::Vector3f& pixel = image.points_mm[sensor.pixelIndex(*at)];
     if (isValid(pixel) && pixel != p)
       return list;
     pixel = p;

@@ -40,4 +40,9 @@ TEST(SensorModel, PixelOfAPointIsItsProjectionRoundedHalfAwayAndClampedFarOutsid
   EXPECT_FALSE(sensor.inImage({sensor.width, 0}));
   EXPECT_FALSE(sensor.inImage({0, sensor.height}));
   EXPECT_FALSE(sensor.inImage({-1, 0}));
+  // Row-major: the first pixel, the next row's first, the last.
+  EXPECT_EQ(sensor.pixelIndex({0, 0}), 0u);
+  EXPECT_EQ(sensor.pixelIndex({0, 1}), std::size_t(sensor.width));
+  EXPECT_EQ(sensor.pixelIndex({sensor.width - 1, sensor.height - 1}),
+            std::size_t(sensor.width) * std::size_t(sensor.height) - 1);
 }
