@@ -99,6 +99,163 @@ std::optional<RevolutionAxis> fitRevolutionAxis(const std::vector<Eigen::Vector3
   return axis;
 }
 
+namespace {
+
+/// Rings of wall points: those at one height (within kRingHeightMm) and one distance from the
+/// axis (no gap over kRingGapMm between neighbours).
+constexpr double kRingHeightMm = 2.0;
+constexpr double kRingGapMm = 1.0;
+
+/// Each wall point's distance from the axis about the mean of its ring (the residual), and that
+/// residual's derivatives by the axis's turn towards u and v and its move along u and v.
+struct RingResiduals {
+  std::vector<double> residual;
+  std::vector<Eigen::Vector4d> gradient;
+  std::vector<std::size_t> point; ///< which wall point (rings of fewer than 3 are left out)
+};
+
+RingResiduals ringResiduals(const std::vector<Eigen::Vector3d>& wall, const Eigen::Vector3d& a,
+                            const Eigen::Vector3d& c, const std::vector<bool>& used) {
+  const Eigen::Vector3d u = a.unitOrthogonal(), v = a.cross(u);
+  struct Sample {
+    long ring_height;
+    double r;
+    Eigen::Vector4d gradient;
+    std::size_t point;
+  };
+  std::vector<Sample> samples;
+  for (std::size_t i = 0; i < wall.size(); ++i) {
+    if (!used[i])
+      continue;
+    const Eigen::Vector3d q = wall[i] - c;
+    const double h = q.dot(a);
+    const Eigen::Vector3d w = q - h * a;
+    const double r = w.norm();
+    if (!(r > kRingGapMm))
+      continue;
+    const Eigen::Vector3d radial = w / r;
+    samples.push_back(
+        {std::lround(std::floor(h / kRingHeightMm)), r,
+         Eigen::Vector4d(-h * radial.dot(u), -h * radial.dot(v), -radial.dot(u), -radial.dot(v)),
+         i});
+  }
+  std::sort(samples.begin(), samples.end(), [](const Sample& x, const Sample& y) {
+    return x.ring_height != y.ring_height ? x.ring_height < y.ring_height : x.r < y.r;
+  });
+  RingResiduals out;
+  for (std::size_t begin = 0; begin < samples.size();) {
+    std::size_t end = begin + 1;
+    while (end < samples.size() && samples[end].ring_height == samples[begin].ring_height &&
+           samples[end].r - samples[end - 1].r <= kRingGapMm)
+      ++end;
+    if (end - begin >= 3) {
+      double r_mean = 0.0;
+      Eigen::Vector4d g_mean = Eigen::Vector4d::Zero();
+      for (std::size_t k = begin; k < end; ++k) {
+        r_mean += samples[k].r;
+        g_mean += samples[k].gradient;
+      }
+      r_mean /= double(end - begin);
+      g_mean /= double(end - begin);
+      for (std::size_t k = begin; k < end; ++k) {
+        out.residual.push_back(samples[k].r - r_mean);
+        out.gradient.push_back(samples[k].gradient - g_mean);
+        out.point.push_back(samples[k].point);
+      }
+    }
+    begin = end;
+  }
+  return out;
+}
+
+double meanSquare(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (const double v : values)
+    sum += v * v;
+  return values.empty() ? 0.0 : sum / double(values.size());
+}
+
+} // namespace
+
+RevolutionAxis refineRevolutionAxis(const std::vector<Eigen::Vector3f>& points_mm,
+                                    const std::vector<Eigen::Vector3f>& normals,
+                                    const RevolutionAxis& axis,
+                                    const std::vector<std::uint32_t>& excluded) {
+  constexpr std::size_t kMinPoints = 20;
+  constexpr double kMinRadialCos = 0.5; // a normal within 60° of radial
+  constexpr int kMaxSteps = 10;
+  std::vector<bool> skip(points_mm.size(), false);
+  for (const std::uint32_t k : excluded)
+    if (k < skip.size())
+      skip[k] = true;
+  Eigen::Vector3d a = axis.direction.normalized(), c = axis.point_mm;
+  std::vector<Eigen::Vector3d> wall;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  std::size_t counted = 0;
+  for (std::size_t i = 0; i < points_mm.size() && i < normals.size(); ++i) {
+    if (!points_mm[i].allFinite())
+      continue;
+    centroid += points_mm[i].cast<double>();
+    ++counted;
+    if (skip[i] || !normals[i].allFinite())
+      continue;
+    const Eigen::Vector3d p = points_mm[i].cast<double>(),
+                          n = normals[i].cast<double>().normalized();
+    const Eigen::Vector3d w = (p - c) - (p - c).dot(a) * a;
+    if (w.norm() > kRingGapMm && std::abs(n.dot(w.normalized())) >= kMinRadialCos)
+      wall.push_back(p);
+  }
+  if (wall.size() < kMinPoints)
+    return axis;
+  centroid /= double(counted);
+  std::vector<bool> used(wall.size(), true);
+  for (int step = 0; step < kMaxSteps; ++step) {
+    RingResiduals rings = ringResiduals(wall, a, c, used);
+    if (rings.residual.size() < kMinPoints)
+      break;
+    // Outliers: beyond three robust standard deviations (1.4826 × the median absolute residual).
+    std::vector<double> magnitude;
+    for (const double e : rings.residual)
+      magnitude.push_back(std::abs(e));
+    std::nth_element(magnitude.begin(), magnitude.begin() + long(magnitude.size() / 2),
+                     magnitude.end());
+    const double limit = 3.0 * 1.4826 * std::max(1e-6, magnitude[magnitude.size() / 2]);
+    Eigen::Matrix4d JtJ = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d Jte = Eigen::Vector4d::Zero();
+    std::vector<double> kept;
+    for (std::size_t k = 0; k < rings.residual.size(); ++k) {
+      if (std::abs(rings.residual[k]) > limit) {
+        used[rings.point[k]] = false;
+        continue;
+      }
+      JtJ += rings.gradient[k] * rings.gradient[k].transpose();
+      Jte += rings.gradient[k] * rings.residual[k];
+      kept.push_back(rings.residual[k]);
+    }
+    const Eigen::LDLT<Eigen::Matrix4d> solver(JtJ);
+    if (solver.info() != Eigen::Success || kept.size() < kMinPoints)
+      break;
+    const Eigen::Vector4d x = -solver.solve(Jte);
+    if (!x.allFinite())
+      break;
+    const Eigen::Vector3d u = a.unitOrthogonal(), v = a.cross(u);
+    const Eigen::Vector3d a_next = (a + x(0) * u + x(1) * v).normalized();
+    const Eigen::Vector3d c_next = c + x(2) * u + x(3) * v;
+    // Kept only when the spread of the same points about their rings falls.
+    const RingResiduals after = ringResiduals(wall, a_next, c_next, used);
+    if (after.residual.size() < kMinPoints || !(meanSquare(after.residual) < meanSquare(kept)))
+      break;
+    a = a_next;
+    c = c_next;
+    if (x.head<2>().norm() < 1e-7 && x.tail<2>().norm() < 1e-5)
+      break;
+  }
+  RevolutionAxis refined = axis;
+  refined.direction = a;
+  refined.point_mm = c + (centroid - c).dot(a) * a;
+  return refined;
+}
+
 std::vector<std::uint32_t> detailPoints(const std::vector<Eigen::Vector3f>& points_mm,
                                         const RevolutionAxis& axis, double cell_mm,
                                         double max_span_deg) {

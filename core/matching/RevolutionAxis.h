@@ -50,6 +50,20 @@ std::optional<RevolutionAxis> fitRevolutionAxis(const std::vector<Eigen::Vector3
                                                 double angle_tolerance_rad = 0.17,
                                                 double min_inlier_share = 0.98);
 
+/// `axis` moved to where the points of the surface of revolution lie best on one: fitted on the
+/// normals alone, a view's axis sits a few tenths of a millimetre and degree off (the normals are
+/// estimated over a radius from noisy points), which a turn about it moves the part by. Of the
+/// points facing away from the axis (normals within 60° of radial; `excluded` left out, such as a
+/// cup's handle), each at its height should lie as far from the axis as its neighbours at that
+/// height (a wall): Gauss-Newton on those differences over the axis's direction and place, each
+/// step's outliers (beyond 3 robust standard deviations) left out. Returns `axis` unchanged when
+/// fewer than 20 points can tell or a step does not lower the spread; the point stays the one
+/// nearest the points' centroid, the inlier share as it was.
+RevolutionAxis refineRevolutionAxis(const std::vector<Eigen::Vector3f>& points_mm,
+                                    const std::vector<Eigen::Vector3f>& normals,
+                                    const RevolutionAxis& axis,
+                                    const std::vector<std::uint32_t>& excluded = {});
+
 /// The points off the surface of revolution about `axis` (indices into `points_mm`): those in a
 /// cell of height along and distance from the axis (`cell_mm` each) whose points span less than
 /// `max_span_deg` about it. The body of a cup seen from the side spans about 180° at every height

@@ -272,6 +272,8 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     prep->verify = makeVerifyModel(*model, *surface, points);
     prep->axis = fitRevolutionAxis(prep->verify->points, prep->verify->normals);
     if (prep->axis)
+      prep->axis = refineRevolutionAxis(prep->verify->points, prep->verify->normals, *prep->axis);
+    if (prep->axis)
       logger()->debug("model '{}' is a surface of revolution ({:.0f} % of its normals), its turn "
                       "is not seen: axis through ({:.1f}, {:.1f}, {:.1f}) mm along ({:.3f}, "
                       "{:.3f}, {:.3f})",
@@ -281,7 +283,10 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     else if (auto near = fitRevolutionAxis(prep->verify->points, prep->verify->normals,
                                            kRevolutionTolerance, kNearRevolutionShare);
              near || (near = rimAxis(prep->verify->points, prep->verify->normals))) {
+      // The axis is refined on the surface without the detail, which is then found again.
       auto detail = detailPoints(prep->verify->points, *near, kDetailCellMm);
+      near = refineRevolutionAxis(prep->verify->points, prep->verify->normals, *near, detail);
+      detail = detailPoints(prep->verify->points, *near, kDetailCellMm);
       const std::size_t count = prep->verify->points.size();
       if (double(detail.size()) <= kMaxDetailShare * double(count)) {
         prep->near_axis = near;
