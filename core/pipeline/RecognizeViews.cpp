@@ -18,6 +18,24 @@ using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
+
+/// `detections` handed to `work` view by view (Detection::model_index, of `views`), then
+/// together again, best first.
+template <typename Work>
+std::vector<Detection> ofEachView(std::vector<Detection> detections, std::size_t views,
+                                  Work&& work) {
+  std::vector<Detection> out;
+  for (std::size_t m = 0; m < views; ++m) {
+    std::vector<Detection> of_view;
+    for (auto& d : detections)
+      if (d.model_index == static_cast<int>(m))
+        of_view.push_back(std::move(d));
+    work(m, of_view);
+    std::move(of_view.begin(), of_view.end(), std::back_inserter(out));
+  }
+  sortBestFirst(out);
+  return out;
+}
 } // namespace
 
 double prepareViews(Recognizer& recognizer,
@@ -42,9 +60,11 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
   unrefined.refine.enabled = false;
   for (std::size_t m = 0; m < models.size(); ++m) {
     const double begin = double(m) / double(models.size());
+    // Turns are resolved after the merge, once per instance however many views found it.
     RecognitionResult r =
         recognizer.recognize(models[m], scene_mm, sensor, unrefined,
-                             subProgress(progress, begin, begin + 1.0 / double(models.size())));
+                             subProgress(progress, begin, begin + 1.0 / double(models.size())),
+                             Recognizer::Turns::Leave);
     diameter_mm = std::max(diameter_mm, models[m]->diameter_mm);
     for (auto& d : r.detections) {
       d.model_index = static_cast<int>(m);
@@ -86,10 +106,18 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
   const std::size_t found = merged.detections.size();
   merged.detections =
       mergeViewDetections(std::move(merged.detections), models, 0.3 * diameter_mm, prefer);
+  merged.detections =
+      ofEachView(std::move(merged.detections), models.size(),
+                 [&](std::size_t m, std::vector<Detection>& of_view) {
+                   recognizer.resolveTurns(models[m], of_view, scene_mm, sensor, unrefined);
+                 });
+  // A turn may have moved a detection onto an instance another view's detection holds.
+  merged.detections =
+      mergeViewDetections(std::move(merged.detections), models, 0.3 * diameter_mm, prefer);
   sortBestFirst(merged.detections);
   const double merge_ms = msSince(t_merge);
-  logger()->debug("the views' {} detections merged into {} in {:.1f} ms", found,
-                  merged.detections.size(), merge_ms);
+  logger()->debug("the views' {} detections merged into {}, their turns resolved, in {:.1f} ms",
+                  found, merged.detections.size(), merge_ms);
   merged.timings.matching_ms += merge_ms;
   merged.timings.total_ms += merge_ms;
   if (params.matching.max_detections > 0 &&
@@ -97,18 +125,12 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
     merged.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
   if (params.refine.enabled) {
     const auto t0 = Clock::now();
-    std::vector<Detection> refined;
-    for (std::size_t m = 0; m < models.size(); ++m) {
-      std::vector<Detection> of_view;
-      for (auto& d : merged.detections)
-        if (d.model_index == static_cast<int>(m))
-          of_view.push_back(std::move(d));
-      recognizer.refine(models[m], of_view, scene_mm, sensor, params);
-      std::move(of_view.begin(), of_view.end(), std::back_inserter(refined));
-      reportProgress(progress, 1.0); // a last chance to stop
-    }
-    sortBestFirst(refined);
-    merged.detections = std::move(refined);
+    merged.detections =
+        ofEachView(std::move(merged.detections), models.size(),
+                   [&](std::size_t m, std::vector<Detection>& of_view) {
+                     recognizer.refine(models[m], of_view, scene_mm, sensor, params);
+                     reportProgress(progress, 1.0); // a last chance to stop
+                   });
     merged.timings.refine_ms = msSince(t0);
     merged.timings.total_ms += merged.timings.refine_ms;
   }

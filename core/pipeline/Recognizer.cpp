@@ -261,6 +261,28 @@ void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
   sortBestFirst(detections);
 }
 
+/// The turns matching cannot tell (a view's detail about its near axis, its near symmetries) of
+/// `detections` (sorted best first, none of them within `min_distance_mm` of a better one):
+/// resolved by the scan, best first again, duplicates the turns made dropped.
+void resolveDetectionTurns(std::vector<Detection>& detections, const ModelPrep& prep,
+                           const VerifyScene& scene, const MatchingParams& params,
+                           const PoseVerifier& verify, const PosePolisher& polish,
+                           double min_distance_mm) {
+  if (!verify)
+    return;
+  if (prep.near_axis) {
+    const auto t0 = Clock::now();
+    detail::resolveDetailTurns(detections, prep, scene, params, verify, polish);
+    logger()->debug("the handle's turn of {} detections: {:.0f} ms", detections.size(),
+                    msSince(t0));
+  }
+  if (!prep.symmetries.empty()) {
+    detail::resolveNearSymmetries(detections, prep, scene, params, verify, polish);
+    sortBestFirst(detections);
+    detections = suppressDuplicates(std::move(detections), min_distance_mm);
+  }
+}
+
 /// What each detection reports at its pose: its centre, its grip points in the scene frame and the
 /// turns about the view's axis the scan does not see (`scene`: null without verification).
 void placeDetections(std::vector<Detection>& detections, const TaughtModel& model,
@@ -435,6 +457,13 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
                                         const PointCloud& scene_mm, const SensorModel& sensor,
                                         const RecognitionParams& requested,
                                         const ProgressFn& progress) {
+  return recognize(model, scene_mm, sensor, requested, progress, Turns::Resolve);
+}
+
+RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>& model,
+                                        const PointCloud& scene_mm, const SensorModel& sensor,
+                                        const RecognitionParams& requested,
+                                        const ProgressFn& progress, Turns turns) {
   const auto t_start = Clock::now();
   requireModel(model, "recognize");
   Cache cache = cacheSnapshot();
@@ -653,19 +682,9 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
   }
   sortBestFirst(result.detections);
   result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
-  if (verify && prep->near_axis) {
-    const auto t0 = Clock::now();
-    detail::resolveDetailTurns(result.detections, *prep, verify_scene, params.matching, verify,
-                               polish);
-    logger()->debug("the handle's turn of {} detections: {:.0f} ms", result.detections.size(),
-                    msSince(t0));
-  }
-  if (verify && !prep->symmetries.empty()) {
-    detail::resolveNearSymmetries(result.detections, *prep, verify_scene, params.matching, verify,
-                                  polish);
-    sortBestFirst(result.detections);
-    result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
-  }
+  if (turns == Turns::Resolve && prep)
+    resolveDetectionTurns(result.detections, *prep, verify_scene, params.matching, verify, polish,
+                          0.25 * model->diameter_mm);
   if (params.matching.max_detections > 0 &&
       result.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
     result.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
@@ -735,6 +754,41 @@ void Recognizer::refine(const std::shared_ptr<const TaughtModel>& model,
     };
   refineDetections(detections, *prep, *cache.scene_index, params.refine, verify);
   placeDetections(detections, *model, prep.get(), verify ? &verify_scene : nullptr, tolerance);
+}
+
+void Recognizer::resolveTurns(const std::shared_ptr<const TaughtModel>& model,
+                              std::vector<Detection>& detections, const PointCloud& scene_mm,
+                              const SensorModel& sensor, const RecognitionParams& requested) {
+  requireModel(model, "resolve turns");
+  const RecognitionParams params = withViewParams(requested, model->view_params);
+  const double tolerance = params.matching.verify_tolerance_mm;
+  if (!detail::needsModelPrep(params) || !(tolerance > 0) || detections.empty())
+    return;
+  Cache cache = recognizedScene(scene_mm, sensor, params, "resolving turns");
+  const std::shared_ptr<const ModelPrep> prep =
+      detail::prepareModel(cache.model_preps, model, params);
+  {
+    const std::lock_guard lock(m_mutex);
+    m_cache = std::make_shared<Cache>(cache);
+  }
+  if (!prep->near_axis && prep->symmetries.empty())
+    return;
+  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane,
+                                 cache.shadow.get()};
+  const EdgeCheck edges{params.matching.edge_tolerance_mm > 0 ? cache.edge_index.get() : nullptr,
+                        params.matching.edge_tolerance_mm};
+  const PoseVerifier verify = [&](const Eigen::Isometry3d& T) {
+    return verifyPose(*prep->verify, verify_scene, T, tolerance, edges);
+  };
+  const PosePolisher polish = [&](const Eigen::Isometry3d& T) {
+    return prep->refine
+               ? refinePose(*prep->refine, *cache.scene_index, T, params.refine).T_scene_model
+               : T;
+  };
+  sortBestFirst(detections);
+  resolveDetectionTurns(detections, *prep, verify_scene, params.matching, verify, polish,
+                        0.25 * model->diameter_mm);
+  placeDetections(detections, *model, prep.get(), &verify_scene, tolerance);
 }
 
 PartScorer Recognizer::partScorer(const std::vector<std::shared_ptr<const TaughtModel>>& models,

@@ -89,6 +89,17 @@ public:
               const PointCloud& scene_mm, const SensorModel& sensor,
               const RecognitionParams& params);
 
+  /// Resolves the turns that matching cannot tell of `detections` of `model`, found in `scene_mm`
+  /// by the last recognize() call (its scene stages cached), as recognize() does: the turn about
+  /// the view's near axis that its detail (a cup's handle) says, and its near symmetries; then
+  /// their centres, grip points and free turns again, best first. recognizeViews resolves the
+  /// views' detections after their merge, so that an instance several views found is resolved
+  /// once. Nothing is done without verification or without such turns. Throws Error as refine()
+  /// does.
+  void resolveTurns(const std::shared_ptr<const TaughtModel>& model,
+                    std::vector<Detection>& detections, const PointCloud& scene_mm,
+                    const SensorModel& sensor, const RecognitionParams& params);
+
   /// Scores detections of the views `models` (Detection::model_index naming the view) on the
   /// whole part, in `scene_mm` as the last recognize() call found it: of the points of the view
   /// and of the views joined to it (TaughtModel::joined_views) at the detection's pose, every few
@@ -108,6 +119,16 @@ public:
   void clearCache();
 
 private:
+  friend RecognitionResult recognizeViews(Recognizer&,
+                                          const std::vector<std::shared_ptr<const TaughtModel>>&,
+                                          const PointCloud&, const SensorModel&,
+                                          const RecognitionParams&, const ProgressFn&);
+  /// Whether recognize() resolves the detections' turns (resolveTurns) or leaves them.
+  enum class Turns { Resolve, Leave };
+  RecognitionResult recognize(const std::shared_ptr<const TaughtModel>& model,
+                              const PointCloud& scene_mm, const SensorModel& sensor,
+                              const RecognitionParams& params, const ProgressFn& progress,
+                              Turns turns);
   struct Cache;
   /// A copy of the cache, taken under the lock.
   [[nodiscard]] Cache cacheSnapshot() const;
@@ -130,13 +151,13 @@ double prepareViews(Recognizer& recognizer,
 /// another side it can rest on (one model sees one side only). The scene stages run once (the
 /// recognizer's cache), matching per model; detections are merged best first by
 /// mergeViewDetections within 0.3 × the larger model diameter (the same instance seen through
-/// another view). With params.refine.enabled the
-/// detections left are refined after the merge (Recognizer::refine), so that ICP polishes the
-/// detections reported and cannot change which of them the merge keeps. Views that know their
-/// place in the part should be joined first (joinViews, TaughtModel.h): only then are two parts
-/// lying close together told apart. Detection::model_index
-/// names the model.
-/// The recognizer's own model is left as it is.
+/// another view). The turns matching cannot tell (a cup's handle, near symmetries) are resolved
+/// after the merge (Recognizer::resolveTurns), once per instance, and the merge then run again for
+/// the detections a turn moved. With params.refine.enabled the detections left are refined after
+/// that (Recognizer::refine), so that ICP polishes the detections reported and cannot change which
+/// of them the merge keeps. Views that know their place in the part should be joined first
+/// (joinViews, TaughtModel.h): only then are two parts lying close together told apart.
+/// Detection::model_index names the model. The recognizer's own model is left as it is.
 /// Throws as Recognizer::recognize, and Error for an empty `models`.
 RecognitionResult recognizeViews(Recognizer& recognizer,
                                  const std::vector<std::shared_ptr<const TaughtModel>>& models,

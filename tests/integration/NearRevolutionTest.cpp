@@ -179,6 +179,47 @@ TEST(NearRevolution, ACupFoundAtAWrongTurnIsTurnedToWhereItsHandleIs) {
   }
 }
 
+TEST(NearRevolution, TheRecognizerTurnsADetectionOfItsLastSceneToWhereItsHandleIs) {
+  // As recognizeViews does after the views' merge (Recognizer::resolveTurns).
+  const RecognitionParams params = cupPreset();
+  const test::SynthTeach side = test::teachFromSynth("cup", 5, params, 2);
+  const SynthScene scan = test::teachScan("cup", 21, 2);
+  const Eigen::Isometry3d T_true =
+      scan.scene.T_scene_part(scan.scene.instances.at(0)) * side.T_part_model();
+  Recognizer recognizer;
+  const RecognitionResult found =
+      recognizer.recognize(side.model, scan.render.cloud, scan.sensor, params);
+  ASSERT_EQ(found.detections.size(), 1u);
+  std::vector<std::shared_ptr<const detail::ModelPrep>> preps;
+  const RevolutionAxis axis = *detail::prepareModel(preps, side.model, params)->near_axis;
+  std::vector<Detection> detections = found.detections;
+  detections.front().T_scene_model = found.detections.front().T_scene_model * axis.turn(kPi / 2);
+  recognizer.resolveTurns(side.model, detections, scan.render.cloud, scan.sensor, params);
+  ASSERT_EQ(detections.size(), 1u);
+  const Detection& d = detections.front();
+  const PoseOff off = offBy(T_true, d.T_scene_model);
+  std::printf("turned 90° off: now %.2f° and %.2f mm off, coverage %.3f\n", off.rotation_deg,
+              off.translation_mm, d.coverage);
+  EXPECT_LT(off.rotation_deg, 3.0) << "turned to its handle";
+  ASSERT_EQ(d.grip_points_scene.size(), side.model->grip_points.size());
+  for (std::size_t g = 0; g < d.grip_points_scene.size(); ++g)
+    EXPECT_LT((d.grip_points_scene[g].position_mm -
+               d.T_scene_model * side.model->grip_points[g].position_mm)
+                  .norm(),
+              1e-9)
+        << "grip points follow the turned pose";
+  // Only the scene last recognized.
+  SynthScene other = scan;
+  for (auto& p : other.render.cloud.points_mm)
+    if (isValid(p)) {
+      p.z() += 1.0f;
+      break;
+    }
+  EXPECT_THROW(
+      recognizer.resolveTurns(side.model, detections, other.render.cloud, scan.sensor, params),
+      Error);
+}
+
 TEST(NearRevolution, AnUprightCupInABinIsFoundByItsTopView) {
   // The phoxi-bin suite's scene-009 as synth-suite writes it: an upright cup (instance 2) among
   // others, off to the side of the projector, so its wall keeps the light off half its inside
