@@ -728,6 +728,32 @@ Recognizer::Cache Recognizer::recognizedScene(const PointCloud& scene_mm, const 
   return cache;
 }
 
+struct Recognizer::PreparedScene {
+  Cache cache;
+  std::shared_ptr<const ModelPrep> prep;
+  VerifyScene scene; ///< into `cache`, and the caller's scan and sensor
+  EdgeCheck edges;
+};
+
+Recognizer::PreparedScene Recognizer::preparedScene(const std::shared_ptr<const TaughtModel>& model,
+                                                    const PointCloud& scene_mm,
+                                                    const SensorModel& sensor,
+                                                    const RecognitionParams& params,
+                                                    const char* action) {
+  PreparedScene out;
+  out.cache = recognizedScene(scene_mm, sensor, params, action);
+  out.prep = detail::prepareModel(out.cache.model_preps, model, params);
+  {
+    const std::lock_guard lock(m_mutex);
+    m_cache = std::make_shared<Cache>(out.cache);
+  }
+  out.scene = {out.cache.scene_index.get(), &scene_mm, &sensor, out.cache.floor_plane,
+               out.cache.shadow.get()};
+  out.edges = {params.matching.edge_tolerance_mm > 0 ? out.cache.edge_index.get() : nullptr,
+               params.matching.edge_tolerance_mm};
+  return out;
+}
+
 void Recognizer::refine(const std::shared_ptr<const TaughtModel>& model,
                         std::vector<Detection>& detections, const PointCloud& scene_mm,
                         const SensorModel& sensor, const RecognitionParams& requested) {
@@ -735,25 +761,15 @@ void Recognizer::refine(const std::shared_ptr<const TaughtModel>& model,
   const RecognitionParams params = withViewParams(requested, model->view_params);
   if (!params.refine.enabled || detections.empty())
     return;
-  Cache cache = recognizedScene(scene_mm, sensor, params, "refinement");
-  const std::shared_ptr<const ModelPrep> prep =
-      detail::prepareModel(cache.model_preps, model, params);
-  {
-    const std::lock_guard lock(m_mutex);
-    m_cache = std::make_shared<Cache>(cache);
-  }
+  const PreparedScene at = preparedScene(model, scene_mm, sensor, params, "refinement");
   const double tolerance = params.matching.verify_tolerance_mm;
-  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane,
-                                 cache.shadow.get()};
-  const EdgeCheck edges{params.matching.edge_tolerance_mm > 0 ? cache.edge_index.get() : nullptr,
-                        params.matching.edge_tolerance_mm};
   PoseVerifier verify;
   if (tolerance > 0)
     verify = [&](const Eigen::Isometry3d& T) {
-      return verifyPose(*prep->verify, verify_scene, T, tolerance, edges);
+      return verifyPose(*at.prep->verify, at.scene, T, tolerance, at.edges);
     };
-  refineDetections(detections, *prep, *cache.scene_index, params.refine, verify);
-  placeDetections(detections, *model, prep.get(), verify ? &verify_scene : nullptr, tolerance);
+  refineDetections(detections, *at.prep, *at.cache.scene_index, params.refine, verify);
+  placeDetections(detections, *model, at.prep.get(), verify ? &at.scene : nullptr, tolerance);
 }
 
 void Recognizer::resolveTurns(const std::shared_ptr<const TaughtModel>& model,
@@ -764,31 +780,21 @@ void Recognizer::resolveTurns(const std::shared_ptr<const TaughtModel>& model,
   const double tolerance = params.matching.verify_tolerance_mm;
   if (!detail::needsModelPrep(params) || !(tolerance > 0) || detections.empty())
     return;
-  Cache cache = recognizedScene(scene_mm, sensor, params, "resolving turns");
-  const std::shared_ptr<const ModelPrep> prep =
-      detail::prepareModel(cache.model_preps, model, params);
-  {
-    const std::lock_guard lock(m_mutex);
-    m_cache = std::make_shared<Cache>(cache);
-  }
-  if (!prep->near_axis && prep->symmetries.empty())
+  const PreparedScene at = preparedScene(model, scene_mm, sensor, params, "resolving turns");
+  const ModelPrep& prep = *at.prep;
+  if (!prep.near_axis && prep.symmetries.empty())
     return;
-  const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane,
-                                 cache.shadow.get()};
-  const EdgeCheck edges{params.matching.edge_tolerance_mm > 0 ? cache.edge_index.get() : nullptr,
-                        params.matching.edge_tolerance_mm};
   const PoseVerifier verify = [&](const Eigen::Isometry3d& T) {
-    return verifyPose(*prep->verify, verify_scene, T, tolerance, edges);
+    return verifyPose(*prep.verify, at.scene, T, tolerance, at.edges);
   };
   const PosePolisher polish = [&](const Eigen::Isometry3d& T) {
-    return prep->refine
-               ? refinePose(*prep->refine, *cache.scene_index, T, params.refine).T_scene_model
-               : T;
+    return prep.refine ? refinePose(*prep.refine, *at.cache.scene_index, T, params.refine).T_scene_model
+                       : T;
   };
   sortBestFirst(detections);
-  resolveDetectionTurns(detections, *prep, verify_scene, params.matching, verify, polish,
+  resolveDetectionTurns(detections, prep, at.scene, params.matching, verify, polish,
                         0.25 * model->diameter_mm);
-  placeDetections(detections, *model, prep.get(), &verify_scene, tolerance);
+  placeDetections(detections, *model, &prep, &at.scene, tolerance);
 }
 
 PartScorer Recognizer::partScorer(const std::vector<std::shared_ptr<const TaughtModel>>& models,

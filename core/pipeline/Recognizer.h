@@ -134,6 +134,12 @@ private:
   [[nodiscard]] Cache cacheSnapshot() const;
   /// The cache of `scene_mm` as the last recognize() call left it, with the scene indexed for
   /// verification; throws Error naming `action` when that call recognized another scene.
+  /// recognizedScene() with `model` prepared in it (and the cache stored with it), and how poses
+  /// are verified there; throws Error as recognizedScene() does.
+  struct PreparedScene;
+  [[nodiscard]] PreparedScene preparedScene(const std::shared_ptr<const TaughtModel>& model,
+                                            const PointCloud& scene_mm, const SensorModel& sensor,
+                                            const RecognitionParams& params, const char* action);
   [[nodiscard]] Cache recognizedScene(const PointCloud& scene_mm, const SensorModel& sensor,
                                       const RecognitionParams& params, const char* action) const;
   mutable std::mutex m_mutex;

@@ -53,6 +53,15 @@ std::vector<std::shared_ptr<const TaughtModel>> cupTableViews(const RecognitionP
   return views;
 }
 
+/// The cup taught lying on its side (a view that sees its handle), and a scan of another cup
+/// lying so, with the pose the view should be found at.
+struct CupOnItsSide {
+  test::SynthTeach side = test::teachFromSynth("cup", 5, cupPreset(), 2);
+  SynthScene scan = test::teachScan("cup", 21, 2);
+  Eigen::Isometry3d T_true =
+      scan.scene.T_scene_part(scan.scene.instances.at(0)) * side.T_part_model();
+};
+
 /// A scene of the phoxi-bin suite as synth-suite writes it.
 SynthScene phoxiBin(const std::string& name) {
   for (const SuiteScene& s : suiteScenes("phoxi-bin", kDefaultSuiteSeed))
@@ -65,10 +74,8 @@ SynthScene phoxiBin(const std::string& name) {
 
 TEST(NearRevolution, ACupWhoseHandleShowsIsFoundAtItsTurn) {
   const RecognitionParams params = cupPreset();
-  const test::SynthTeach side = test::teachFromSynth("cup", 5, params, 2);
-  const SynthScene scan = test::teachScan("cup", 21, 2);
-  const Eigen::Isometry3d T_true =
-      scan.scene.T_scene_part(scan.scene.instances.at(0)) * side.T_part_model();
+  const CupOnItsSide cup;
+  const auto& [side, scan, T_true] = cup;
   Recognizer recognizer;
   recognizer.setModel(side.model);
   const RecognitionResult result = recognizer.recognize(scan.render.cloud, scan.sensor, params);
@@ -145,13 +152,11 @@ TEST(NearRevolution, ACupFoundAtAWrongTurnIsTurnedToWhereItsHandleIs) {
   // Its surface of revolution verifies at any turn; which of it the projector lit does not, and
   // can favour a wrong one. The handle decides (detail::resolveDetailTurns).
   const RecognitionParams params = cupPreset();
-  const test::SynthTeach side = test::teachFromSynth("cup", 5, params, 2);
+  const CupOnItsSide cup;
+  const auto& [side, scan, T_true] = cup;
   std::vector<std::shared_ptr<const detail::ModelPrep>> preps;
   const auto prep = detail::prepareModel(preps, side.model, params);
   ASSERT_TRUE(prep->near_axis) << "a cup on its side is a surface of revolution but for its handle";
-  const SynthScene scan = test::teachScan("cup", 21, 2);
-  const Eigen::Isometry3d T_true =
-      scan.scene.T_scene_part(scan.scene.instances.at(0)) * side.T_part_model();
   const FloorRemovalResult floor = removeFloor(scan.render.cloud, params.floor, params.seed);
   const SceneIndex index(floor.remaining);
   const ProjectorShadow shadow(scan.render.cloud, scan.sensor);
@@ -182,10 +187,8 @@ TEST(NearRevolution, ACupFoundAtAWrongTurnIsTurnedToWhereItsHandleIs) {
 TEST(NearRevolution, TheRecognizerTurnsADetectionOfItsLastSceneToWhereItsHandleIs) {
   // As recognizeViews does after the views' merge (Recognizer::resolveTurns).
   const RecognitionParams params = cupPreset();
-  const test::SynthTeach side = test::teachFromSynth("cup", 5, params, 2);
-  const SynthScene scan = test::teachScan("cup", 21, 2);
-  const Eigen::Isometry3d T_true =
-      scan.scene.T_scene_part(scan.scene.instances.at(0)) * side.T_part_model();
+  const CupOnItsSide cup;
+  const auto& [side, scan, T_true] = cup;
   Recognizer recognizer;
   const RecognitionResult found =
       recognizer.recognize(side.model, scan.render.cloud, scan.sensor, params);
