@@ -788,8 +788,9 @@ void Recognizer::resolveTurns(const std::shared_ptr<const TaughtModel>& model,
     return verifyPose(*prep.verify, at.scene, T, tolerance, at.edges);
   };
   const PosePolisher polish = [&](const Eigen::Isometry3d& T) {
-    return prep.refine ? refinePose(*prep.refine, *at.cache.scene_index, T, params.refine).T_scene_model
-                       : T;
+    return prep.refine
+               ? refinePose(*prep.refine, *at.cache.scene_index, T, params.refine).T_scene_model
+               : T;
   };
   sortBestFirst(detections);
   resolveDetectionTurns(detections, prep, at.scene, params.matching, verify, polish,

@@ -125,6 +125,8 @@ private:
                                           const RecognitionParams&, const ProgressFn&);
   /// Whether recognize() resolves the detections' turns (resolveTurns) or leaves them.
   enum class Turns { Resolve, Leave };
+  /// The public recognize(model, …), leaving the turns with Turns::Leave: recognizeViews resolves
+  /// them after the views' merge.
   RecognitionResult recognize(const std::shared_ptr<const TaughtModel>& model,
                               const PointCloud& scene_mm, const SensorModel& sensor,
                               const RecognitionParams& params, const ProgressFn& progress,
@@ -132,14 +134,14 @@ private:
   struct Cache;
   /// A copy of the cache, taken under the lock.
   [[nodiscard]] Cache cacheSnapshot() const;
-  /// The cache of `scene_mm` as the last recognize() call left it, with the scene indexed for
-  /// verification; throws Error naming `action` when that call recognized another scene.
   /// recognizedScene() with `model` prepared in it (and the cache stored with it), and how poses
   /// are verified there; throws Error as recognizedScene() does.
   struct PreparedScene;
   [[nodiscard]] PreparedScene preparedScene(const std::shared_ptr<const TaughtModel>& model,
                                             const PointCloud& scene_mm, const SensorModel& sensor,
                                             const RecognitionParams& params, const char* action);
+  /// The cache of `scene_mm` as the last recognize() call left it, with the scene indexed for
+  /// verification; throws Error naming `action` when that call recognized another scene.
   [[nodiscard]] Cache recognizedScene(const PointCloud& scene_mm, const SensorModel& sensor,
                                       const RecognitionParams& params, const char* action) const;
   mutable std::mutex m_mutex;
