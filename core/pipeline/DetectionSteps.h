@@ -1,0 +1,65 @@
+#pragma once
+/// @file DetectionSteps.h
+/// The steps the Recognizer takes with its detections once matching has found them: surface
+/// voting's poses verified and polished, the turns matching cannot tell resolved, ICP refinement,
+/// and what each detection reports at its pose. Internal to the Recognizer
+/// (core/pipeline/Recognizer.cpp), in its own file to keep that one small.
+
+#include "core/features/Feature.h"
+#include "core/matching/PointPairVoting.h"
+#include "core/model/TaughtModel.h"
+#include "core/params/Parameters.h"
+#include "core/pipeline/Detection.h"
+#include "core/pipeline/ModelPrep.h"
+#include "core/pipeline/PoseVerification.h"
+#include "core/refine/SceneIndex.h"
+
+#include <functional>
+#include <vector>
+
+namespace scanpick::core::detail {
+
+/// A refined pose whose coverage is lower by less than this is still kept (keepsRefinedPose).
+inline constexpr double kIcpCoverageSlack = 0.01;
+
+/// Whether an ICP pose replaces the one it started from, by their verification scores: ICP can
+/// slide a part seen edge-on along its extrusion, which loses much more; a better pose can lose
+/// a point or two of the strided verification sample at the 1 mm edge. One rule for the surface
+/// poses' polish and for refine.enabled.
+bool keepsRefinedPose(double coverage_before, double coverage_after);
+
+/// Refines each detection that ICP has not polished yet, with the view's joined ICP model when it
+/// has one (ModelPrep::joined_refine), and keeps the refined pose when it verifies as well
+/// (keepsRefinedPose; always without `verify`). Best first again.
+void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
+                      const SceneIndex& scene_index, const RefineParams& params,
+                      const PoseVerifier& verify);
+
+/// The turns matching cannot tell (a view's detail about its near axis, its near symmetries) of
+/// `detections` (sorted best first, none of them within `min_distance_mm` of a better one):
+/// resolved by the scan, best first again, duplicates the turns made dropped.
+void resolveDetectionTurns(std::vector<Detection>& detections, const ModelPrep& prep,
+                           const VerifyScene& scene, const MatchingParams& params,
+                           const PoseVerifier& verify, const PosePolisher& polish,
+                           double min_distance_mm);
+
+/// What each detection reports at its pose: its centre, its grip points in the scene frame and the
+/// turns about the view's axis the scan does not see (`scene`: null without verification).
+void placeDetections(std::vector<Detection>& detections, const TaughtModel& model,
+                     const ModelPrep* prep, const VerifyScene* scene, double tolerance_mm);
+
+/// Another try for a pose that verified under the minimum but at least half of it: may replace
+/// the detection's pose and coverage.
+using PoseRescue = std::function<void(Detection&)>;
+
+/// Surface voting's poses as detections (cluster -1), each polished into the version that
+/// verifies best: as voted, fitted on the scene features it confirms, or (with `polish`, ICP)
+/// refined, or else `rescue`d; kept when the coverage reaches params.min_coverage. Best first.
+std::vector<Detection>
+surfaceDetections(const PointPairModel& model_pairs, const OrientedPoints& scene_points,
+                  const ScenePairs* scene_pairs, const FeatureList& model_features,
+                  const std::vector<FeatureList>& object_features, const MatchingParams& params,
+                  double cluster_mm, const PoseVerifier& verify, const PosePolisher& polish,
+                  const PoseRescue& rescue, const ProgressFn& progress);
+
+} // namespace scanpick::core::detail
