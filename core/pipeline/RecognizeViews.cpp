@@ -106,14 +106,25 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
   const std::size_t found = merged.detections.size();
   merged.detections =
       mergeViewDetections(std::move(merged.detections), models, 0.3 * diameter_mm, prefer);
-  merged.detections =
-      ofEachView(std::move(merged.detections), models.size(),
-                 [&](std::size_t m, std::vector<Detection>& of_view) {
-                   recognizer.resolveTurns(models[m], of_view, scene_mm, sensor, unrefined);
-                 });
+  // Whether a turn moved any detection.
+  const auto poses = [](const std::vector<Detection>& detections) {
+    std::vector<Eigen::Matrix4d> out;
+    for (const Detection& d : detections)
+      out.push_back(d.T_scene_model.matrix());
+    return out;
+  };
+  bool turned = false;
+  merged.detections = ofEachView(std::move(merged.detections), models.size(),
+                                 [&](std::size_t m, std::vector<Detection>& of_view) {
+                                   const auto before = poses(of_view);
+                                   recognizer.resolveTurns(models[m], of_view, scene_mm, sensor,
+                                                           unrefined);
+                                   turned = turned || poses(of_view) != before;
+                                 });
   // A turn may have moved a detection onto an instance another view's detection holds.
-  merged.detections =
-      mergeViewDetections(std::move(merged.detections), models, 0.3 * diameter_mm, prefer);
+  if (turned)
+    merged.detections =
+        mergeViewDetections(std::move(merged.detections), models, 0.3 * diameter_mm, prefer);
   sortBestFirst(merged.detections);
   const double merge_ms = msSince(t_merge);
   logger()->debug("the views' {} detections merged into {}, their turns resolved, in {:.1f} ms",
