@@ -1,10 +1,12 @@
 // scanpick-cli: the headless front end for integrators and robot controllers.
 #include "app/cli/CliCommon.h"
 #include "app/cli/Commands.h"
+#include "core/common/Memory.h"
 
 #include <CLI/CLI.hpp>
 
 int main(int argc, char** argv) {
+  scanpick::core::keepFreedMemoryForReuse(); // a suite or a bench recognizes scene after scene
   CLI::App app{"scanpick-cli: 3D object recognition for bin picking, taught from a scan.\n"
                "Units are millimetres unless a command says otherwise."};
   app.require_subcommand(1);

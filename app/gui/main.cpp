@@ -5,6 +5,7 @@
 //   scanpick --scan demo-output/demo-bin.pcd --model demo-output/support.spmodel
 //            --model demo-output/support-table.spmodel --recognize
 #include "core/common/Log.h"
+#include "core/common/Memory.h"
 #include "ui/MainWindow.h"
 #include "ui/Settings.h"
 #include "ui/panels/ParameterPanel.h"
@@ -22,6 +23,7 @@
 using scanpick::ui::MainWindow;
 
 int main(int argc, char** argv) {
+  scanpick::core::keepFreedMemoryForReuse(); // live recognition: scene after scene
   // VTK needs an OpenGL 3.2 core context; the default format must be set before QApplication.
   QSurfaceFormat::setDefaultFormat(scanpick::ui::QtVtkViewport::defaultFormat());
   QApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
