@@ -198,7 +198,7 @@ double bodyScore(const VerifyModel& body, const RevolutionAxis& axis, const Veri
   for (int step = -steps; step <= steps; ++step) {
     const Eigen::Isometry3d T =
         T_scene_model * Eigen::Translation3d(step * kBodySlideStepMm * axis.direction);
-    const PointTally t = tallyPoints(body, scene, T, tolerance_mm, &subset);
+    const PointTally t = tallyPoints(body, scene, T, tolerance_mm, &subset, {}, false);
     best = std::max(best, (double(t.confirmed) - double(t.violations)) /
                               double(std::max<std::size_t>(8, t.points - t.turned_away)));
   }
@@ -404,12 +404,12 @@ DetailTally tallyDetail(const ModelPrep& prep, Detail which, const VerifyScene& 
                         const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                         const TallyStop& stop = {}) {
   if (which == Detail::Own) {
-    const PointTally t =
-        tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm, &prep.near_axis_detail, stop);
+    const PointTally t = tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm,
+                                     &prep.near_axis_detail, stop, false);
     return {t, double(std::max<std::size_t>(1, t.points))};
   }
   const PointTally t =
-      tallyPoints(*prep.joined_detail, scene, T_scene_model, tolerance_mm, nullptr, stop);
+      tallyPoints(*prep.joined_detail, scene, T_scene_model, tolerance_mm, nullptr, stop, false);
   const double facing = double(t.points - t.turned_away);
   return {t, std::max({1.0, facing, 0.25 * double(t.points)})};
 }
@@ -437,16 +437,25 @@ std::optional<DetailTurn> bestTurn(const ModelPrep& prep, Detail which, const Ve
                                    double tolerance_mm, const Eigen::Isometry3d& T_scene_model) {
   const RevolutionAxis& axis = *prep.near_axis;
   const double as_found = tallyDetail(prep, which, scene, T_scene_model, tolerance_mm).score();
-  DetailTurn turn{T_scene_model, 0.0, as_found, as_found, false};
+  // Only a turn scoring at least this is taken: each tally stops as soon as it cannot reach it
+  // (or the best so far), most of them after a few misses.
+  const double needed = std::max(kMinDetailSeenShare, as_found + kTurnMargin);
+  const double beat = std::nextafter(needed, -std::numeric_limits<double>::infinity());
+  DetailTurn turn;
+  turn.T_scene_model = T_scene_model;
+  turn.detail_as_found = as_found;
+  turn.detail_confirmed = beat;
+  bool found = false;
   for (int degrees = 1; degrees < 360; ++degrees) {
     const Eigen::Isometry3d T = T_scene_model * axis.turn(degrees * M_PI / 180.0);
     if (const auto score =
             detailScoreAbove(prep, which, scene, T, tolerance_mm, turn.detail_confirmed)) {
       turn.detail_confirmed = *score;
       turn.T_scene_model = T;
+      found = true;
     }
   }
-  if (turn.detail_confirmed < kMinDetailSeenShare || turn.detail_confirmed < as_found + kTurnMargin)
+  if (!found)
     return std::nullopt;
   return turn;
 }

@@ -111,7 +111,8 @@ std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
 
 PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
-                       const std::vector<std::uint32_t>* subset, const TallyStop& stop) {
+                       const std::vector<std::uint32_t>* subset, const TallyStop& stop,
+                       bool sort_unmeasured) {
   const SceneIndex& index = *scene.index;
   const PointCloud& scan = *scene.scan;
   const SensorModel& sensor = *scene.sensor;
@@ -159,6 +160,8 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
       return;
     const Eigen::Vector3f& s = scan.points_mm[sensor.pixelIndex(*pixel)]; // organized: its width
     if (!isValid(s)) {
+      if (!sort_unmeasured)
+        return;
       if (model.body && model.body->blocks(model.points[k], camera_model))
         ++tally.hidden;
       else if ((scene.shadow && scene.shadow->shadowed(p, margin)) ||

@@ -126,11 +126,13 @@ struct VerifyScene {
 /// projector.
 /// A caller that needs a tally only while it can still reach something stops it: `stop` is asked
 /// every few points with the tally so far and the number of points left, and true ends the tally
-/// there (it then counts the points looked at).
+/// there (it then counts the points looked at). A caller that counts only confirmations and
+/// violations passes `sort_unmeasured` false: points without a measurement are then neither
+/// hidden nor shadowed, and their walks through the model's body are saved.
 PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                        const std::vector<std::uint32_t>* subset = nullptr,
-                       const TallyStop& stop = {});
+                       const TallyStop& stop = {}, bool sort_unmeasured = true);
 
 /// The highest surface score (verifyPose's, before the edge agreement) that a tally can still
 /// reach with `left` points not looked at: each of them confirmed, and the expected count at its
