@@ -108,15 +108,9 @@ Keypoints neighbourhoodAnalysis(const PointCloud& cloud_mm, const KeypointParams
   std::vector<char> keep(valid.size(), 0);
   const double range_sq = params.position_range_mm * params.position_range_mm;
   forEachValid(valid.size(), progress, 0.0, 1.0, [&](std::size_t j, std::vector<int>& /*scratch*/) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    std::size_t found = 0;
-    nb.forEachWithin(valid[j], params.neighbourhood_radius_mm, [&](int k) {
-      sum += cloud_mm.points_mm[static_cast<std::size_t>(k)].cast<double>();
-      ++found;
-    });
-    const Eigen::Vector3d centroid = sum / static_cast<double>(found);
-    keep[j] = (centroid - cloud_mm.points_mm[static_cast<std::size_t>(valid[j])].cast<double>())
-                  .squaredNorm() >= range_sq;
+    // The centroid's offset from the point.
+    const auto [sum, found] = nb.offsetSum(valid[j], params.neighbourhood_radius_mm);
+    keep[j] = (sum / static_cast<double>(found)).squaredNorm() >= range_sq;
   });
   reportProgress(progress, 1.0);
   return collect(cloud_mm, valid, keep);

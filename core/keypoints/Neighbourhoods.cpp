@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 
 namespace scanpick::core::detail {
 namespace {
@@ -29,6 +31,61 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<
 double rayAngle(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
   const double c = static_cast<double>(a.normalized().dot(b.normalized()));
   return std::acos(std::clamp(c, -1.0, 1.0));
+}
+
+/// The sum of q − p over the pixels q of rows `first_row`..`last_row`, columns
+/// `first_column`..`last_column` of the coordinate arrays `xs`, `ys`, `zs` (`width` per row, 8
+/// readable past the last pixel) within `r2` (squared mm) of p, and their count. Eight pixels at a
+/// time in GCC's vector types (one AVX2 register, or two SSE ones); the squared distance summed
+/// x, then y, then z, as Eigen sums it, so that a pixel is within exactly when forEachWithin finds
+/// it; NaN pixels compare false. The float offsets are summed as doubles (exactly).
+[[gnu::target_clones("avx2", "default")]] std::size_t
+sumOffsetsInWindow(const float* xs, const float* ys, const float* zs, std::size_t width,
+                   int first_row, int last_row, int first_column, int last_column,
+                   const Eigen::Vector3f& p, float r2, double sum[3]) {
+  using Floats = float __attribute__((vector_size(32)));
+  using Ints = std::int32_t __attribute__((vector_size(32)));
+  using Doubles = double __attribute__((vector_size(32)));
+  const Ints lane = {0, 1, 2, 3, 4, 5, 6, 7};
+  const int count = last_column - first_column + 1;
+  Doubles sx{}, sy{}, sz{};
+  Ints found{};
+  const auto add = [](Doubles& total, Floats offsets) {
+    total += __builtin_convertvector(__builtin_shufflevector(offsets, offsets, 0, 1, 2, 3),
+                                     Doubles);
+    total += __builtin_convertvector(__builtin_shufflevector(offsets, offsets, 4, 5, 6, 7),
+                                     Doubles);
+  };
+  for (int r = first_row; r <= last_row; ++r) {
+    const std::size_t first = std::size_t(r) * width + std::size_t(first_column);
+    for (int chunk = 0; chunk < count; chunk += 8) {
+      const std::size_t at = first + std::size_t(chunk);
+      Floats x, y, z;
+      std::memcpy(&x, xs + at, sizeof x);
+      std::memcpy(&y, ys + at, sizeof y);
+      std::memcpy(&z, zs + at, sizeof z);
+      const Floats dx = x - p.x(), dy = y - p.y(), dz = z - p.z();
+      Floats d_sq = dx * dx;
+      d_sq += dy * dy;
+      d_sq += dz * dz;
+      const Ints within = (d_sq <= r2) & (lane < count - chunk);
+      found -= within; // true lanes are -1
+      const Floats zero{};
+      add(sx, within ? dx : zero);
+      add(sy, within ? dy : zero);
+      add(sz, within ? dz : zero);
+    }
+  }
+  sum[0] = sum[1] = sum[2] = 0.0;
+  std::size_t n = 0;
+  for (int k = 0; k < 4; ++k) {
+    sum[0] += sx[k];
+    sum[1] += sy[k];
+    sum[2] += sz[k];
+  }
+  for (int k = 0; k < 8; ++k)
+    n += std::size_t(found[k]);
+  return n;
 }
 
 } // namespace
@@ -76,8 +133,42 @@ Neighbourhoods::Neighbourhoods(const PointCloud& cloud, double max_radius_mm) : 
         m_organized = true;
     }
   }
-  if (!m_organized)
+  if (!m_organized) {
     m_tree = std::make_unique<Tree>(m_cloud, m_valid);
+    return;
+  }
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (auto* coordinate : {&m_x, &m_y, &m_z})
+    coordinate->assign(cloud.size() + kPadding, nan);
+  for (const int i : m_valid) {
+    const auto& p = cloud.points_mm[static_cast<std::size_t>(i)];
+    m_x[static_cast<std::size_t>(i)] = p.x();
+    m_y[static_cast<std::size_t>(i)] = p.y();
+    m_z[static_cast<std::size_t>(i)] = p.z();
+  }
+}
+
+std::pair<Eigen::Vector3d, std::size_t> Neighbourhoods::offsetSum(int index,
+                                                                  double radius_mm) const {
+  const Eigen::Vector3f p = m_cloud.points_mm[static_cast<std::size_t>(index)];
+  if (!m_organized) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    std::size_t found = 0;
+    forEachWithin(index, radius_mm, [&](int j) {
+      sum += (m_cloud.points_mm[static_cast<std::size_t>(j)] - p).cast<double>();
+      ++found;
+    });
+    return {sum, found};
+  }
+  const int half = halfWindow(p, radius_mm);
+  const int w = static_cast<int>(m_cloud.width), h = static_cast<int>(m_cloud.height);
+  const int row = index / w, col = index % w;
+  double sum[3];
+  const std::size_t found = sumOffsetsInWindow(
+      m_x.data(), m_y.data(), m_z.data(), static_cast<std::size_t>(w), std::max(0, row - half),
+      std::min(h - 1, row + half), std::max(0, col - half), std::min(w - 1, col + half), p,
+      static_cast<float>(radius_mm * radius_mm), sum);
+  return {Eigen::Vector3d(sum[0], sum[1], sum[2]), found};
 }
 
 Neighbourhoods::~Neighbourhoods() = default;

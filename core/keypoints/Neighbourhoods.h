@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace scanpick::core::detail {
@@ -52,6 +53,13 @@ public:
       }
     }
   }
+  /// The sum of the offsets q − p (mm) from point `index` (p) to the valid points q within
+  /// `radius_mm` (itself included), and how many there are. The sum is of doubles, which hold the
+  /// few hundred millimetre-sized offsets of float points exactly, so it does not depend on the
+  /// order the points are visited in. Organized clouds test eight pixels of a window row at a
+  /// time.
+  [[nodiscard]] std::pair<Eigen::Vector3d, std::size_t> offsetSum(int index,
+                                                                  double radius_mm) const;
   /// The `n` nearest valid points to point `index` (itself excluded), nearest first; fewer
   /// when the cloud or the window holds fewer. Organized clouds search a pixel window
   /// holding at least 2n pixels.
@@ -64,6 +72,10 @@ private:
 
   struct Tree;
   const PointCloud& m_cloud;
+  /// Organized clouds: the points' coordinates, each in its own array (NaN where invalid), with
+  /// kPadding NaNs past the last pixel so that a window row is read eight pixels at a time.
+  std::vector<float> m_x, m_y, m_z;
+  static constexpr std::size_t kPadding = 8;
   std::vector<int> m_valid;
   bool m_organized = false;
   double m_pixel_angle = 0;  ///< smallest angle between neighbouring pixel rays, radians

@@ -92,6 +92,34 @@ TEST(NeighbourhoodAnalysis, PixelWindowsGiveTheSameKeypointsAsTheKdTree) {
   EXPECT_EQ(core::neighbourhoodAnalysis(organized, params).source_indices, a.source_indices);
 }
 
+TEST(NeighbourhoodAnalysis, PixelWindowsSumTheSameOffsetsAsTheKdTree) {
+  // Eight pixels at a time: windows cut by the image border and rows not a multiple of eight wide
+  // (199 columns), against the kd-tree's neighbours one by one.
+  test::RaycastScene scene;
+  scene.floor_z_mm = 700;
+  scene.boxes.emplace_back(Eigen::Vector3d(-40, -30, 660), Eigen::Vector3d(20, 30, 700));
+  scene.cylinders.push_back({Eigen::Vector2d(50, 0), 15.0, 670.0, 700.0});
+  const auto organized = scene.render(199, 150, 650 / 0.66 / 2, {300, 0, 0}, 0.05, 3);
+  const core::PointCloud flat = core::dropInvalid(organized);
+  const double radius_mm = 3.0;
+  const core::detail::Neighbourhoods pixels(organized, radius_mm), tree(flat, radius_mm);
+  ASSERT_TRUE(pixels.organized());
+  ASSERT_FALSE(tree.organized());
+  const auto& valid = pixels.validIndices();
+  ASSERT_EQ(valid.size(), flat.size());
+  std::size_t border = 0;
+  for (std::size_t j = 0; j < valid.size(); ++j) {
+    const auto [sum_a, found_a] = pixels.offsetSum(valid[j], radius_mm);
+    const auto [sum_b, found_b] = tree.offsetSum(static_cast<int>(j), radius_mm);
+    ASSERT_EQ(found_a, found_b) << "point " << j;
+    ASSERT_GE(found_a, 1u); // itself
+    ASSERT_EQ(sum_a, sum_b) << "point " << j; // exact: no rounding in either sum
+    const int column = valid[j] % 199;
+    border += column < 3 || column > 195 ? 1 : 0;
+  }
+  EXPECT_GT(border, 100u);
+}
+
 TEST(NormalsGradient, FindsTheCreaseOfAFoldedSheetAndNothingOnAPlane) {
   // A sheet folded along x = 0 (z = 500 + 0.8 |x|: a 77° fold) and a flat sheet, 0.5 mm grid.
   std::vector<Eigen::Vector3f> folded, flat;
