@@ -141,6 +141,8 @@ TEST(Presets, BinPresetsBuildOnEachOther) {
   EXPECT_EQ(cup.matching.min_coverage, coat_rack.matching.min_coverage);
   EXPECT_EQ(cup.matching.surface_sampling_mm, 6.0);
   EXPECT_FALSE(cup.features.lines);
+  EXPECT_FALSE(cup.clustering.enabled); // nothing to match per object
+  EXPECT_TRUE(coat_rack.clustering.enabled);
   EXPECT_EQ(load("phoxi-bin-surface").matching.symmetry_overlap, 0.0);  // phoxi-bin's 0.75 undone
   EXPECT_EQ(load("phoxi-bin").matching.symmetry_overlap, 0.75);
 }
