@@ -1,12 +1,12 @@
 #include "core/keypoints/Neighbourhoods.h"
 
 #include "core/common/Error.h"
+#include "core/common/PixelRows.h"
 
 #include <nanoflann.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace scanpick::core::detail {
@@ -33,49 +33,33 @@ double rayAngle(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
   return std::acos(std::clamp(c, -1.0, 1.0));
 }
 
-/// The sum of q − p over the pixels q of rows `first_row`..`last_row`, columns
-/// `first_column`..`last_column` of the coordinate arrays `xs`, `ys`, `zs` (`width` per row, 8
-/// readable past the last pixel) within `r2` (squared mm) of p, and their count. Eight pixels at a
-/// time in GCC's vector types (one AVX2 register, or two SSE ones); the squared distance summed
-/// x, then y, then z, as Eigen sums it, so that a pixel is within exactly when forEachWithin finds
-/// it; NaN pixels compare false. The float offsets are summed as doubles (exactly).
+/// The sum of q − p over the pixels q of `window` in the coordinate arrays `xs`, `ys`, `zs`
+/// (`width` per row, 8 readable past the last pixel) within `r2` (squared mm) of p, and their
+/// count. Eight pixels at a time (forEachPixelChunk; built also for AVX2): the squared distance
+/// summed as Eigen sums it, so that a pixel is within exactly when forEachWithin finds it. The
+/// float offsets are summed as doubles (exactly).
 [[gnu::target_clones("avx2", "default")]] std::size_t
 sumOffsetsInWindow(const float* xs, const float* ys, const float* zs, std::size_t width,
-                   int first_row, int last_row, int first_column, int last_column,
-                   const Eigen::Vector3f& p, float r2, double sum[3]) {
-  using Floats = float __attribute__((vector_size(32)));
-  using Ints = std::int32_t __attribute__((vector_size(32)));
+                   const PixelWindow& window, const Eigen::Vector3f& p, float r2, double sum[3]) {
   using Doubles = double __attribute__((vector_size(32)));
-  const Ints lane = {0, 1, 2, 3, 4, 5, 6, 7};
-  const int count = last_column - first_column + 1;
   Doubles sx{}, sy{}, sz{};
-  Ints found{};
-  const auto add = [](Doubles& total, Floats offsets) {
+  Ints8 found{};
+  const auto add = [](Doubles& total, Floats8 offsets) {
     total += __builtin_convertvector(__builtin_shufflevector(offsets, offsets, 0, 1, 2, 3),
                                      Doubles);
     total += __builtin_convertvector(__builtin_shufflevector(offsets, offsets, 4, 5, 6, 7),
                                      Doubles);
   };
-  for (int r = first_row; r <= last_row; ++r) {
-    const std::size_t first = std::size_t(r) * width + std::size_t(first_column);
-    for (int chunk = 0; chunk < count; chunk += 8) {
-      const std::size_t at = first + std::size_t(chunk);
-      Floats x, y, z;
-      std::memcpy(&x, xs + at, sizeof x);
-      std::memcpy(&y, ys + at, sizeof y);
-      std::memcpy(&z, zs + at, sizeof z);
-      const Floats dx = x - p.x(), dy = y - p.y(), dz = z - p.z();
-      Floats d_sq = dx * dx;
-      d_sq += dy * dy;
-      d_sq += dz * dz;
-      const Ints within = (d_sq <= r2) & (lane < count - chunk);
-      found -= within; // true lanes are -1
-      const Floats zero{};
-      add(sx, within ? dx : zero);
-      add(sy, within ? dy : zero);
-      add(sz, within ? dz : zero);
-    }
-  }
+  forEachPixelChunk(xs, ys, zs, width, window, p,
+                    [&](std::size_t, const Floats8& dx, const Floats8& dy, const Floats8& dz,
+                        const Floats8& d_sq, const Ints8& in_window) {
+                      const Ints8 within = (d_sq <= r2) & in_window;
+                      found -= within; // true lanes are -1
+                      const Floats8 zero{};
+                      add(sx, within ? dx : zero);
+                      add(sy, within ? dy : zero);
+                      add(sz, within ? dz : zero);
+                    });
   sum[0] = sum[1] = sum[2] = 0.0;
   std::size_t n = 0;
   for (int k = 0; k < 4; ++k) {
@@ -164,10 +148,11 @@ std::pair<Eigen::Vector3d, std::size_t> Neighbourhoods::offsetSum(int index,
   const int w = static_cast<int>(m_cloud.width), h = static_cast<int>(m_cloud.height);
   const int row = index / w, col = index % w;
   double sum[3];
-  const std::size_t found = sumOffsetsInWindow(
-      m_x.data(), m_y.data(), m_z.data(), static_cast<std::size_t>(w), std::max(0, row - half),
-      std::min(h - 1, row + half), std::max(0, col - half), std::min(w - 1, col + half), p,
-      static_cast<float>(radius_mm * radius_mm), sum);
+  const PixelWindow window{std::max(0, col - half), std::min(w - 1, col + half),
+                           std::max(0, row - half), std::min(h - 1, row + half)};
+  const std::size_t found = sumOffsetsInWindow(m_x.data(), m_y.data(), m_z.data(),
+                                               static_cast<std::size_t>(w), window, p,
+                                               static_cast<float>(radius_mm * radius_mm), sum);
   return {Eigen::Vector3d(sum[0], sum[1], sum[2]), found};
 }
 

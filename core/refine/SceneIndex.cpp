@@ -2,6 +2,7 @@
 
 #include "core/cloud/PointKdTree.h"
 #include "core/common/Error.h"
+#include "core/common/PixelRows.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -84,59 +85,36 @@ void blockedParallel(std::size_t n, const ProgressFn& progress, Body&& body) {
   }
 }
 
-/// A pixel window: columns and rows, both inclusive.
-struct PixelWindow {
-  int first_column, last_column, first_row, last_row;
-};
-
 /// SceneIndex::nearestInWindow's search over the pixels' coordinate arrays (rows of `width`, at
 /// least 8 readable values past the last pixel): the index of the nearest point within `best`
 /// (squared, lowered to its distance), at equal distances the lowest index; -1 when none. Eight
-/// pixels at a time in GCC's vector types (one AVX2 register, or two SSE ones; built also for
-/// AVX2, without fused multiply-add): their squared distances summed as the kd-tree's metric sums
-/// them (x, then y, then z), so that both give the same distances, and only the pixels within
-/// `best` looked at one by one, in the window's order.
+/// pixels at a time (forEachPixelChunk; built also for AVX2, without fused multiply-add): their
+/// squared distances summed as the kd-tree's metric sums them, so that both give the same
+/// distances, and only the pixels within `best` looked at one by one, in the window's order.
 [[gnu::target_clones("avx2", "default")]] std::int64_t
 nearestInPixels(const float* xs, const float* ys, const float* zs, const std::int32_t* index,
                 std::size_t width, const PixelWindow& window, const Eigen::Vector3f& query,
                 float& best) {
-  using Floats = float __attribute__((vector_size(32)));
-  using Ints = std::int32_t __attribute__((vector_size(32)));
-  const Ints lane = {0, 1, 2, 3, 4, 5, 6, 7};
-  const float qx = query.x(), qy = query.y(), qz = query.z();
-  const int count = window.last_column - window.first_column + 1;
   float best_sq = best;
   std::int64_t best_index = -1;
-  for (int r = window.first_row; r <= window.last_row; ++r) {
-    const std::size_t first = std::size_t(r) * width + std::size_t(window.first_column);
-    for (int chunk = 0; chunk < count; chunk += 8) {
-      const std::size_t at = first + std::size_t(chunk);
-      Floats x, y, z;
-      std::memcpy(&x, xs + at, sizeof x);
-      std::memcpy(&y, ys + at, sizeof y);
-      std::memcpy(&z, zs + at, sizeof z);
-      const Floats dx = qx - x, dy = qy - y, dz = qz - z;
-      Floats d_sq = dx * dx; // 0 + dx², as the metric starts, is dx²
-      d_sq += dy * dy;
-      d_sq += dz * dz;
-      // NaN (no point at the pixel) compares false; lanes past the window's last column do not
-      // count.
-      const Ints within = (d_sq <= best_sq) & (lane < count - chunk);
-      std::uint64_t any[4];
-      std::memcpy(any, &within, sizeof any);
-      if ((any[0] | any[1] | any[2] | any[3]) == 0)
-        continue;
-      for (int k = 0; k < 8; ++k) {
-        if (within[k] == 0 || !(d_sq[k] <= best_sq))
-          continue;
-        const std::int32_t i = index[at + std::size_t(k)];
-        if (d_sq[k] < best_sq || best_index < 0 || i < best_index) {
-          best_sq = d_sq[k];
-          best_index = i;
-        }
-      }
-    }
-  }
+  forEachPixelChunk(xs, ys, zs, width, window, query,
+                    [&](std::size_t at, const Floats8&, const Floats8&, const Floats8&,
+                        const Floats8& d_sq, const Ints8& in_window) {
+                      const Ints8 within = (d_sq <= best_sq) & in_window;
+                      std::uint64_t any[4];
+                      std::memcpy(any, &within, sizeof any);
+                      if ((any[0] | any[1] | any[2] | any[3]) == 0)
+                        return;
+                      for (int k = 0; k < 8; ++k) {
+                        if (within[k] == 0 || !(d_sq[k] <= best_sq))
+                          continue;
+                        const std::int32_t i = index[at + std::size_t(k)];
+                        if (d_sq[k] < best_sq || best_index < 0 || i < best_index) {
+                          best_sq = d_sq[k];
+                          best_index = i;
+                        }
+                      }
+                    });
   best = best_sq;
   return best_index;
 }

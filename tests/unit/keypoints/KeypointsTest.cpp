@@ -37,6 +37,14 @@ float edgeDistance(const Eigen::Vector3f& p) {
   std::sort(d.begin(), d.end());
   return d[1];  // d[0] is 0: the point's own face
 }
+// A box and a cylinder on a floor 700 mm from the camera.
+test::RaycastScene boxAndCylinder() {
+  test::RaycastScene scene;
+  scene.floor_z_mm = 700;
+  scene.boxes.emplace_back(Eigen::Vector3d(-40, -30, 660), Eigen::Vector3d(20, 30, 700));
+  scene.cylinders.push_back({Eigen::Vector2d(50, 0), 15.0, 670.0, 700.0});
+  return scene;
+}
 } // namespace
 
 TEST(NeighbourhoodAnalysis, MarksTheCubeEdgesNotTheFaceCentres) {
@@ -63,10 +71,7 @@ TEST(NeighbourhoodAnalysis, MarksTheCubeEdgesNotTheFaceCentres) {
 TEST(NeighbourhoodAnalysis, PixelWindowsGiveTheSameKeypointsAsTheKdTree) {
   // A box seen from above, rendered organized; the same points unorganized must give exactly the
   // same keypoints (the pixel window is sized to hold the whole radius ball).
-  test::RaycastScene scene;
-  scene.floor_z_mm = 700;
-  scene.boxes.emplace_back(Eigen::Vector3d(-40, -30, 660), Eigen::Vector3d(20, 30, 700));
-  scene.cylinders.push_back({Eigen::Vector2d(50, 0), 15.0, 670.0, 700.0});
+  test::RaycastScene scene = boxAndCylinder();
   const auto organized = scene.render(240, 180, 650 / 0.66 / 2, {300, 0, 0}, 0.05, 2);
   core::PointCloud flat = core::dropInvalid(organized);
   std::vector<int> to_organized;
@@ -95,10 +100,7 @@ TEST(NeighbourhoodAnalysis, PixelWindowsGiveTheSameKeypointsAsTheKdTree) {
 TEST(NeighbourhoodAnalysis, PixelWindowsSumTheSameOffsetsAsTheKdTree) {
   // Eight pixels at a time: windows cut by the image border and rows not a multiple of eight wide
   // (199 columns), against the kd-tree's neighbours one by one.
-  test::RaycastScene scene;
-  scene.floor_z_mm = 700;
-  scene.boxes.emplace_back(Eigen::Vector3d(-40, -30, 660), Eigen::Vector3d(20, 30, 700));
-  scene.cylinders.push_back({Eigen::Vector2d(50, 0), 15.0, 670.0, 700.0});
+  test::RaycastScene scene = boxAndCylinder();
   const auto organized = scene.render(199, 150, 650 / 0.66 / 2, {300, 0, 0}, 0.05, 3);
   const core::PointCloud flat = core::dropInvalid(organized);
   const double radius_mm = 3.0;
