@@ -403,15 +403,10 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
     cache.feature_key = feature_key;
     result.timings.features_ms = msSince(t0);
   }
-  std::shared_ptr<const ModelPrep> prep;
-  if (preparing) {
-    const auto t0 = Clock::now(); // what the scene tasks still need is matching's time
-    scene_tasks.wait();
-    prep = detail::prepareModel(cache.model_preps, model, params);
-    result.timings.matching_ms += msSince(t0);
-  }
+  // The edge check's keypoint index while the scene tasks may still run.
   const bool edge_check = verifying && params.matching.edge_tolerance_mm > 0;
   if (edge_check && (cache.edge_key != keypoint_key || !cache.edge_index)) {
+    const auto t0 = Clock::now();
     const PointCloud all = edgeKeypointCloud(*cache.keypoints, sensor);
     SceneIndexOptions nearest_only; // the edge check asks for the nearest keypoint only
     nearest_only.estimate_normals = false;
@@ -423,6 +418,14 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
                     cache.edge_index && cache.edge_index->width() > 0 ? "by pixel" : "as a list",
                     cache.edge_index ? cache.edge_index->pixelSlack() : -1.0f);
     cache.edge_key = keypoint_key;
+    result.timings.matching_ms += msSince(t0);
+  }
+  std::shared_ptr<const ModelPrep> prep;
+  if (preparing) {
+    const auto t0 = Clock::now(); // what the scene tasks still need is matching's time
+    scene_tasks.wait();
+    prep = detail::prepareModel(cache.model_preps, model, params);
+    result.timings.matching_ms += msSince(t0);
   }
   const EdgeCheck edges{edge_check ? cache.edge_index.get() : nullptr,
                         params.matching.edge_tolerance_mm};
