@@ -5,7 +5,6 @@
 /// share.
 
 #include <Eigen/Core>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -29,11 +28,9 @@ using Ints8 = std::int32_t __attribute__((vector_size(32)));
 /// and `in_window` true (−1) in the lanes that lie in the window. Inlined into its callers, so
 /// that their AVX2 builds (target_clones) vectorize it too.
 template <typename Chunk>
-[[gnu::always_inline]] inline void forEachPixelChunk(const float* xs, const float* ys,
-                                                     const float* zs, std::size_t width,
-                                                     const PixelWindow& window,
-                                                     const Eigen::Vector3f& centre,
-                                                     Chunk&& chunk) {
+[[gnu::always_inline]] inline void
+forEachPixelChunk(const float* xs, const float* ys, const float* zs, std::size_t width,
+                  const PixelWindow& window, const Eigen::Vector3f& centre, Chunk&& chunk) {
   const Ints8 lane = {0, 1, 2, 3, 4, 5, 6, 7};
   const float cx = centre.x(), cy = centre.y(), cz = centre.z();
   const int count = window.last_column - window.first_column + 1;

@@ -45,10 +45,10 @@ sumOffsetsInWindow(const float* xs, const float* ys, const float* zs, std::size_
   Doubles sx{}, sy{}, sz{};
   Ints8 found{};
   const auto add = [](Doubles& total, Floats8 offsets) {
-    total += __builtin_convertvector(__builtin_shufflevector(offsets, offsets, 0, 1, 2, 3),
-                                     Doubles);
-    total += __builtin_convertvector(__builtin_shufflevector(offsets, offsets, 4, 5, 6, 7),
-                                     Doubles);
+    total +=
+        __builtin_convertvector(__builtin_shufflevector(offsets, offsets, 0, 1, 2, 3), Doubles);
+    total +=
+        __builtin_convertvector(__builtin_shufflevector(offsets, offsets, 4, 5, 6, 7), Doubles);
   };
   forEachPixelChunk(xs, ys, zs, width, window, p,
                     [&](std::size_t, const Floats8& dx, const Floats8& dy, const Floats8& dz,
@@ -150,9 +150,9 @@ std::pair<Eigen::Vector3d, std::size_t> Neighbourhoods::offsetSum(int index,
   double sum[3];
   const PixelWindow window{std::max(0, col - half), std::min(w - 1, col + half),
                            std::max(0, row - half), std::min(h - 1, row + half)};
-  const std::size_t found = sumOffsetsInWindow(m_x.data(), m_y.data(), m_z.data(),
-                                               static_cast<std::size_t>(w), window, p,
-                                               static_cast<float>(radius_mm * radius_mm), sum);
+  const std::size_t found =
+      sumOffsetsInWindow(m_x.data(), m_y.data(), m_z.data(), static_cast<std::size_t>(w), window, p,
+                         static_cast<float>(radius_mm * radius_mm), sum);
   return {Eigen::Vector3d(sum[0], sum[1], sum[2]), found};
 }
 
