@@ -54,8 +54,8 @@ public:
     }
   }
   /// The sum of the offsets q − p (mm) from point `index` (p) to the valid points q within
-  /// `radius_mm` (itself included), and how many there are. The sum is of doubles, which hold the
-  /// few hundred millimetre-sized offsets of float points exactly, so it does not depend on the
+  /// `radius_mm` (itself included), and how many there are. The float offsets, at most a few
+  /// hundred of a few millimetres, are summed exactly in doubles, so the sum does not depend on the
   /// order the points are visited in. Organized clouds test eight pixels of a window row at a
   /// time.
   [[nodiscard]] std::pair<Eigen::Vector3d, std::size_t> offsetSum(int index,

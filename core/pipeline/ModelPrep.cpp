@@ -440,22 +440,20 @@ std::optional<DetailTurn> bestTurn(const ModelPrep& prep, Detail which, const Ve
   // Only a turn scoring at least this is taken: each tally stops as soon as it cannot reach it
   // (or the best so far), most of them after a few misses.
   const double needed = std::max(kMinDetailSeenShare, as_found + kTurnMargin);
-  const double beat = std::nextafter(needed, -std::numeric_limits<double>::infinity());
   DetailTurn turn;
   turn.T_scene_model = T_scene_model;
   turn.detail_as_found = as_found;
-  turn.detail_confirmed = beat;
-  bool found = false;
+  // Scores above this are those of at least `needed`.
+  turn.detail_confirmed = std::nextafter(needed, -std::numeric_limits<double>::infinity());
   for (int degrees = 1; degrees < 360; ++degrees) {
     const Eigen::Isometry3d T = T_scene_model * axis.turn(degrees * M_PI / 180.0);
     if (const auto score =
             detailScoreAbove(prep, which, scene, T, tolerance_mm, turn.detail_confirmed)) {
       turn.detail_confirmed = *score;
       turn.T_scene_model = T;
-      found = true;
     }
   }
-  if (!found)
+  if (turn.detail_confirmed < needed)
     return std::nullopt;
   return turn;
 }
