@@ -103,7 +103,9 @@ MainWindow::~MainWindow() {
     m_box_widget->Off();
 }
 
-double MainWindow::ratio() const { return m_view->devicePixelRatioF(); }
+double MainWindow::ratio() const {
+  return m_view->devicePixelRatioF();
+}
 
 void MainWindow::buildDocks() {
   m_params = new ParameterPanel(this);
@@ -176,20 +178,20 @@ void MainWindow::buildActions() {
   file->addAction(tr("Save &scan…"), this, [this] {
     if (!m_scan)
       return showError(tr("Save scan"), tr("Open or capture a scan first."));
-    const QString path = QFileDialog::getSaveFileName(this, tr("Save scan"), QString(),
-                                                      tr("Scans (*.pcd *.ply)"));
+    const QString path =
+        QFileDialog::getSaveFileName(this, tr("Save scan"), QString(), tr("Scans (*.pcd *.ply)"));
     if (!path.isEmpty())
       saveScan(path);
   });
   file->addAction(tr("&Export results…"), this, [this] {
-    const QString path = QFileDialog::getSaveFileName(this, tr("Export results"), QString(),
-                                                      tr("Results (*.json)"));
+    const QString path =
+        QFileDialog::getSaveFileName(this, tr("Export results"), QString(), tr("Results (*.json)"));
     if (!path.isEmpty())
       exportResults(path);
   });
   QAction* shot = file->addAction(tr("Save screens&hot…"), this, [this] {
-    const QString path = QFileDialog::getSaveFileName(this, tr("Save screenshot"), QString(),
-                                                      tr("Images (*.png)"));
+    const QString path =
+        QFileDialog::getSaveFileName(this, tr("Save screenshot"), QString(), tr("Images (*.png)"));
     if (!path.isEmpty())
       saveScreenshot(path);
   });
@@ -218,7 +220,8 @@ void MainWindow::buildActions() {
   m_lasso_action->setToolTip(tr("Draw around the part with the left button: the points inside "
                                 "are kept (undo with Ctrl+Z)"));
   connect(m_lasso_action, &QAction::toggled, this, &MainWindow::setLassoActive);
-  m_floor_preview_action = teach_menu->addAction(tr("&Preview floor"), this, &MainWindow::previewFloor);
+  m_floor_preview_action =
+      teach_menu->addAction(tr("&Preview floor"), this, &MainWindow::previewFloor);
   m_floor_preview_action->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_F));
   m_floor_preview_action->setToolTip(
       tr("Show the floor points (orange) that Remove floor would take away"));
@@ -342,18 +345,19 @@ core::LoadedCloud MainWindow::loadScanFile(const std::string& file) {
 void MainWindow::openScan(const QString& path) {
   statusBar()->showMessage(tr("Loading %1…").arg(path));
   const std::string file = path.toStdString();
-  m_jobs->run<core::LoadedCloud>(
-      [file](const core::ProgressFn&) { return loadScanFile(file); },
-      [this, path](std::shared_ptr<const core::LoadedCloud> loaded) {
-        m_scan_path = path;
-        addRecentFile(path);
-        setScan(std::make_shared<const core::PointCloud>(loaded->cloud), QFileInfo(path).fileName());
-        emit scanLoaded();
-      },
-      [this, path](const QString& error) {
-        showError(tr("Open scan"), error);
-        statusBar()->showMessage(tr("Could not open %1").arg(path), 5000);
-      });
+  m_jobs->run<core::LoadedCloud>([file](const core::ProgressFn&) { return loadScanFile(file); },
+                                 [this, path](std::shared_ptr<const core::LoadedCloud> loaded) {
+                                   m_scan_path = path;
+                                   addRecentFile(path);
+                                   setScan(std::make_shared<const core::PointCloud>(loaded->cloud),
+                                           QFileInfo(path).fileName());
+                                   emit scanLoaded();
+                                 },
+                                 [this, path](const QString& error) {
+                                   showError(tr("Open scan"), error);
+                                   statusBar()->showMessage(tr("Could not open %1").arg(path),
+                                                            5000);
+                                 });
 }
 
 void MainWindow::setScan(std::shared_ptr<const core::PointCloud> scan_mm, const QString& name) {
@@ -544,13 +548,15 @@ void MainWindow::setLanguage(const QString& code) {
   statusBar()->showMessage(tr("The language changes when scanpick is started again."), 8000);
 }
 
-QImage MainWindow::screenshot() { return m_view->grabFramebuffer(); }
+QImage MainWindow::screenshot() {
+  return m_view->grabFramebuffer();
+}
 
 bool MainWindow::saveScreenshot(const QString& path) {
   const QImage image = screenshot();
   if (image.isNull() || !image.save(path)) {
-    showError(tr("Screenshot"), tr("Could not write %1: check the folder exists and is writable.")
-                                    .arg(path));
+    showError(tr("Screenshot"),
+              tr("Could not write %1: check the folder exists and is writable.").arg(path));
     return false;
   }
   core::logger()->info("screenshot saved to {}", path.toStdString());

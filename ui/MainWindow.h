@@ -7,19 +7,19 @@
 
 #include "core/cloud/CloudIo.h"
 #include "core/cloud/PointCloud.h"
-#include "core/keypoints/Keypoints.h"
 #include "core/features/FeatureExtraction.h"
+#include "core/keypoints/Keypoints.h"
 #include "core/model/TaughtModel.h"
 #include "core/params/ParameterTable.h"
 #include "core/pipeline/Recognizer.h"
 
 #include <QColor>
 #include <QMainWindow>
-#include <QPolygonF>
 #include <QPointer>
+#include <QPolygonF>
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <vtkSmartPointer.h>
 
 class QAction;
@@ -50,7 +50,7 @@ class ResultsTable;
 struct PreviewResult {
   std::shared_ptr<const core::Keypoints> keypoints;
   core::FeatureExtraction features;
-  double keypoints_ms = 0;  ///< 0 when the keypoints came from the cache
+  double keypoints_ms = 0; ///< 0 when the keypoints came from the cache
   double features_ms = 0;
   quint64 cloud_version = 0;
   core::KeypointParams keypoint_params;
@@ -243,10 +243,10 @@ private:
   LogDock* m_log = nullptr;
   ResultsTable* m_results = nullptr;
   DevicePanel* m_devices = nullptr;
-  JobRunner* m_jobs = nullptr;            // loading, floor removal, teach
-  JobRunner* m_preview_jobs = nullptr;    // keypoint/feature preview
-  JobRunner* m_recognize_jobs = nullptr;  // recognition (single and live)
-  JobRunner* m_prepare_jobs = nullptr;    // preparing a new model for matching
+  JobRunner* m_jobs = nullptr;           // loading, floor removal, teach
+  JobRunner* m_preview_jobs = nullptr;   // keypoint/feature preview
+  JobRunner* m_recognize_jobs = nullptr; // recognition (single and live)
+  JobRunner* m_prepare_jobs = nullptr;   // preparing a new model for matching
   QTimer* m_preview_timer = nullptr;
   QUndoStack* m_undo = nullptr;
   QMenu* m_recent_menu = nullptr;
@@ -261,7 +261,7 @@ private:
   QAction* m_lasso_action = nullptr;
   QAction* m_floor_preview_action = nullptr;
   QAction* m_floor_remove_action = nullptr;
-  bool m_apply_floor_pending = false;  // Remove floor asked before a preview existed
+  bool m_apply_floor_pending = false; // Remove floor asked before a preview existed
   QComboBox* m_sensor_combo = nullptr;
   QLineEdit* m_part_name = nullptr; // teach: the part's name (empty: the scan's)
   QLineEdit* m_part_pose = nullptr; // teach: its pose in the scan, optional
@@ -271,9 +271,9 @@ private:
 
   std::shared_ptr<const core::PointCloud> m_scan;
   QString m_scan_path;
-  std::shared_ptr<const core::PointCloud> m_part;  // working cloud of the teach workflow
+  std::shared_ptr<const core::PointCloud> m_part; // working cloud of the teach workflow
   quint64 m_part_version = 0;
-  std::vector<core::GripPoint> m_grips;            // scan frame
+  std::vector<core::GripPoint> m_grips; // scan frame
   // The part's views: as loaded or taught (model() first), their files (empty for a view not
   // saved), and as searched.
   std::vector<std::shared_ptr<const core::TaughtModel>> m_loaded_views;
@@ -286,13 +286,13 @@ private:
   std::vector<std::shared_ptr<const core::TaughtModel>> m_result_views;
   QStringList m_result_view_paths;
   struct FloorPreview {
-    std::shared_ptr<const core::PointCloud> part;       // the working cloud it was computed for
-    std::shared_ptr<const core::PointCloud> remaining;  // the working cloud without the floor
-    std::shared_ptr<const core::PointCloud> removed;    // the floor points, for display
+    std::shared_ptr<const core::PointCloud> part;      // the working cloud it was computed for
+    std::shared_ptr<const core::PointCloud> remaining; // the working cloud without the floor
+    std::shared_ptr<const core::PointCloud> removed;   // the floor points, for display
   };
   std::shared_ptr<const FloorPreview> m_floor_preview;
   bool m_live = false;
-  int m_live_cycles = 0;  // cycles shown since Live started
+  int m_live_cycles = 0; // cycles shown since Live started
 };
 
 } // namespace scanpick::ui

@@ -1,9 +1,8 @@
 // Recognize and live: background recognition with progress and cancel, the detections drawn in
 // distinct colours over the grey scene, the results table, export, and capture → recognize loops.
-#include "ui/MainWindow.h"
-
 #include "core/common/Log.h"
 #include "core/pipeline/ResultsJson.h"
+#include "ui/MainWindow.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/DevicePanel.h"
 #include "ui/panels/ParameterPanel.h"
@@ -68,13 +67,14 @@ void MainWindow::recognize() {
       },
       [this, views, paths](std::shared_ptr<const core::RecognitionResult> result) {
         setResult(std::move(result), views, paths);
-        m_status_counts->setText(tr("%n detection(s)", nullptr,
-                                    static_cast<int>(m_result->detections.size())));
+        m_status_counts->setText(
+            tr("%n detection(s)", nullptr, static_cast<int>(m_result->detections.size())));
         m_status_timings->setText(timingsText(m_result->timings));
         core::logger()->info("recognized {} instance(s) in {:.0f} ms", m_result->detections.size(),
                              m_result->timings.total_ms);
-        statusBar()->showMessage(tr("Found %n instance(s)", nullptr,
-                                    static_cast<int>(m_result->detections.size())), 8000);
+        statusBar()->showMessage(
+            tr("Found %n instance(s)", nullptr, static_cast<int>(m_result->detections.size())),
+            8000);
       },
       [this](const QString& e) { showError(tr("Recognize"), e); });
   // One signal for every ending (done, error, cancelled), so callers and tests can wait on it.
@@ -173,7 +173,7 @@ bool MainWindow::exportResults(const QString& path) {
 
 void MainWindow::setLiveRunning(bool running) {
   if (m_live_action->isChecked() != running) {
-    m_live_action->setChecked(running);  // re-enters through toggled
+    m_live_action->setChecked(running); // re-enters through toggled
     return;
   }
   if (!running) {
@@ -226,9 +226,9 @@ void MainWindow::runLiveCycle() {
         m_scan = c->scene;
         setResult(std::shared_ptr<const core::RecognitionResult>(c, &c->result), views, paths);
         if (m_live_cycles++ == 0)
-          lookFromSensor();  // the operator may have been looking elsewhere, or at nothing
-        m_status_counts->setText(tr("%n detection(s)", nullptr,
-                                    static_cast<int>(m_result->detections.size())));
+          lookFromSensor(); // the operator may have been looking elsewhere, or at nothing
+        m_status_counts->setText(
+            tr("%n detection(s)", nullptr, static_cast<int>(m_result->detections.size())));
         m_status_timings->setText(tr("cycle %1 ms").arg(c->cycle_ms, 0, 'f', 0));
         statusBar()->showMessage(tr("Live: %n instance(s), cycle %1 ms", nullptr,
                                     static_cast<int>(m_result->detections.size()))

@@ -1,11 +1,10 @@
 // Teach and tune: crop box, undoable crops and floor removal, grip points, the debounced
 // keypoint/feature preview and teaching the model.
-#include "ui/MainWindow.h"
-
 #include "core/common/Error.h"
 #include "core/common/Log.h"
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
+#include "ui/MainWindow.h"
 #include "ui/Settings.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/ParameterPanel.h"
@@ -48,7 +47,8 @@ class ReplacePartCommand : public QUndoCommand {
 public:
   ReplacePartCommand(MainWindow* window, std::shared_ptr<const core::PointCloud> before,
                      std::shared_ptr<const core::PointCloud> after, const QString& text)
-      : QUndoCommand(text), m_window(window), m_before(std::move(before)), m_after(std::move(after)) {}
+      : QUndoCommand(text), m_window(window), m_before(std::move(before)),
+        m_after(std::move(after)) {}
   void undo() override { m_window->setPart(m_before); }
   void redo() override { m_window->setPart(m_after); }
 
@@ -67,7 +67,8 @@ public:
       m_press = static_cast<QMouseEvent*>(event)->position().toPoint();
     } else if (event->type() == QEvent::MouseButtonRelease) {
       const auto* e = static_cast<QMouseEvent*>(event);
-      if (e->button() == Qt::LeftButton && (e->position().toPoint() - m_press).manhattanLength() < 4)
+      if (e->button() == Qt::LeftButton &&
+          (e->position().toPoint() - m_press).manhattanLength() < 4)
         m_on_click(e->position().toPoint());
     }
     return false;
@@ -78,7 +79,9 @@ private:
   QPoint m_press;
 };
 
-double pointSize() { return QSettings().value(settings::kPointSize, 2.0).toDouble(); }
+double pointSize() {
+  return QSettings().value(settings::kPointSize, 2.0).toDouble();
+}
 
 } // namespace
 
@@ -135,13 +138,15 @@ void MainWindow::buildTeachDock() {
   }));
 }
 
-void MainWindow::setPreviewDelay(int ms) { m_preview_timer->setInterval(ms); }
+void MainWindow::setPreviewDelay(int ms) {
+  m_preview_timer->setInterval(ms);
+}
 
 void MainWindow::setPart(std::shared_ptr<const core::PointCloud> part_mm) {
   m_part = std::move(part_mm);
   ++m_part_version;
   showPart();
-  showFloorPreview();  // hides a preview made for another working cloud
+  showFloorPreview(); // hides a preview made for another working cloud
   schedulePreview(core::Stage::Keypoints);
   emit partChanged();
 }
@@ -291,8 +296,8 @@ void MainWindow::refreshGripList() {
 }
 
 void MainWindow::showGrips() {
-  const double length = m_part ? std::max(5.0, core::boundingBox(*m_part).sizes().norm() * 0.06)
-                               : 10.0;
+  const double length =
+      m_part ? std::max(5.0, core::boundingBox(*m_part).sizes().norm() * 0.06) : 10.0;
   setLayer(QStringLiteral("grips"),
            m_grips.empty() ? nullptr : makeGripAxesActor(m_grips, length, ratio()));
 }
@@ -325,9 +330,10 @@ void MainWindow::runPreview() {
         if (cached) {
           r.keypoints = cached;
         } else {
-          const core::PointCloud cloud = params.downsample.voxel_mm > 0
-                                             ? core::voxelDownsample(*part, params.downsample.voxel_mm)
-                                             : *part;
+          const core::PointCloud cloud =
+              params.downsample.voxel_mm > 0
+                  ? core::voxelDownsample(*part, params.downsample.voxel_mm)
+                  : *part;
           r.keypoints = std::make_shared<const core::Keypoints>(
               core::extractKeypoints(cloud, params.keypoints, core::subProgress(progress, 0, 0.6)));
           r.keypoints_ms = static_cast<double>(timer.nsecsElapsed()) / 1e6;
@@ -417,7 +423,8 @@ void MainWindow::teach() {
                  makeFeaturesActor(model->features, QColor(0, 230, 255), QColor(255, 60, 220), 3.0,
                                    ratio(), model->T_teach_model));
         statusBar()->showMessage(
-            tr("Model taught: %1 features. Save it with Ctrl+S.").arg(model->features.size()), 8000);
+            tr("Model taught: %1 features. Save it with Ctrl+S.").arg(model->features.size()),
+            8000);
         emit modelTaught();
       },
       [this](const QString& e) { showError(tr("Teach"), e); });

@@ -1,9 +1,8 @@
 // Teach tools beside the crop box: the screen-space lasso, the floor-removal preview and the
 // sensor the scan comes from, with the Teach panel's buttons.
-#include "ui/MainWindow.h"
-
 #include "core/common/Log.h"
 #include "core/preprocess/FloorRemoval.h"
+#include "ui/MainWindow.h"
 #include "ui/Settings.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/ParameterPanel.h"
@@ -45,8 +44,9 @@ void MainWindow::buildToolButtons(QVBoxLayout* layout) {
   sensor_row->addWidget(new QLabel(tr("Sensor:"), panel));
   m_sensor_combo = new QComboBox(panel);
   m_sensor_combo->setObjectName(QStringLiteral("sensorCombo"));
-  m_sensor_combo->setToolTip(tr("Sensor of scans that do not tell (unorganized clouds). An organized "
-                                "scan whose grid matches a sensor uses that sensor."));
+  m_sensor_combo->setToolTip(
+      tr("Sensor of scans that do not tell (unorganized clouds). An organized "
+         "scan whose grid matches a sensor uses that sensor."));
   for (const std::string& name : core::sensorPresetNames())
     m_sensor_combo->addItem(QString::fromStdString(name));
   m_sensor_combo->setCurrentText(
@@ -93,7 +93,7 @@ void MainWindow::setLassoActive(bool active) {
     active = false;
   }
   if (m_lasso_action->isChecked() != active) {
-    m_lasso_action->setChecked(active);  // re-enters through toggled
+    m_lasso_action->setChecked(active); // re-enters through toggled
     return;
   }
   if (active) {
@@ -123,14 +123,15 @@ void MainWindow::applyLasso(const QPolygonF& polygon_px) {
       },
       [this, part](std::shared_ptr<const core::PointCloud> kept) {
         if (part != m_part)
-          return;  // the working cloud changed meanwhile; this lasso was drawn on another one
+          return; // the working cloud changed meanwhile; this lasso was drawn on another one
         if (kept->size() == 0) {
           showError(tr("Lasso crop"), tr("The lasso holds no point: draw around the part."));
           return;
         }
         core::logger()->info("lasso crop: {} of {} points kept", kept->size(), part->validCount());
         replacePart(kept, tr("Lasso crop"));
-        statusBar()->showMessage(tr("Lasso kept %1 points (Ctrl+Z undoes)").arg(kept->size()), 5000);
+        statusBar()->showMessage(tr("Lasso kept %1 points (Ctrl+Z undoes)").arg(kept->size()),
+                                 5000);
       },
       [this](const QString& e) { showError(tr("Lasso crop"), e); });
 }
@@ -177,19 +178,20 @@ void MainWindow::previewFloor() {
         FloorPreview preview;
         preview.part = part;
         preview.remaining = std::make_shared<const core::PointCloud>(std::move(r.remaining));
-        preview.removed =
-            std::make_shared<const core::PointCloud>(core::PointCloud::fromPoints(std::move(removed)));
+        preview.removed = std::make_shared<const core::PointCloud>(
+            core::PointCloud::fromPoints(std::move(removed)));
         return preview;
       },
       [this, part](std::shared_ptr<const FloorPreview> preview) {
         if (part != m_part) {
-          m_apply_floor_pending = false;  // asked for another working cloud
+          m_apply_floor_pending = false; // asked for another working cloud
           return;
         }
         m_floor_preview = preview;
         showFloorPreview();
         const std::size_t n = preview->removed->size();
-        core::logger()->info("floor preview: {} of {} points would be removed", n, part->validCount());
+        core::logger()->info("floor preview: {} of {} points would be removed", n,
+                             part->validCount());
         statusBar()->showMessage(
             n == 0 ? tr("No plane large enough to remove")
                    : tr("%1 floor points shown in orange: Remove floor takes them away").arg(n),
@@ -214,7 +216,7 @@ void MainWindow::removeFloorFromPart() {
     return;
   }
   if (floorPreviewCount() == 0)
-    return;  // the preview found no floor; previewFloor said so
+    return; // the preview found no floor; previewFloor said so
   const auto remaining = m_floor_preview->remaining;
   const std::size_t n = m_floor_preview->removed->size();
   replacePart(remaining, tr("Remove floor"));

@@ -7,14 +7,14 @@
 
 namespace scanpick::ui::settings {
 
-inline const QString kGeometry = QStringLiteral("window/geometry");        ///< QByteArray
-inline const QString kWindowState = QStringLiteral("window/state");        ///< docks, QByteArray
-inline const QString kRecentFiles = QStringLiteral("files/recent");        ///< QStringList
+inline const QString kGeometry = QStringLiteral("window/geometry"); ///< QByteArray
+inline const QString kWindowState = QStringLiteral("window/state"); ///< docks, QByteArray
+inline const QString kRecentFiles = QStringLiteral("files/recent"); ///< QStringList
 inline const QString kLastDirectory = QStringLiteral("files/lastDirectory");
-inline const QString kLastPreset = QStringLiteral("params/lastPreset");    ///< preset file path
-inline const QString kLastDevice = QStringLiteral("capture/lastDevice");   ///< device id
-inline const QString kLanguage = QStringLiteral("ui/language");            ///< "en" or "it"
-inline const QString kPointSize = QStringLiteral("view/pointSize");        ///< logical pixels
+inline const QString kLastPreset = QStringLiteral("params/lastPreset");  ///< preset file path
+inline const QString kLastDevice = QStringLiteral("capture/lastDevice"); ///< device id
+inline const QString kLanguage = QStringLiteral("ui/language");          ///< "en" or "it"
+inline const QString kPointSize = QStringLiteral("view/pointSize");      ///< logical pixels
 
 /// Most recent files kept in the File menu.
 inline constexpr int kMaxRecentFiles = 8;

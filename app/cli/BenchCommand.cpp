@@ -5,16 +5,14 @@
 #include "app/cli/Commands.h"
 #include "app/cli/ModelViews.h"
 #include "app/cli/RecipeOptions.h"
-
 #include "core/model/ModelFile.h"
 #include "core/pipeline/Recognizer.h"
-
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <optional>
+#include <sys/resource.h>
 #include <thread>
 
 namespace scanpick::cli {

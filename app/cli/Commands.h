@@ -5,12 +5,12 @@
 #include <CLI/CLI.hpp>
 
 namespace scanpick::cli {
-void registerSynthCommands(CLI::App& app);     ///< synth, synth-suite (SynthCommand.cpp)
-void registerEvalCommand(CLI::App& app);       ///< eval (EvalCommand.cpp)
-void registerTeachCommand(CLI::App& app);      ///< teach (TeachCommand.cpp)
-void registerRecognizeCommand(CLI::App& app);  ///< recognize (RecognizeCommand.cpp)
-void registerDeviceCommands(CLI::App& app);    ///< devices, capture (DeviceCommands.cpp)
-void registerDemoCommand(CLI::App& app);       ///< demo: the README's main job (DemoCommand.cpp)
-void registerParamsCommand(CLI::App& app);     ///< params: the parameter table (ParamsCommand.cpp)
-void registerBenchCommand(CLI::App& app);      ///< bench: recognition timings (BenchCommand.cpp)
+void registerSynthCommands(CLI::App& app);    ///< synth, synth-suite (SynthCommand.cpp)
+void registerEvalCommand(CLI::App& app);      ///< eval (EvalCommand.cpp)
+void registerTeachCommand(CLI::App& app);     ///< teach (TeachCommand.cpp)
+void registerRecognizeCommand(CLI::App& app); ///< recognize (RecognizeCommand.cpp)
+void registerDeviceCommands(CLI::App& app);   ///< devices, capture (DeviceCommands.cpp)
+void registerDemoCommand(CLI::App& app);      ///< demo: the README's main job (DemoCommand.cpp)
+void registerParamsCommand(CLI::App& app);    ///< params: the parameter table (ParamsCommand.cpp)
+void registerBenchCommand(CLI::App& app);     ///< bench: recognition timings (BenchCommand.cpp)
 } // namespace scanpick::cli

@@ -7,7 +7,6 @@
 #include "app/cli/Commands.h"
 #include "app/cli/RecipeOptions.h"
 #include "app/cli/TeachTruth.h"
-
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 #include "core/model/ModelFile.h"
@@ -37,15 +36,17 @@ int runDemo(const DemoOptions& o) {
   const fs::path dir(o.out);
   // The preset first, so a wrong name fails before any work is done.
   const core::RecognitionParams params = core::loadPreset(findPreset(o.preset)).params;
-  std::cout << "1/3 simulating the demo scenes (PhoXi M, 8 supports in a bin; one support on a table, on two sides)\n";
+  std::cout << "1/3 simulating the demo scenes (PhoXi M, 8 supports in a bin; one support on a "
+               "table, on two sides)\n";
   for (const auto& f : core::writeDemoScenes(dir))
     std::cout << "    wrote " << f.string() << "\n";
 
   const core::SensorModel sensor = core::sensorPreset("phoxi-m-1032");
   // Two views: the support as it rests in the bin (on both legs, the main model the desktop
   // application opens) and as it lies on the table; one scan shows one side only.
-  std::cout << "2/3 teaching the support from support-teach-side1.pcd and support-teach.pcd (preset "
-            << o.preset << ")\n";
+  std::cout
+      << "2/3 teaching the support from support-teach-side1.pcd and support-teach.pcd (preset "
+      << o.preset << ")\n";
   std::vector<std::shared_ptr<const core::TaughtModel>> models;
   std::vector<core::ModelSource> sources;
   std::vector<const core::PointCloud*> clouds;
@@ -90,11 +91,13 @@ int runDemo(const DemoOptions& o) {
   const fs::path picture_path = dir / "demo-overlay.png";
   core::saveResults(results_path, result, sources, scene_path.string());
   core::writeOverlayPng(picture_path, scene, clouds, result.detections, sensor);
-  std::printf("    %zu detection(s) in %.0f ms\n", result.detections.size(), result.timings.total_ms);
+  std::printf("    %zu detection(s) in %.0f ms\n", result.detections.size(),
+              result.timings.total_ms);
   for (std::size_t i = 0; i < result.detections.size(); ++i) {
     const core::Detection& d = result.detections[i];
     const Eigen::Vector3d t = d.T_scene_model.translation();
-    std::printf("    #%zu score %.3f at (%.1f, %.1f, %.1f) mm\n", i + 1, d.score, t.x(), t.y(), t.z());
+    std::printf("    #%zu score %.3f at (%.1f, %.1f, %.1f) mm\n", i + 1, d.score, t.x(), t.y(),
+                t.z());
   }
   std::cout << "results: " << results_path.string() << "\npicture: " << picture_path.string()
             << " (scene grey, detections red)\n"

@@ -17,11 +17,11 @@
 namespace scanpick::cli {
 
 struct RecipeOptions {
-  std::string preset;  ///< preset name (resources/presets/<name>.json) or file
-  std::string params;  ///< preset file with parameters
+  std::string preset; ///< preset name (resources/presets/<name>.json) or file
+  std::string params; ///< preset file with parameters
   std::string units = "mm";
-  std::string sensor;  ///< sensor preset name; empty = default
-  std::vector<std::string> overrides;  ///< KEY=VALUE, applied after the preset or file
+  std::string sensor;                 ///< sensor preset name; empty = default
+  std::vector<std::string> overrides; ///< KEY=VALUE, applied after the preset or file
 
   void add(CLI::App* sub) {
     sub->add_option("--preset", preset, "Parameter preset: a name in resources/presets or a file");

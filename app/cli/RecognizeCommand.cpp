@@ -3,7 +3,6 @@
 #include "app/cli/Commands.h"
 #include "app/cli/ModelViews.h"
 #include "app/cli/RecipeOptions.h"
-
 #include "core/common/AtomicFile.h"
 #include "core/model/ModelFile.h"
 #include "core/pipeline/OverlayPicture.h"
@@ -103,7 +102,7 @@ int run(const Options& o) {
   for (const auto& path : scenes) {
     const auto [preset, kind] = truthInfo(path);
     if (kind == "teach")
-      continue;  // the scans parts are taught from are not recognition scenes
+      continue; // the scans parts are taught from are not recognition scenes
     const std::string sensor_name =
         !o.recipe.sensor.empty() ? o.recipe.sensor : (!preset.empty() ? preset : default_sensor);
     const core::SensorModel sensor = core::sensorPreset(sensor_name);

@@ -1,7 +1,6 @@
 // scanpick-cli synth / synth-suite: the virtual structured-light scanner.
 #include "app/cli/CliCommon.h"
 #include "app/cli/Commands.h"
-
 #include "core/common/Error.h"
 #include "core/sim/MeshIo.h"
 #include "core/sim/PartCatalog.h"
@@ -53,17 +52,19 @@ int runExportMesh(const SynthOptions& o) {
   const auto names = splitCommas(o.parts);
   if (names.size() != 1 && o.mesh.empty())
     throw core::Error("--export-mesh needs exactly one --part NAME (or --mesh FILE)");
-  const core::Part part = o.mesh.empty() ? core::builtInPart(names.front()) : core::partFromMeshFile(o.mesh, o.close_holes);
+  const core::Part part = o.mesh.empty() ? core::builtInPart(names.front())
+                                         : core::partFromMeshFile(o.mesh, o.close_holes);
   const core::TriangleMesh mesh = part.mesh();
   core::saveMeshPly(out, mesh);
-  std::cout << "wrote " << out.string() << " (" << part.name << ", " << mesh.vertices_mm.size() << " vertices, "
-            << mesh.triangles.size() << " triangles, mm)\n";
+  std::cout << "wrote " << out.string() << " (" << part.name << ", " << mesh.vertices_mm.size()
+            << " vertices, " << mesh.triangles.size() << " triangles, mm)\n";
   return kOk;
 }
 
 int runSynth(const SynthOptions& o) {
   if (o.close_holes && o.mesh.empty())
-    throw core::Error("--close-holes caps the holes of a --mesh FILE: give one, or drop --close-holes");
+    throw core::Error(
+        "--close-holes caps the holes of a --mesh FILE: give one, or drop --close-holes");
   if (o.export_mesh)
     return runExportMesh(o);
   if (o.out.empty())
@@ -92,7 +93,8 @@ int runSynth(const SynthOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   const core::SynthScene synth = core::synthesize(r);
   const auto files = core::writeSynthScene(o.out, synth);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const auto& f : files)
     std::cout << "wrote " << f.string() << "\n";
   std::printf("%zu instances, %zu valid points, %.2f s\n", synth.scene.instances.size(),
@@ -109,39 +111,52 @@ int runSynth(const SynthOptions& o) {
 
 void registerSynthCommands(CLI::App& app) {
   auto o = std::make_shared<SynthOptions>();
-  CLI::App* synth = addCommand(app, "synth",
-                               "Simulate a structured-light scan of parts in a bin, scattered on a table, or "
-                               "alone (teach), with ground truth; or export a part's mesh (--export-mesh).",
-                               [o] { return runSynth(*o); });
-  synth->add_option("--part", o->parts, "built-in part: support, cup, pump-connector, coat-rack "
-                                        "(several, comma-separated, make a mixed scene)");
-  synth->add_option("--mesh", o->mesh, "closed triangle mesh in mm (.ply, .stl, .obj, .vtk) instead of --part");
+  CLI::App* synth =
+      addCommand(app, "synth",
+                 "Simulate a structured-light scan of parts in a bin, scattered on a table, or "
+                 "alone (teach), with ground truth; or export a part's mesh (--export-mesh).",
+                 [o] { return runSynth(*o); });
+  synth->add_option("--part", o->parts,
+                    "built-in part: support, cup, pump-connector, coat-rack "
+                    "(several, comma-separated, make a mixed scene)");
+  synth->add_option("--mesh", o->mesh,
+                    "closed triangle mesh in mm (.ply, .stl, .obj, .vtk) instead of --part");
   synth->add_flag("--close-holes", o->close_holes,
                   "cap the --mesh file's holes (a scanned part's open base) with triangles");
   synth->add_option("--layout", o->layout, "bin, scatter or teach")->capture_default_str();
-  synth->add_option("--teach-side", o->teach_side,
-                    "teach layout: side the part rests on, 0 = usual, 1 = turned over, 2 = on its side, "
-                    "3 = on its end (one taught view per side)")
+  synth
+      ->add_option(
+          "--teach-side", o->teach_side,
+          "teach layout: side the part rests on, 0 = usual, 1 = turned over, 2 = on its side, "
+          "3 = on its end (one taught view per side)")
       ->capture_default_str();
   synth->add_option("--count", o->count, "number of instances (default: 8; teach: 1)");
-  synth->add_option("--sensor", o->sensor, "phoxi-m-1032, phoxi-m-2064 or kinect-v1")->capture_default_str();
-  synth->add_option("--seed", o->seed, "random seed: same seed, same files")->capture_default_str();
-  synth->add_option("--noise-sigma", o->noise_sigma_mm, "depth noise sigma in mm (default: the sensor's)");
-  synth->add_option("--deform", o->deformation,
-                    "each instance's shape varies by up to this fraction of its size (stretched, "
-                    "sheared and bent, like pears of one kind); the ground truth keeps the pose of "
-                    "the part as designed. 0 to 0.3")
+  synth->add_option("--sensor", o->sensor, "phoxi-m-1032, phoxi-m-2064 or kinect-v1")
       ->capture_default_str();
-  synth->add_flag("--noiseless", o->noiseless, "exact geometry: no noise, dropouts or flying pixels");
-  synth->add_option("--camera-height", o->camera_height_mm, "camera height above the floor, mm (default: sensor's)");
-  synth->add_option("--out", o->out, "output prefix (PREFIX.pcd/.png/.gt.json), or FILE.ply with --export-mesh");
-  synth->add_flag("--export-mesh", o->export_mesh, "write the part's closed mesh (mm) to --out FILE.ply");
+  synth->add_option("--seed", o->seed, "random seed: same seed, same files")->capture_default_str();
+  synth->add_option("--noise-sigma", o->noise_sigma_mm,
+                    "depth noise sigma in mm (default: the sensor's)");
+  synth
+      ->add_option("--deform", o->deformation,
+                   "each instance's shape varies by up to this fraction of its size (stretched, "
+                   "sheared and bent, like pears of one kind); the ground truth keeps the pose of "
+                   "the part as designed. 0 to 0.3")
+      ->capture_default_str();
+  synth->add_flag("--noiseless", o->noiseless,
+                  "exact geometry: no noise, dropouts or flying pixels");
+  synth->add_option("--camera-height", o->camera_height_mm,
+                    "camera height above the floor, mm (default: sensor's)");
+  synth->add_option("--out", o->out,
+                    "output prefix (PREFIX.pcd/.png/.gt.json), or FILE.ply with --export-mesh");
+  synth->add_flag("--export-mesh", o->export_mesh,
+                  "write the part's closed mesh (mm) to --out FILE.ply");
 
   auto suite_out = std::make_shared<std::string>();
   auto suites = std::make_shared<std::vector<std::string>>();
   auto suite_seed = std::make_shared<std::uint64_t>(core::kDefaultSuiteSeed);
   CLI::App* suite = addCommand(
-      app, "synth-suite", "Write the fixed, seeded evaluation suites: phoxi-bin, kinect-bin, teach.",
+      app, "synth-suite",
+      "Write the fixed, seeded evaluation suites: phoxi-bin, kinect-bin, teach.",
       [suite_out, suites, suite_seed] {
         if (suite_out->empty())
           throw core::Error("--out DIR is required");
@@ -152,16 +167,20 @@ void registerSynthCommands(CLI::App& app) {
         }
         const auto t0 = std::chrono::steady_clock::now();
         std::size_t done = 0;
-        const auto files = core::writeSuite(*suite_out, scenes, {}, [&](const std::filesystem::path& prefix) {
-          std::cout << "[" << ++done << "/" << scenes.size() << "] " << prefix.string() << "\n" << std::flush;
-        });
+        const auto files =
+            core::writeSuite(*suite_out, scenes, {}, [&](const std::filesystem::path& prefix) {
+              std::cout << "[" << ++done << "/" << scenes.size() << "] " << prefix.string() << "\n"
+                        << std::flush;
+            });
         std::printf("wrote %zu files (%zu scenes) in %.1f s\n", files.size(), scenes.size(),
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
         return kOk;
       });
   suite->add_option("--out", *suite_out, "output folder");
-  suite->add_option("--suite", *suites, "suite(s) to write (default: all): phoxi-bin, kinect-bin, teach");
-  suite->add_option("--seed", *suite_seed, "suite seed (keep the default to share results)")->capture_default_str();
+  suite->add_option("--suite", *suites,
+                    "suite(s) to write (default: all): phoxi-bin, kinect-bin, teach");
+  suite->add_option("--seed", *suite_seed, "suite seed (keep the default to share results)")
+      ->capture_default_str();
 }
 
 } // namespace scanpick::cli

@@ -3,7 +3,6 @@
 #include "app/cli/Commands.h"
 #include "app/cli/RecipeOptions.h"
 #include "app/cli/TeachTruth.h"
-
 #include "core/common/AtomicFile.h"
 #include "core/model/ModelFile.h"
 #include "core/params/ParameterTable.h"
@@ -15,7 +14,8 @@
 namespace scanpick::cli {
 namespace {
 
-std::vector<double> parseNumbers(const std::string& text, std::size_t count, const std::string& what) {
+std::vector<double> parseNumbers(const std::string& text, std::size_t count,
+                                 const std::string& what) {
   std::vector<double> values;
   std::stringstream ss(text);
   std::string item;
@@ -27,8 +27,8 @@ std::vector<double> parseNumbers(const std::string& text, std::size_t count, con
     }
   }
   if (values.size() != count)
-    throw core::Error(what + ": expected " + std::to_string(count) + " comma-separated numbers, got " +
-                      std::to_string(values.size()));
+    throw core::Error(what + ": expected " + std::to_string(count) +
+                      " comma-separated numbers, got " + std::to_string(values.size()));
   return values;
 }
 
@@ -43,60 +43,64 @@ void registerTeachCommand(CLI::App& app) {
     std::vector<std::string> view_settings;
   };
   auto o = std::make_shared<Options>();
-  CLI::App* sub = addCommand(app, "teach", "Teach a part from a scan: crop, features, .spmodel", [o] {
-    core::TeachOptions options;
-    options.name = o->name;
-    options.remove_floor = o->remove_floor;
-    options.source_units = core::parseLengthUnit(o->recipe.units);
-    options.sensor = core::sensorPreset(o->recipe.sensor.empty() ? "phoxi-m-1032" : o->recipe.sensor);
-    for (const auto& g : o->grips) {
-      const auto eq = g.find('=');
-      if (eq == std::string::npos || eq == 0)
-        throw core::Error("--grip '" + g + "': expected NAME=x,y,z (scan frame, mm)");
-      const auto xyz = parseNumbers(g.substr(eq + 1), 3, "--grip " + g.substr(0, eq));
-      options.grips_scan.push_back({g.substr(0, eq), Eigen::Vector3d(xyz[0], xyz[1], xyz[2])});
-    }
-    if (o->crop_box.empty() == o->crop_truth.empty())
-      throw core::Error("give exactly one of --crop-box or --crop-from-truth");
-    if (!o->crop_box.empty()) {
-      const auto b = parseNumbers(o->crop_box, 6, "--crop-box");
-      options.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(float(b[0]), float(b[1]), float(b[2])),
-                                                Eigen::Vector3f(float(b[3]), float(b[4]), float(b[5])));
-      if (options.crop_box_mm->isEmpty())
-        throw core::Error("--crop-box: each minimum must be below its maximum");
-    } else {
-      teachOptionsFromTruth(o->crop_truth, options);
-    }
-    if (!o->part_pose.empty()) {
-      try {
-        options.T_scan_part = core::partPose(o->part_pose);
-      } catch (const core::Error& e) {
-        throw core::Error(std::string("--part-pose: ") + e.what());
-      }
-    }
-    const core::PointCloud scan = loadWithUnitsCheck(o->scan, o->recipe.units);
-    core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));
-    model.teach_scan = std::filesystem::path(o->scan).filename().string();
-    for (const auto& kv : o->view_settings) {
-      // Parsed and checked as --set is (an unknown key or a value out of range is an Error),
-      // then kept as the table's number.
-      const nlohmann::json setting = parseSetting(kv, "--view-set");
-      const std::string key = setting.begin().key();
-      const double value = core::findParameter(key)->get(core::paramsFromJson(setting));
-      core::checkViewParam(key, value);
-      model.view_params[key] = value;
-    }
-    core::saveModel(o->out, model);
-    std::cout << "taught '" << model.name << "': " << model.cloud_mm.size() << " points, "
-              << model.keypoints_mm.size() << " keypoints, " << model.features.size()
-              << " features, diameter " << model.diameter_mm << " mm";
-    for (const auto& [key, value] : model.view_params)
-      std::cout << ", " << key << " = " << value << " for this view";
-    std::cout << " -> " << o->out << "\n";
-    return kOk;
-  });
+  CLI::App* sub =
+      addCommand(app, "teach", "Teach a part from a scan: crop, features, .spmodel", [o] {
+        core::TeachOptions options;
+        options.name = o->name;
+        options.remove_floor = o->remove_floor;
+        options.source_units = core::parseLengthUnit(o->recipe.units);
+        options.sensor =
+            core::sensorPreset(o->recipe.sensor.empty() ? "phoxi-m-1032" : o->recipe.sensor);
+        for (const auto& g : o->grips) {
+          const auto eq = g.find('=');
+          if (eq == std::string::npos || eq == 0)
+            throw core::Error("--grip '" + g + "': expected NAME=x,y,z (scan frame, mm)");
+          const auto xyz = parseNumbers(g.substr(eq + 1), 3, "--grip " + g.substr(0, eq));
+          options.grips_scan.push_back({g.substr(0, eq), Eigen::Vector3d(xyz[0], xyz[1], xyz[2])});
+        }
+        if (o->crop_box.empty() == o->crop_truth.empty())
+          throw core::Error("give exactly one of --crop-box or --crop-from-truth");
+        if (!o->crop_box.empty()) {
+          const auto b = parseNumbers(o->crop_box, 6, "--crop-box");
+          options.crop_box_mm =
+              Eigen::AlignedBox3f(Eigen::Vector3f(float(b[0]), float(b[1]), float(b[2])),
+                                  Eigen::Vector3f(float(b[3]), float(b[4]), float(b[5])));
+          if (options.crop_box_mm->isEmpty())
+            throw core::Error("--crop-box: each minimum must be below its maximum");
+        } else {
+          teachOptionsFromTruth(o->crop_truth, options);
+        }
+        if (!o->part_pose.empty()) {
+          try {
+            options.T_scan_part = core::partPose(o->part_pose);
+          } catch (const core::Error& e) {
+            throw core::Error(std::string("--part-pose: ") + e.what());
+          }
+        }
+        const core::PointCloud scan = loadWithUnitsCheck(o->scan, o->recipe.units);
+        core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));
+        model.teach_scan = std::filesystem::path(o->scan).filename().string();
+        for (const auto& kv : o->view_settings) {
+          // Parsed and checked as --set is (an unknown key or a value out of range is an Error),
+          // then kept as the table's number.
+          const nlohmann::json setting = parseSetting(kv, "--view-set");
+          const std::string key = setting.begin().key();
+          const double value = core::findParameter(key)->get(core::paramsFromJson(setting));
+          core::checkViewParam(key, value);
+          model.view_params[key] = value;
+        }
+        core::saveModel(o->out, model);
+        std::cout << "taught '" << model.name << "': " << model.cloud_mm.size() << " points, "
+                  << model.keypoints_mm.size() << " keypoints, " << model.features.size()
+                  << " features, diameter " << model.diameter_mm << " mm";
+        for (const auto& [key, value] : model.view_params)
+          std::cout << ", " << key << " = " << value << " for this view";
+        std::cout << " -> " << o->out << "\n";
+        return kOk;
+      });
   sub->add_option("--scan", o->scan, "Scan holding the part (.pcd or .ply)")->required();
-  sub->add_option("--crop-box", o->crop_box, "Crop box in the scan frame: xmin,ymin,zmin,xmax,ymax,zmax");
+  sub->add_option("--crop-box", o->crop_box,
+                  "Crop box in the scan frame: xmin,ymin,zmin,xmax,ymax,zmax");
   sub->add_option(
       "--crop-from-truth", o->crop_truth,
       "Take the crop box, grip points and the part's pose from a teach scene's .gt.json");

@@ -18,7 +18,8 @@ namespace {
 
 std::string lowerExtension(const fs::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -102,7 +103,8 @@ pcl::PCLPointCloud2 toBlob(const PointCloud& cloud) {
 }
 
 /// PCL's binary PCD reader accepts files shorter than their header promises, so the data size is
-/// checked here against the header (binary: width x height x point_step; compressed: its size word).
+/// checked here against the header (binary: width x height x point_step; compressed: its size
+/// word).
 void checkPcdNotTruncated(const fs::path& path) {
   pcl::PCDReader reader;
   pcl::PCLPointCloud2 header;
@@ -110,7 +112,8 @@ void checkPcdNotTruncated(const fs::path& path) {
   Eigen::Quaternionf orientation;
   int pcd_version = 0, data_type = 0;
   unsigned int data_idx = 0;
-  if (reader.readHeader(path.string(), header, origin, orientation, pcd_version, data_type, data_idx) < 0)
+  if (reader.readHeader(path.string(), header, origin, orientation, pcd_version, data_type,
+                        data_idx) < 0)
     throw Error("cannot read '" + path.string() + "': not a valid PCD header");
   const auto file_size = fs::file_size(path);
   std::uint64_t needed = data_idx;
@@ -125,8 +128,8 @@ void checkPcdNotTruncated(const fs::path& path) {
   }
   if (file_size < needed)
     throw Error("cannot read '" + path.string() + "': the file is truncated (" +
-                std::to_string(file_size) + " bytes, the header announces " + std::to_string(needed) +
-                "); copy or capture it again");
+                std::to_string(file_size) + " bytes, the header announces " +
+                std::to_string(needed) + "); copy or capture it again");
 }
 
 } // namespace
@@ -135,7 +138,8 @@ LoadedCloud loadCloud(const fs::path& path, LengthUnit units) {
   if (!fs::exists(path))
     throw Error("cannot read '" + path.string() + "': no such file");
   if (fs::is_directory(path))
-    throw Error("cannot read '" + path.string() + "': it is a folder, expected a .pcd or .ply file");
+    throw Error("cannot read '" + path.string() +
+                "': it is a folder, expected a .pcd or .ply file");
   if (fs::file_size(path) == 0)
     throw Error("cannot read '" + path.string() + "': the file is empty");
   const std::string ext = lowerExtension(path);
@@ -170,7 +174,8 @@ LoadedCloud loadCloud(const fs::path& path, LengthUnit units) {
   LoadedCloud loaded;
   PointCloud in_file_units = fromBlob(blob, 1.0f);
   if (!in_file_units.hasValidPoint())
-    throw Error("'" + path.string() + "' has no valid point (empty or all NaN): capture again or "
+    throw Error("'" + path.string() +
+                "' has no valid point (empty or all NaN): capture again or "
                 "pick another file");
   loaded.units_warning = unitsSanityWarning(in_file_units, units);
   loaded.cloud = std::move(in_file_units);

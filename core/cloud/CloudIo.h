@@ -12,8 +12,8 @@ namespace scanpick::core {
 
 /// What loadCloud found besides the points.
 struct LoadedCloud {
-  PointCloud cloud;           ///< in millimetres, organization kept
-  std::string units_warning;  ///< unitsSanityWarning() text, empty when the extent looks right
+  PointCloud cloud;          ///< in millimetres, organization kept
+  std::string units_warning; ///< unitsSanityWarning() text, empty when the extent looks right
 };
 
 /// Loads a .pcd or .ply file whose coordinates are in `units`, converting to millimetres.

@@ -69,6 +69,8 @@ SensorModel sensorPreset(const std::string& name) {
   throw Error("unknown sensor '" + name + "': use one of " + known);
 }
 
-std::vector<std::string> sensorPresetNames() { return {"phoxi-m-1032", "phoxi-m-2064", "kinect-v1"}; }
+std::vector<std::string> sensorPresetNames() {
+  return {"phoxi-m-1032", "phoxi-m-2064", "kinect-v1"};
+}
 
 } // namespace scanpick::core

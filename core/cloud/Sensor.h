@@ -16,22 +16,25 @@ namespace scanpick::core {
 
 /// A structured-light sensor: a pinhole camera and a projector offset by a baseline.
 struct SensorModel {
-  std::string preset;                 ///< preset name ("phoxi-m-1032", "kinect-v1", ...) or "custom"
-  int width = 0, height = 0;          ///< image size, pixels
-  double fx = 0, fy = 0, cx = 0, cy = 0;  ///< pinhole intrinsics, pixels
+  std::string preset;        ///< preset name ("phoxi-m-1032", "kinect-v1", ...) or "custom"
+  int width = 0, height = 0; ///< image size, pixels
+  double fx = 0, fy = 0, cx = 0, cy = 0; ///< pinhole intrinsics, pixels
   /// Projector pose in the camera (= scene) frame. Its origin is the projector's optical centre.
   Eigen::Isometry3d T_camera_projector = Eigen::Isometry3d::Identity();
-  double min_range_mm = 0, max_range_mm = 0;  ///< working range along the optical axis
-  double nominal_distance_mm = 0;             ///< focus / sweet-spot distance
-  double noise_sigma_mm = 0;                  ///< z-noise (PhoXi); Kinect noise is in sim/
+  double min_range_mm = 0, max_range_mm = 0; ///< working range along the optical axis
+  double nominal_distance_mm = 0;            ///< focus / sweet-spot distance
+  double noise_sigma_mm = 0;                 ///< z-noise (PhoXi); Kinect noise is in sim/
 
   /// Camera centre in the scene frame (the origin).
   [[nodiscard]] Eigen::Vector3d cameraPosition() const { return Eigen::Vector3d::Zero(); }
   /// Projector centre in the scene frame.
-  [[nodiscard]] Eigen::Vector3d projectorPosition() const { return T_camera_projector.translation(); }
+  [[nodiscard]] Eigen::Vector3d projectorPosition() const {
+    return T_camera_projector.translation();
+  }
   /// Projects a camera-frame point (mm, z > 0) to pixel coordinates.
   [[nodiscard]] Eigen::Vector2d project(const Eigen::Vector3d& p_camera_mm) const {
-    return {fx * p_camera_mm.x() / p_camera_mm.z() + cx, fy * p_camera_mm.y() / p_camera_mm.z() + cy};
+    return {fx * p_camera_mm.x() / p_camera_mm.z() + cx,
+            fy * p_camera_mm.y() / p_camera_mm.z() + cy};
   }
   /// The pixel (column, row) where a camera-frame point (mm) projects, halves rounded away from
   /// zero, each coordinate first clamped to ±1e6 (far outside any image, so that points near the

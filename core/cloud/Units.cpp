@@ -14,9 +14,13 @@ LengthUnit parseLengthUnit(std::string_view text) {
   throw Error("unknown length unit '" + std::string(text) + "': use 'mm' or 'm'");
 }
 
-std::string toString(LengthUnit unit) { return unit == LengthUnit::Metres ? "m" : "mm"; }
+std::string toString(LengthUnit unit) {
+  return unit == LengthUnit::Metres ? "m" : "mm";
+}
 
-float millimetresPer(LengthUnit unit) { return unit == LengthUnit::Metres ? 1000.0f : 1.0f; }
+float millimetresPer(LengthUnit unit) {
+  return unit == LengthUnit::Metres ? 1000.0f : 1.0f;
+}
 
 std::optional<LengthUnit> guessLengthUnit(const PointCloud& cloud) {
   const auto box = boundingBox(cloud);

@@ -54,8 +54,8 @@ void writeFileAtomic(const fs::path& path, std::string_view contents) {
 std::string readFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
-    throw Error("cannot read '" + path.string() + "': " +
-                (fs::exists(path) ? std::string(std::strerror(errno)) : "no such file"));
+    throw Error("cannot read '" + path.string() +
+                "': " + (fs::exists(path) ? std::string(std::strerror(errno)) : "no such file"));
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();

@@ -4,8 +4,10 @@ namespace scanpick::core {
 
 std::string toString(FeatureType type) {
   switch (type) {
-  case FeatureType::Line: return "line";
-  case FeatureType::Circle: return "circle";
+  case FeatureType::Line:
+    return "line";
+  case FeatureType::Circle:
+    return "circle";
   }
   return "unknown";
 }

@@ -21,9 +21,9 @@ std::string toString(FeatureType type);
 struct Feature {
   FeatureType type = FeatureType::Line;
   Eigen::Vector3f centre_mm = Eigen::Vector3f::Zero();
-  Eigen::Vector3f direction = Eigen::Vector3f::UnitZ();  ///< unit vector
-  float size_mm = 0.0f;                                   ///< line length or circle radius
-  int inlier_count = 0;                                   ///< keypoints supporting it
+  Eigen::Vector3f direction = Eigen::Vector3f::UnitZ(); ///< unit vector
+  float size_mm = 0.0f;                                 ///< line length or circle radius
+  int inlier_count = 0;                                 ///< keypoints supporting it
   bool operator==(const Feature&) const = default;
 };
 

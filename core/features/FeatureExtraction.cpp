@@ -83,9 +83,9 @@ private:
 /// processor with AVX2 a clone with twice the lanes runs (the same operations, no fused
 /// multiply-add, so the same counts).
 template <typename Near>
-[[gnu::always_inline]] inline std::size_t countNear(const Near& near, const typename Near::Scalar* x,
-                                                    const typename Near::Scalar* y,
-                                                    const typename Near::Scalar* z, std::size_t n) {
+[[gnu::always_inline]] inline std::size_t
+countNear(const Near& near, const typename Near::Scalar* x, const typename Near::Scalar* y,
+          const typename Near::Scalar* z, std::size_t n) {
   typename Near::Tally count = 0;
   for (std::size_t k = 0; k < n; ++k)
     count += near(x[k], y[k], z[k]) ? typename Near::Tally(1) : typename Near::Tally(0);
@@ -95,9 +95,9 @@ template <typename Near>
 countNear(const NearLine& near, const float* x, const float* y, const float* z, std::size_t n) {
   return countNear<NearLine>(near, x, y, z, n);
 }
-[[gnu::target_clones("avx2", "default")]] std::size_t
-countNear(const NearCircle& near, const double* x, const double* y, const double* z,
-          std::size_t n) {
+[[gnu::target_clones("avx2", "default")]] std::size_t countNear(const NearCircle& near,
+                                                                const double* x, const double* y,
+                                                                const double* z, std::size_t n) {
   return countNear<NearCircle>(near, x, y, z, n);
 }
 

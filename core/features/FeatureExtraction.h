@@ -15,8 +15,8 @@ namespace scanpick::core {
 
 /// The features of one keypoint set and the keypoints behind each.
 struct FeatureExtraction {
-  FeatureList features;                 ///< in acceptance order (larger support first, roughly)
-  std::vector<std::vector<int>> inliers;  ///< per feature: keypoint indices, ascending
+  FeatureList features;                  ///< in acceptance order (larger support first, roughly)
+  std::vector<std::vector<int>> inliers; ///< per feature: keypoint indices, ascending
 };
 
 /// Repeatedly searches the best line and the best circle among the keypoints not used yet

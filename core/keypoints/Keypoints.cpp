@@ -4,12 +4,11 @@
 #include "core/keypoints/Neighbourhoods.h"
 
 #include <Eigen/Eigenvalues>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <string>
+#include <tbb/parallel_for.h>
 
 namespace scanpick::core {
 namespace {
@@ -21,7 +20,8 @@ constexpr std::size_t kBlock = 65536;
 template <typename Body>
 void forEachValid(std::size_t n, const ProgressFn& progress, double begin, double end, Body body) {
   for (std::size_t b = 0; b < n; b += kBlock) {
-    reportProgress(progress, begin + (end - begin) * static_cast<double>(b) / static_cast<double>(n));
+    reportProgress(progress,
+                   begin + (end - begin) * static_cast<double>(b) / static_cast<double>(n));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(b, std::min(n, b + kBlock), 512),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         std::vector<int> scratch;
@@ -31,7 +31,8 @@ void forEachValid(std::size_t n, const ProgressFn& progress, double begin, doubl
   }
 }
 
-Keypoints collect(const PointCloud& cloud, const std::vector<int>& valid, const std::vector<char>& keep) {
+Keypoints collect(const PointCloud& cloud, const std::vector<int>& valid,
+                  const std::vector<char>& keep) {
   Keypoints out;
   for (std::size_t j = 0; j < valid.size(); ++j)
     if (keep[j]) {
@@ -52,10 +53,9 @@ std::vector<Eigen::Vector3f> pointNormals(const PointCloud& cloud, const detail:
                                           double radius_mm, const ProgressFn& progress) {
   const auto& valid = nb.validIndices();
   std::vector<Eigen::Vector3f> normals(valid.size(), invalidPoint());
-  const bool own = !cloud.normals.empty() &&
-                   std::all_of(valid.begin(), valid.end(), [&](int i) {
-                     return cloud.normals[static_cast<std::size_t>(i)].allFinite();
-                   });
+  const bool own = !cloud.normals.empty() && std::all_of(valid.begin(), valid.end(), [&](int i) {
+    return cloud.normals[static_cast<std::size_t>(i)].allFinite();
+  });
   forEachValid(valid.size(), progress, 0.0, 1.0, [&](std::size_t j, std::vector<int>& /*scratch*/) {
     const auto i = static_cast<std::size_t>(valid[j]);
     const Eigen::Vector3f& p = cloud.points_mm[i];
@@ -94,9 +94,10 @@ std::vector<Eigen::Vector3f> pointNormals(const PointCloud& cloud, const detail:
 
 Keypoints neighbourhoodAnalysis(const PointCloud& cloud_mm, const KeypointParams& params,
                                 const ProgressFn& progress) {
-  requirePositive(params.neighbourhood_radius_mm, "neighbourhood radius (keypoints.neighbourhood_radius_mm)");
+  requirePositive(params.neighbourhood_radius_mm,
+                  "neighbourhood radius (keypoints.neighbourhood_radius_mm)");
   cloud_mm.validate();
-  if (params.position_range_mm < 0) {  // the thesis's "-1": every point is a keypoint
+  if (params.position_range_mm < 0) { // the thesis's "-1": every point is a keypoint
     std::vector<int> valid;
     for (std::size_t i = 0; i < cloud_mm.size(); ++i)
       if (isValid(cloud_mm.points_mm[i]))
@@ -121,14 +122,16 @@ Keypoints normalsGradientAnalysis(const PointCloud& cloud_mm, const KeypointPara
   requirePositive(params.normal_radius_mm, "normal radius (keypoints.normal_radius_mm)");
   if (params.gradient_neighbours < 1)
     throw Error("normals gradient analysis needs at least one neighbour "
-                "(keypoints.gradient_neighbours), got " + std::to_string(params.gradient_neighbours));
+                "(keypoints.gradient_neighbours), got " +
+                std::to_string(params.gradient_neighbours));
   cloud_mm.validate();
   const detail::Neighbourhoods nb(cloud_mm, params.normal_radius_mm);
   const auto& valid = nb.validIndices();
-  std::vector<int> position(cloud_mm.size(), -1);  // input index -> valid position
+  std::vector<int> position(cloud_mm.size(), -1); // input index -> valid position
   for (std::size_t j = 0; j < valid.size(); ++j)
     position[static_cast<std::size_t>(valid[j])] = static_cast<int>(j);
-  const auto normals = pointNormals(cloud_mm, nb, params.normal_radius_mm, subProgress(progress, 0.0, 0.5));
+  const auto normals =
+      pointNormals(cloud_mm, nb, params.normal_radius_mm, subProgress(progress, 0.0, 0.5));
 
   // findPeak's inner loop for every point at once: the largest normal turn towards one of the
   // n nearest neighbours, and that neighbour.
@@ -157,7 +160,7 @@ Keypoints normalsGradientAnalysis(const PointCloud& cloud_mm, const KeypointPara
   const auto s = static_cast<float>(params.gradient_sensitivity_rad);
   for (std::size_t j = 0; j < valid.size(); ++j) {
     if (max_angle[j] < s || max_angle_point[j] < 0)
-      continue;  // first step below the sensitivity: a flat region
+      continue; // first step below the sensitivity: a flat region
     std::size_t current = j;
     float alpha = 0.0f;
     // Each step strictly raises alpha, so the walk ends; the bound only guards pathological data.
@@ -180,13 +183,16 @@ Keypoints extractKeypoints(const PointCloud& cloud_mm, const KeypointParams& par
     return neighbourhoodAnalysis(cloud_mm, params, progress);
   case KeypointParams::Method::NormalsGradient:
     return normalsGradientAnalysis(cloud_mm, params, progress);
-  case KeypointParams::Method::Both: break;
+  case KeypointParams::Method::Both:
+    break;
   }
   const Keypoints edges = neighbourhoodAnalysis(cloud_mm, params, subProgress(progress, 0.0, 0.4));
-  const Keypoints peaks = normalsGradientAnalysis(cloud_mm, params, subProgress(progress, 0.4, 1.0));
+  const Keypoints peaks =
+      normalsGradientAnalysis(cloud_mm, params, subProgress(progress, 0.4, 1.0));
   std::vector<int> merged;
   std::set_union(edges.source_indices.begin(), edges.source_indices.end(),
-                 peaks.source_indices.begin(), peaks.source_indices.end(), std::back_inserter(merged));
+                 peaks.source_indices.begin(), peaks.source_indices.end(),
+                 std::back_inserter(merged));
   Keypoints out;
   out.source_indices = merged;
   for (int i : merged)

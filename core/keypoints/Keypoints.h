@@ -14,8 +14,8 @@ namespace scanpick::core {
 
 /// Keypoints of one cloud, ordered by source index.
 struct Keypoints {
-  std::vector<Eigen::Vector3f> points_mm;  ///< keypoint positions (copies of input points), mm
-  std::vector<int> source_indices;         ///< index of each keypoint in the input cloud
+  std::vector<Eigen::Vector3f> points_mm; ///< keypoint positions (copies of input points), mm
+  std::vector<int> source_indices;        ///< index of each keypoint in the input cloud
 };
 
 /// Algorithm 2: a valid point is a keypoint when the centroid of its neighbours within

@@ -3,11 +3,10 @@
 #include "core/common/Error.h"
 #include "core/common/PixelRows.h"
 
-#include <nanoflann.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nanoflann.hpp>
 
 namespace scanpick::core::detail {
 namespace {
@@ -110,7 +109,8 @@ Neighbourhoods::Neighbourhoods(const PointCloud& cloud, double max_radius_mm) : 
     if (angles.size() >= 32) {
       std::sort(angles.begin(), angles.end());
       m_pixel_angle = angles[angles.size() / 20];
-      std::nth_element(depths.begin(), depths.begin() + static_cast<long>(depths.size() / 2), depths.end());
+      std::nth_element(depths.begin(), depths.begin() + static_cast<long>(depths.size() / 2),
+                       depths.end());
       const double depth = depths[depths.size() / 2];
       if (m_pixel_angle > 1e-6 && depth > 2 * max_radius_mm &&
           std::asin(max_radius_mm / depth) / m_pixel_angle <= kMaxMedianHalfWindow)
@@ -193,7 +193,7 @@ void Neighbourhoods::nearest(int index, int n, std::vector<int>& out) const {
       ++half;
     const int w = static_cast<int>(m_cloud.width), h = static_cast<int>(m_cloud.height);
     const int row = index / w, col = index % w;
-    thread_local std::vector<std::pair<float, int>> candidates;  // no allocation per query
+    thread_local std::vector<std::pair<float, int>> candidates; // no allocation per query
     candidates.clear();
     for (int r = std::max(0, row - half); r <= std::min(h - 1, row + half); ++r)
       for (int c = std::max(0, col - half); c <= std::min(w - 1, col + half); ++c) {
@@ -203,7 +203,8 @@ void Neighbourhoods::nearest(int index, int n, std::vector<int>& out) const {
           candidates.emplace_back((q - p).squaredNorm(), j);
       }
     const auto keep = std::min<std::size_t>(static_cast<std::size_t>(n), candidates.size());
-    std::partial_sort(candidates.begin(), candidates.begin() + static_cast<long>(keep), candidates.end());
+    std::partial_sort(candidates.begin(), candidates.begin() + static_cast<long>(keep),
+                      candidates.end());
     for (std::size_t k = 0; k < keep; ++k)
       out.push_back(candidates[k].second);
     return;

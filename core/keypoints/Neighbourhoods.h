@@ -78,7 +78,7 @@ private:
   static constexpr std::size_t kPadding = 8;
   std::vector<int> m_valid;
   bool m_organized = false;
-  double m_pixel_angle = 0;  ///< smallest angle between neighbouring pixel rays, radians
+  double m_pixel_angle = 0; ///< smallest angle between neighbouring pixel rays, radians
   std::unique_ptr<Tree> m_tree;
 };
 

@@ -15,8 +15,9 @@ struct CentreSource {
   }
   template <class Box> bool kdtree_get_bbox(Box&) const { return false; }
 };
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CentreSource>,
-                                                   CentreSource, 3, std::size_t>;
+using KdTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CentreSource>,
+                                        CentreSource, 3, std::size_t>;
 } // namespace
 
 struct FeatureIndex::Tree {

@@ -5,13 +5,12 @@
 #include "core/matching/FeatureIndex.h"
 #include "core/matching/RigidFit.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 #include <climits>
 #include <cmath>
 #include <map>
+#include <tbb/parallel_for.h>
 
 namespace scanpick::core {
 namespace {
@@ -38,7 +37,7 @@ struct Prepared {
   const MatchingParams& params;
   const std::vector<char>& available;
   FeatureIndex index;
-  std::vector<Vec3> mc, md, sc, sd;  // centres and unit axes in double precision
+  std::vector<Vec3> mc, md, sc, sd; // centres and unit axes in double precision
   /// For each scene feature j: all scene features sorted by distance from j (distance, index).
   /// A toroid around T1 lies in the shell | |T2 − T1| − |M2 − M1| | ≤ Δp, found by binary search.
   std::vector<std::vector<std::pair<double, int>>> shells;
@@ -48,7 +47,8 @@ struct Prepared {
   Prepared(const FeatureList& m, const FeatureList& s, const MatchingParams& p,
            const std::vector<char>& avail, bool with_shells)
       : model(m), scene(s), params(p), available(avail), index(s),
-        min_pool_count(std::max(2, static_cast<int>(std::ceil(p.score_threshold * double(m.size()) - 1e-9)))) {
+        min_pool_count(
+            std::max(2, static_cast<int>(std::ceil(p.score_threshold * double(m.size()) - 1e-9)))) {
     for (const auto& f : m) {
       mc.push_back(f.centre_mm.cast<double>());
       md.push_back(f.direction.cast<double>().normalized());
@@ -90,7 +90,8 @@ MatchCandidate scoreWithBound(const Prepared& prep, const Eigen::Isometry3d& T, 
     const Vec3 dir = T.linear() * prep.md[static_cast<std::size_t>(m)];
     int best = -1;
     double best_dist = 0.0;
-    for (int s : prep.index.within(pos.cast<float>(), static_cast<float>(p.position_tolerance_mm))) {
+    for (int s :
+         prep.index.within(pos.cast<float>(), static_cast<float>(p.position_tolerance_mm))) {
       if (used[static_cast<std::size_t>(s)] || !isAvailable(prep.available, s) ||
           !descriptorsAgree(mf, prep.scene[static_cast<std::size_t>(s)], p))
         continue;
@@ -120,7 +121,7 @@ MatchCandidate scoreWithBound(const Prepared& prep, const Eigen::Isometry3d& T, 
 /// The closest T2 for one M2 at the roll that brings the prediction onto it.
 struct RollHypothesis {
   double roll_rad = 0.0;
-  double closeness = 0.0;  // normalized description difference, smaller is closer
+  double closeness = 0.0; // normalized description difference, smaller is closer
   int m2 = -1, t2 = -1;
 };
 
@@ -143,8 +144,8 @@ bool samePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const Matc
 
 /// Adds (count, c) to `list` (sorted by count, descending, stable) unless an equal pose with at
 /// least as many features is there; an equal pose with fewer is replaced. Keeps at most `k`.
-void keepAlternative(std::vector<std::pair<int, MatchCandidate>>& list, int count,
-                     MatchCandidate c, std::size_t k, const MatchingParams& p) {
+void keepAlternative(std::vector<std::pair<int, MatchCandidate>>& list, int count, MatchCandidate c,
+                     std::size_t k, const MatchingParams& p) {
   for (auto it = list.begin(); it != list.end(); ++it)
     if (samePose(it->second.T_scene_model, c.T_scene_model, p)) {
       if (it->first >= count)
@@ -152,8 +153,7 @@ void keepAlternative(std::vector<std::pair<int, MatchCandidate>>& list, int coun
       list.erase(it);
       break;
     }
-  auto pos = std::find_if(list.begin(), list.end(),
-                          [&](const auto& e) { return e.first < count; });
+  auto pos = std::find_if(list.begin(), list.end(), [&](const auto& e) { return e.first < count; });
   list.insert(pos, {count, std::move(c)});
   if (list.size() > k)
     list.resize(k);
@@ -276,7 +276,8 @@ private:
     // (the thesis's ambiguity of two parallel lines). With several verified hypotheses (beyond
     // the thesis) the pair is still taken at roll 0: for a part turned about that axis (a cup's
     // rim and base circles) any roll is as good, and for others verification judges it.
-    const bool roll_free = !position_sets_roll && o_perp.norm() < std::sin(p.orientation_tolerance_rad);
+    const bool roll_free =
+        !position_sets_roll && o_perp.norm() < std::sin(p.orientation_tolerance_rad);
     if (roll_free && p.hypotheses <= 1)
       return std::nullopt;
     const double tol_size = sizeTolerance(p, m_prep.model[su(k)].type);
@@ -294,7 +295,7 @@ private:
       const double a = q.dot(axis);
       const Vec3 q_perp = q - a * axis;
       if (std::hypot(a - h, q_perp.norm() - rho) > p.position_tolerance_mm)
-        continue;  // outside the toroid
+        continue; // outside the toroid
       double rolls[2];
       int n_rolls = 0;
       const auto signedAngle = [&](const Vec3& from, const Vec3& to) {
@@ -316,8 +317,8 @@ private:
         const double angle = axisAngle(roll * o, m_prep.sd[su(t)]);
         if (dist > p.position_tolerance_mm || angle > p.orientation_tolerance_rad)
           continue;
-        const double size_diff =
-            std::abs(static_cast<double>(m_prep.model[su(k)].size_mm) - m_prep.scene[su(t)].size_mm);
+        const double size_diff = std::abs(static_cast<double>(m_prep.model[su(k)].size_mm) -
+                                          m_prep.scene[su(t)].size_mm);
         const double closeness = dist / std::max(p.position_tolerance_mm, 1e-9) +
                                  angle / std::max(p.orientation_tolerance_rad, 1e-9) +
                                  (tol_size > 0.0 ? size_diff / tol_size : 0.0);
@@ -372,12 +373,10 @@ std::vector<MatchCandidate> refineOnFeatures(const FeatureList& model, const Fea
   return out;
 }
 
-std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
-                                                     const FeatureList& scene,
-                                                     const MatchingParams& params,
-                                                     const std::vector<char>& scene_available,
-                                                     const ProgressFn& progress,
-                                                     const PoseVerifier& verify) {
+std::optional<MatchCandidate>
+findBestTransformation(const FeatureList& model, const FeatureList& scene,
+                       const MatchingParams& params, const std::vector<char>& scene_available,
+                       const ProgressFn& progress, const PoseVerifier& verify) {
   if (!scene_available.empty() && scene_available.size() != scene.size())
     throw Error("scene feature mask has " + std::to_string(scene_available.size()) +
                 " entries for " + std::to_string(scene.size()) + " features");
@@ -386,9 +385,8 @@ std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
   const Prepared prep(model, scene, params, scene_available, true);
   Search search(prep);
   std::vector<TaskBest> results(model.size());
-  parallelForWithProgress(model.size(), progress, [&](std::size_t i) {
-    results[i] = search.runM1(static_cast<int>(i));
-  });
+  parallelForWithProgress(model.size(), progress,
+                          [&](std::size_t i) { results[i] = search.runM1(static_cast<int>(i)); });
   // Deterministic reduction: the highest count wins, ties go to the lowest M1.
   const TaskBest* winner = nullptr;
   for (const auto& r : results)
@@ -425,9 +423,8 @@ std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
   for (std::size_t a = 1; a < verified.size(); ++a) {
     const auto& c = verified[a];
     const auto& b = verified[chosen];
-    if (c.coverage > b.coverage + 1e-9 ||
-        (std::abs(c.coverage - b.coverage) <= 1e-9 &&
-         c.matched_features.size() > b.matched_features.size()))
+    if (c.coverage > b.coverage + 1e-9 || (std::abs(c.coverage - b.coverage) <= 1e-9 &&
+                                           c.matched_features.size() > b.matched_features.size()))
       chosen = a;
   }
   return verified[chosen];
@@ -458,7 +455,8 @@ std::vector<MatchCandidate> matchPooled(const FeatureList& model, const FeatureL
   Search search(prep);
   const auto n_model = static_cast<int>(model.size());
   std::vector<TaskBest> results(model.size());
-  tbb::parallel_for(0, n_model, [&](int i) { results[static_cast<std::size_t>(i)] = search.runM1(i); });
+  tbb::parallel_for(0, n_model,
+                    [&](int i) { results[static_cast<std::size_t>(i)] = search.runM1(i); });
   reportProgress(progress, 0.5);
   std::vector<std::pair<int, MatchCandidate>> pool;
   for (const auto& r : results)
@@ -479,18 +477,17 @@ std::vector<MatchCandidate> matchPooled(const FeatureList& model, const FeatureL
 } // namespace
 
 std::vector<MatchCandidate> matchFeatures(const FeatureList& model, const FeatureList& scene,
-                                          const MatchingParams& params,
-                                          const ProgressFn& progress, const PoseVerifier& verify) {
+                                          const MatchingParams& params, const ProgressFn& progress,
+                                          const PoseVerifier& verify) {
   if (verify && params.pool_size > 0)
     return sortedBest(matchPooled(model, scene, params, progress, verify), true);
   std::vector<MatchCandidate> out;
   std::vector<char> available(scene.size(), 1);
   for (int round = 0, rounds = std::max(1, params.max_instances_per_cluster); round < rounds;
        ++round) {
-    auto candidate = findBestTransformation(model, scene, params, available,
-                                            subProgress(progress, double(round) / rounds,
-                                                        double(round + 1) / rounds),
-                                            verify);
+    auto candidate = findBestTransformation(
+        model, scene, params, available,
+        subProgress(progress, double(round) / rounds, double(round + 1) / rounds), verify);
     if (!candidate || candidate->score < params.score_threshold || candidate->score <= 0.0)
       break;
     for (const auto& [m, s] : candidate->matched_features)

@@ -76,12 +76,10 @@ std::vector<MatchCandidate> refineOnFeatures(const FeatureList& model, const Fea
 /// confirming at least (best count − 1) features are kept, each refined and verified, and the
 /// best verified one wins (ties: more features, then search order); its `coverage` is set.
 /// Throws Cancelled when `progress` asks to stop.
-std::optional<MatchCandidate> findBestTransformation(const FeatureList& model,
-                                                     const FeatureList& scene,
-                                                     const MatchingParams& params,
-                                                     const std::vector<char>& scene_available = {},
-                                                     const ProgressFn& progress = {},
-                                                     const PoseVerifier& verify = {});
+std::optional<MatchCandidate>
+findBestTransformation(const FeatureList& model, const FeatureList& scene,
+                       const MatchingParams& params, const std::vector<char>& scene_available = {},
+                       const ProgressFn& progress = {}, const PoseVerifier& verify = {});
 
 /// Multi-instance matching on one cluster (k-means may merge touching parts): takes the best
 /// candidate, removes its confirmed scene features, and searches again, up to

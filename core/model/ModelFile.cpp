@@ -34,8 +34,12 @@ std::uint32_t crc32(const char* data, std::size_t size) {
   return crc ^ 0xFFFFFFFFu;
 }
 
-json vec(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
-json vec(const Eigen::Vector3f& v) { return vec(Eigen::Vector3d(v.cast<double>())); }
+json vec(const Eigen::Vector3d& v) {
+  return json::array({v.x(), v.y(), v.z()});
+}
+json vec(const Eigen::Vector3f& v) {
+  return vec(Eigen::Vector3d(v.cast<double>()));
+}
 
 json matrix(const Eigen::Isometry3d& T) {
   json rows = json::array();
@@ -82,11 +86,18 @@ struct Reader {
 };
 
 json sensorToJson(const SensorModel& s) {
-  return {{"preset", s.preset}, {"width", s.width}, {"height", s.height}, {"fx", s.fx},
-          {"fy", s.fy}, {"cx", s.cx}, {"cy", s.cy},
+  return {{"preset", s.preset},
+          {"width", s.width},
+          {"height", s.height},
+          {"fx", s.fx},
+          {"fy", s.fy},
+          {"cx", s.cx},
+          {"cy", s.cy},
           {"T_camera_projector", matrix(s.T_camera_projector)},
-          {"min_range_mm", s.min_range_mm}, {"max_range_mm", s.max_range_mm},
-          {"nominal_distance_mm", s.nominal_distance_mm}, {"noise_sigma_mm", s.noise_sigma_mm}};
+          {"min_range_mm", s.min_range_mm},
+          {"max_range_mm", s.max_range_mm},
+          {"nominal_distance_mm", s.nominal_distance_mm},
+          {"noise_sigma_mm", s.noise_sigma_mm}};
 }
 
 SensorModel sensorFromJson(const json& j, const Reader& r) {
@@ -136,31 +147,33 @@ std::string encodeModel(const TaughtModel& model) {
 
   json features = json::array();
   for (const auto& f : model.features)
-    features.push_back({{"type", toString(f.type)}, {"centre_mm", vec(f.centre_mm)},
-                        {"direction", vec(f.direction)}, {"size_mm", f.size_mm},
+    features.push_back({{"type", toString(f.type)},
+                        {"centre_mm", vec(f.centre_mm)},
+                        {"direction", vec(f.direction)},
+                        {"size_mm", f.size_mm},
                         {"inlier_count", f.inlier_count}});
   json grips = json::array();
   for (const auto& g : model.grip_points)
     grips.push_back({{"name", g.name}, {"position_mm", vec(g.position_mm)}});
-  json header = {
-      {"format", "scanpick-model"},
-      {"version", kModelFormatVersion},
-      {"units", "mm"},
-      {"name", model.name},
-      {"teach_scan", model.teach_scan},
-      {"source_units", toString(model.source_units)},
-      {"diameter_mm", model.diameter_mm},
-      {"T_teach_model", matrix(model.T_teach_model)},
-      {"sensor", sensorToJson(model.sensor)},
-      {"params", paramsToJson(model.params)},
-      {"features", features},
-      {"grip_points", grips},
-      {"block", {{"encoding", "float32-le"},
-                 {"cloud_points", cloud.size()},
-                 {"cloud_normals", normals},
-                 {"keypoints", model.keypoints_mm.size()},
-                 {"bytes", block.size()},
-                 {"crc32", crc32(block.data(), block.size())}}}};
+  json header = {{"format", "scanpick-model"},
+                 {"version", kModelFormatVersion},
+                 {"units", "mm"},
+                 {"name", model.name},
+                 {"teach_scan", model.teach_scan},
+                 {"source_units", toString(model.source_units)},
+                 {"diameter_mm", model.diameter_mm},
+                 {"T_teach_model", matrix(model.T_teach_model)},
+                 {"sensor", sensorToJson(model.sensor)},
+                 {"params", paramsToJson(model.params)},
+                 {"features", features},
+                 {"grip_points", grips},
+                 {"block",
+                  {{"encoding", "float32-le"},
+                   {"cloud_points", cloud.size()},
+                   {"cloud_normals", normals},
+                   {"keypoints", model.keypoints_mm.size()},
+                   {"bytes", block.size()},
+                   {"crc32", crc32(block.data(), block.size())}}}};
   if (model.T_part_model)
     header["T_part_model"] = matrix(*model.T_part_model);
   for (const auto& [key, value] : model.view_params) {
@@ -199,7 +212,8 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
     r.fail("invalid version " + std::to_string(version));
 
   const json& info = r.at(header, "block");
-  const auto cloud_points = static_cast<std::size_t>(r.number(r.at(info, "cloud_points"), "cloud_points"));
+  const auto cloud_points =
+      static_cast<std::size_t>(r.number(r.at(info, "cloud_points"), "cloud_points"));
   const bool normals = info.value("cloud_normals", false);
   const auto n_keypoints = static_cast<std::size_t>(r.number(r.at(info, "keypoints"), "keypoints"));
   const auto n_bytes = static_cast<std::size_t>(r.number(r.at(info, "bytes"), "bytes"));

@@ -32,13 +32,13 @@ struct JoinedView {
 /// centroid of the cropped cloud, so a detection's translation is where that centroid lies.
 struct TaughtModel {
   std::string name = "part";
-  PointCloud cloud_mm;                         ///< the cropped part, model frame, unorganized
-  std::vector<Eigen::Vector3f> keypoints_mm;   ///< first-level keypoints, model frame
-  FeatureList features;                        ///< lines and circles, model frame
-  RecognitionParams params;                    ///< parameters it was taught with
-  std::vector<GripPoint> grip_points;          ///< model frame, mm
-  SensorModel sensor;                          ///< sensor of the teach scan
-  LengthUnit source_units = LengthUnit::Millimetres;  ///< units of the teach scan's file
+  PointCloud cloud_mm;                               ///< the cropped part, model frame, unorganized
+  std::vector<Eigen::Vector3f> keypoints_mm;         ///< first-level keypoints, model frame
+  FeatureList features;                              ///< lines and circles, model frame
+  RecognitionParams params;                          ///< parameters it was taught with
+  std::vector<GripPoint> grip_points;                ///< model frame, mm
+  SensorModel sensor;                                ///< sensor of the teach scan
+  LengthUnit source_units = LengthUnit::Millimetres; ///< units of the teach scan's file
   /// The model frame in the teach scan's (camera) frame: a pure translation to the centroid.
   Eigen::Isometry3d T_teach_model = Eigen::Isometry3d::Identity();
   /// The model frame in the part's own frame, when the part's pose in the teach scan was known
@@ -46,7 +46,7 @@ struct TaughtModel {
   std::optional<Eigen::Isometry3d> T_part_model;
   /// The other views of the part joined into this one (joinViews); not kept in the model file.
   std::vector<JoinedView> joined_views;
-  double diameter_mm = 0.0;  ///< diagonal of the cloud's bounding box, for duplicate suppression
+  double diameter_mm = 0.0; ///< diagonal of the cloud's bounding box, for duplicate suppression
   /// File name of the scan it was taught from ("" when unknown): tells views of one part apart
   /// and lets the evaluator find the teach scene's ground truth.
   std::string teach_scan;
@@ -65,16 +65,16 @@ struct OrientedBox {
 /// How to cut the part out of the teach scan.
 struct TeachOptions {
   std::string name = "part";
-  std::optional<Eigen::AlignedBox3f> crop_box_mm;  ///< axis-aligned crop in the scan frame
-  std::optional<OrientedBox> crop_oriented;        ///< or an oriented one (used if set)
+  std::optional<Eigen::AlignedBox3f> crop_box_mm; ///< axis-aligned crop in the scan frame
+  std::optional<OrientedBox> crop_oriented;       ///< or an oriented one (used if set)
   /// Run floor removal (params.floor) on the whole scan before cropping (the table is its
   /// dominant plane there; inside a tight crop a flat face of the part could be taken instead).
   bool remove_floor = false;
-  std::vector<GripPoint> grips_scan;  ///< grip points in the scan frame, mm
+  std::vector<GripPoint> grips_scan; ///< grip points in the scan frame, mm
   /// The part's pose in the scan frame, when known (a teach scene's ground truth): the model then
   /// knows its place in the part (TaughtModel::T_part_model).
   std::optional<Eigen::Isometry3d> T_scan_part;
-  SensorModel sensor;              ///< sensor of the scan (stored with the model)
+  SensorModel sensor; ///< sensor of the scan (stored with the model)
   LengthUnit source_units = LengthUnit::Millimetres;
 };
 

@@ -22,18 +22,18 @@ enum class ParamType { Double, Int, Bool, Enum };
 
 /// Metadata of one parameter.
 struct ParamInfo {
-  std::string key;          ///< dotted key, e.g. "keypoints.position_range_mm"
-  std::string label;        ///< short name as in the thesis, e.g. "Neig. position range Δp"
-  std::string unit;         ///< "mm", "rad", "deg", "points", "" ...
-  std::string description;  ///< what it does, for tooltips and docs
+  std::string key;         ///< dotted key, e.g. "keypoints.position_range_mm"
+  std::string label;       ///< short name as in the thesis, e.g. "Neig. position range Δp"
+  std::string unit;        ///< "mm", "rad", "deg", "points", "" ...
+  std::string description; ///< what it does, for tooltips and docs
   Stage stage;
   ParamType type;
   double min_value;
   double max_value;
   double step;
-  std::vector<std::string> choices;  ///< Enum only: names by index
+  std::vector<std::string> choices; ///< Enum only: names by index
   std::function<double(const RecognitionParams&)> get;
-  std::function<void(RecognitionParams&, double)> set;  ///< clamps to [min, max]
+  std::function<void(RecognitionParams&, double)> set; ///< clamps to [min, max]
 };
 
 /// All parameters, grouped by stage in pipeline order.

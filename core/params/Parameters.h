@@ -11,10 +11,10 @@ namespace scanpick::core {
 
 /// Scene preprocessing, §3.3: floor/plane removal by RANSAC.
 struct FloorParams {
-  bool enabled = true;               ///< remove the largest planes (bin floor, table) first
-  double distance_mm = 2.0;          ///< RANSAC plane inlier distance
-  int max_planes = 1;                ///< how many dominant planes to remove
-  double min_plane_fraction = 0.15;  ///< a plane must hold this fraction of the points to go
+  bool enabled = true;              ///< remove the largest planes (bin floor, table) first
+  double distance_mm = 2.0;         ///< RANSAC plane inlier distance
+  int max_planes = 1;               ///< how many dominant planes to remove
+  double min_plane_fraction = 0.15; ///< a plane must hold this fraction of the points to go
   /// Beyond the thesis, for bins standing on the ground: after the planes above, also remove the
   /// plane parallel to the first that holds at least this fraction of the points and has
   /// (almost) nothing behind it: the bin's floor, which the ground around the bin outnumbers. The
@@ -32,12 +32,12 @@ struct DownsampleParams {
 
 /// Object count (Algorithm 7) and centre-based clustering (k-means, §3.3).
 struct ClusteringParams {
-  bool enabled = true;                ///< off: the whole scene is one cluster
-  double count_radius_mm = 1.5;       ///< r: single-linkage distance on the 2D projection
-  int count_min_points = 1000;        ///< min_cluster_size: clusters counted as objects
+  bool enabled = true;          ///< off: the whole scene is one cluster
+  double count_radius_mm = 1.5; ///< r: single-linkage distance on the 2D projection
+  int count_min_points = 1000;  ///< min_cluster_size: clusters counted as objects
   enum class Init { FarthestFirst, KMeansPlusPlus } init = Init::FarthestFirst;
-  int max_iterations = 100;           ///< Lloyd iterations at most
-  int min_cluster_points = 3;         ///< smaller k-means clusters are removed and k-means re-run
+  int max_iterations = 100;   ///< Lloyd iterations at most
+  int min_cluster_points = 3; ///< smaller k-means clusters are removed and k-means re-run
   /// How objects are split: k-means with k = the count (the thesis), or the projected clusters
   /// of Algorithm 7 used directly (beyond the thesis: keeps touching parts apart).
   enum class Method { KMeans, ProjectedClusters } method = Method::KMeans;
@@ -58,15 +58,15 @@ struct KeypointParams {
 /// Second-level features, §3.1-3.2: repeated RANSAC lines and circles among keypoints.
 struct FeatureParams {
   enum class Estimator { Ransac, Mlesac, Prosac } estimator = Estimator::Ransac;
-  int ransac_size = 50;                 ///< minimum inliers of a line or circle ("Ransac size")
-  double line_threshold_mm = 5.0;       ///< line inlier tolerance ("Ransac threshold")
-  double circle_threshold_mm = 5.0;     ///< circle inlier tolerance ("Ransac threshold")
-  int max_iterations = 1000;            ///< RANSAC trials per search
-  int max_features = 200;               ///< stop after this many lines + circles
-  double min_circle_radius_mm = 1.0;    ///< circles outside [min, max] are not accepted
+  int ransac_size = 50;              ///< minimum inliers of a line or circle ("Ransac size")
+  double line_threshold_mm = 5.0;    ///< line inlier tolerance ("Ransac threshold")
+  double circle_threshold_mm = 5.0;  ///< circle inlier tolerance ("Ransac threshold")
+  int max_iterations = 1000;         ///< RANSAC trials per search
+  int max_features = 200;            ///< stop after this many lines + circles
+  double min_circle_radius_mm = 1.0; ///< circles outside [min, max] are not accepted
   double max_circle_radius_mm = 200.0;
-  bool lines = true;                    ///< search lines
-  bool circles = true;                  ///< search circles
+  bool lines = true;   ///< search lines
+  bool circles = true; ///< search circles
   /// Inliers of a line or circle are split where consecutive ones (along the line or arc) are
   /// farther apart than this, and only the largest run is kept; 0 = automatic (the larger of
   /// 3 x threshold and 4 x the median keypoint spacing).
@@ -80,14 +80,14 @@ struct FeatureParams {
 
 /// Feature matching, §3.4 (Algorithm 8).
 struct MatchingParams {
-  double length_tolerance_mm = 60.0;     ///< Δl for lines ("Matching length")
-  double radius_tolerance_mm = 60.0;     ///< Δl for circles ("Matching radius size")
-  double position_tolerance_mm = 20.0;   ///< Δp ("Matching position")
+  double length_tolerance_mm = 60.0;       ///< Δl for lines ("Matching length")
+  double radius_tolerance_mm = 60.0;       ///< Δl for circles ("Matching radius size")
+  double position_tolerance_mm = 20.0;     ///< Δp ("Matching position")
   double orientation_tolerance_rad = 0.25; ///< Δo ("Matching orientation")
-  double roll_step_deg = 5.0;            ///< angular step of the roll (toroid) search
-  double score_threshold = 0.1;          ///< detections scoring below are rejected ("Score")
-  int max_detections = 0;                ///< 0 = no limit
-  int max_instances_per_cluster = 4;     ///< repeated searches per cluster (merged parts)
+  double roll_step_deg = 5.0;              ///< angular step of the roll (toroid) search
+  double score_threshold = 0.1;            ///< detections scoring below are rejected ("Score")
+  int max_detections = 0;                  ///< 0 = no limit
+  int max_instances_per_cluster = 4;       ///< repeated searches per cluster (merged parts)
   /// Beyond the thesis: point-level verification. A pose is checked by the share of the model's
   /// points the camera should see that have a scene point facing the same way within this
   /// distance (mm), less those the scan looks through; 0 = off (the thesis).
@@ -107,8 +107,8 @@ struct MatchingParams {
   int pool_size = 0;
   /// Beyond the thesis: surface point pair voting (PointPairVoting.h) adds pose hypotheses that
   /// need no feature pairs; each is refined on the features it confirms or by ICP, whichever
-  /// verifies best, and verified like the others (verification must be on). The model and scene are sampled with voxels of this edge
-  /// (mm; about 4 % of the part's diameter); 0 = off.
+  /// verifies best, and verified like the others (verification must be on). The model and scene are
+  /// sampled with voxels of this edge (mm; about 4 % of the part's diameter); 0 = off.
   double surface_sampling_mm = 0.0;
   /// Every n-th sampled scene point is a voting reference.
   int surface_reference_stride = 5;
@@ -125,7 +125,7 @@ struct MatchingParams {
 
 /// Pose refinement after matching (not in the thesis, which names ICP as future work).
 struct RefineParams {
-  bool enabled = false;                  ///< run ICP on each detection
+  bool enabled = false; ///< run ICP on each detection
   int max_iterations = 30;
   double max_correspondence_mm = 5.0;
   /// The coarse-to-fine schedule shrinks the pair distance from max_correspondence_mm towards
@@ -155,7 +155,7 @@ struct RecognitionParams {
   FeatureParams features;
   MatchingParams matching;
   RefineParams refine;
-  std::uint64_t seed = 42;  ///< seed of every random choice (RANSAC samples, k-means++)
+  std::uint64_t seed = 42; ///< seed of every random choice (RANSAC samples, k-means++)
   bool operator==(const RecognitionParams&) const = default;
 };
 

@@ -13,17 +13,25 @@ namespace {
 constexpr int kPresetVersion = 2;
 /// How deep presets may build on one another (a loop of bases stops here).
 constexpr int kMaxBaseDepth = 8;
-}
+} // namespace
 
 nlohmann::json paramsToJson(const RecognitionParams& params) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& info : parameterTable()) {
     const double v = info.get(params);
     switch (info.type) {
-    case ParamType::Bool: out[info.key] = v != 0.0; break;
-    case ParamType::Int: out[info.key] = static_cast<long long>(std::llround(v)); break;
-    case ParamType::Enum: out[info.key] = info.choices.at(static_cast<std::size_t>(v)); break;
-    case ParamType::Double: out[info.key] = v; break;
+    case ParamType::Bool:
+      out[info.key] = v != 0.0;
+      break;
+    case ParamType::Int:
+      out[info.key] = static_cast<long long>(std::llround(v));
+      break;
+    case ParamType::Enum:
+      out[info.key] = info.choices.at(static_cast<std::size_t>(v));
+      break;
+    case ParamType::Double:
+      out[info.key] = v;
+      break;
     }
   }
   return out;
@@ -38,7 +46,8 @@ RecognitionParams paramsFromJson(const nlohmann::json& object, RecognitionParams
       throw Error("unknown parameter '" + key + "' (see docs/parameters.md for the keys)");
     double v = 0.0;
     if (info->type == ParamType::Enum && value.is_string()) {
-      const auto it = std::find(info->choices.begin(), info->choices.end(), value.get<std::string>());
+      const auto it =
+          std::find(info->choices.begin(), info->choices.end(), value.get<std::string>());
       if (it == info->choices.end())
         throw Error("parameter '" + key + "': unknown choice '" + value.get<std::string>() + "'");
       v = static_cast<double>(it - info->choices.begin());
@@ -65,7 +74,8 @@ Preset loadPresetAt(const std::filesystem::path& path, int depth) {
     throw Error("preset '" + path.string() + "' is not valid JSON: " + e.what());
   }
   if (!doc.is_object() || doc.value("format", "") != "scanpick-preset")
-    throw Error("'" + path.string() + "' is not a scanpick preset (missing \"format\": "
+    throw Error("'" + path.string() +
+                "' is not a scanpick preset (missing \"format\": "
                 "\"scanpick-preset\")");
   const int version = doc.value("version", 0);
   if (version > kPresetVersion)

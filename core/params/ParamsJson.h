@@ -3,10 +3,10 @@
 /// Presets: RecognitionParams as JSON keyed by the metadata table's keys.
 ///
 /// Format (version 2): `{"format": "scanpick-preset", "version": 2, "name": "...",
-/// "description": "...", "base": "phoxi-bin", "params": {"keypoints.position_range_mm": 0.6, ...}}`.
-/// Enum values may be given by name ("ransac") or index. Missing keys keep the base preset's
-/// values (`base`, optional: a preset file of that name next to this one), or the defaults.
-/// Version 1 (no base) is read as before.
+/// "description": "...", "base": "phoxi-bin", "params": {"keypoints.position_range_mm": 0.6,
+/// ...}}`. Enum values may be given by name ("ransac") or index. Missing keys keep the base
+/// preset's values (`base`, optional: a preset file of that name next to this one), or the
+/// defaults. Version 1 (no base) is read as before.
 
 #include "core/params/Parameters.h"
 

@@ -3,6 +3,7 @@
 /// What recognition reports for each found instance of the taught part.
 
 #include "core/common/GripPoint.h"
+
 #include <Eigen/Geometry>
 #include <optional>
 #include <string>
@@ -13,7 +14,7 @@ namespace scanpick::core {
 
 /// A line in the scene frame about which a detection's turn is not known (Detection).
 struct FreeTurnAxis {
-  Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();  ///< a point on the axis, scene frame (mm)
+  Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();   ///< a point on the axis, scene frame (mm)
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< unit, scene frame
 };
 
@@ -24,7 +25,7 @@ struct Detection {
   /// Confidence in [0, 1]: the share of model features confirmed in the scene (the thesis), or,
   /// with point-level verification on (matching.verify_tolerance_mm > 0), `coverage`.
   double score = 0.0;
-  double feature_score = 0.0;  ///< share of model features confirmed in the scene, [0, 1]
+  double feature_score = 0.0; ///< share of model features confirmed in the scene, [0, 1]
   /// Share of the model points visible at this pose with a scene point within
   /// matching.verify_tolerance_mm (after refinement, if on), [0, 1]; -1 when not verified.
   double coverage = -1.0;
@@ -32,8 +33,8 @@ struct Detection {
   bool refined = false;
   /// Matched (model feature index, scene feature index) pairs behind the pose.
   std::vector<std::pair<int, int>> matched_features;
-  std::vector<GripPoint> grip_points_scene;  ///< the model's grip points mapped into the scene
-  int cluster = -1;                          ///< scene cluster it was found in (-1: whole scene)
+  std::vector<GripPoint> grip_points_scene; ///< the model's grip points mapped into the scene
+  int cluster = -1;                         ///< scene cluster it was found in (-1: whole scene)
   /// Which model found it, when several views of a part are searched (recognizeViews); else 0.
   int model_index = 0;
   /// Where the instance lies, for telling instances apart (scene frame, mm): the model origin, or
@@ -44,8 +45,8 @@ struct Detection {
   /// Set when the view that found it is a surface of revolution about this axis (RevolutionAxis.h,
   /// such as a flanged pipe taught from the side), or one but for a detail that the scan does not
   /// confirm at this pose (a cup whose handle is hidden): the part's turn about the axis is not
-  /// seen, and T_scene_model is one of the poses turned about it that fit equally well. Grip points on
-  /// the axis are unaffected; a grip that depends on the turn must not trust it.
+  /// seen, and T_scene_model is one of the poses turned about it that fit equally well. Grip points
+  /// on the axis are unaffected; a grip that depends on the turn must not trust it.
   std::optional<FreeTurnAxis> free_turn_axis;
   /// Other poses of the part (model frame → scene frame, mm) that this scan cannot tell apart
   /// from T_scene_model: the view has a near symmetry (NearSymmetry.h, such as a hook plate seen

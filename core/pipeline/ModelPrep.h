@@ -59,7 +59,7 @@ struct ModelPrep {
     std::vector<std::uint32_t> differing, differing_inverse;
   };
   std::vector<BodyDiffering> joined_body_differing;
-  std::shared_ptr<const RefineModel> refine;   ///< when ICP or surface voting needs it
+  std::shared_ptr<const RefineModel> refine; ///< when ICP or surface voting needs it
   /// With views joined and refinement on, the ICP model of all of them in this view's frame: the
   /// other views hold the surfaces that pin down what this one alone leaves loose (a plate seen
   /// face-on slides in its own plane).

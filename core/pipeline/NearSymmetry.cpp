@@ -9,7 +9,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-
 #include <tbb/parallel_for.h>
 
 namespace scanpick::core {

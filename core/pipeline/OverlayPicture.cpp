@@ -3,11 +3,10 @@
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 
-#include <png.h>
-
 #include <array>
 #include <cstdio>
 #include <limits>
+#include <png.h>
 
 namespace scanpick::core {
 namespace {
@@ -48,8 +47,8 @@ void writePng(const std::filesystem::path& path, const Canvas& canvas) {
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   for (int v = 0; v < canvas.height; ++v)
-    png_write_row(png, const_cast<png_bytep>(
-                           reinterpret_cast<const png_byte*>(&canvas.rgb[std::size_t(v) * canvas.width])));
+    png_write_row(png, const_cast<png_bytep>(reinterpret_cast<const png_byte*>(
+                           &canvas.rgb[std::size_t(v) * canvas.width])));
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   if (std::fclose(file) != 0)

@@ -234,7 +234,8 @@ double verifyPose(const VerifyModel& model, const VerifyScene& scene,
   const double expected = std::max(seeable - double(t.hidden), kMinExpectedShare * seeable);
   if (expected <= 0.0)
     return 0.0;
-  const double surface = std::clamp((double(t.confirmed) - double(t.violations)) / expected, 0.0, 1.0);
+  const double surface =
+      std::clamp((double(t.confirmed) - double(t.violations)) / expected, 0.0, 1.0);
   if (surface < drop_below)
     return surface; // the edge agreement (at most 1) could only lower it
   return surface *

@@ -114,13 +114,13 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
     return out;
   };
   bool turned = false;
-  merged.detections = ofEachView(std::move(merged.detections), models.size(),
-                                 [&](std::size_t m, std::vector<Detection>& of_view) {
-                                   const auto before = poses(of_view);
-                                   recognizer.resolveTurns(models[m], of_view, scene_mm, sensor,
-                                                           unrefined);
-                                   turned = turned || poses(of_view) != before;
-                                 });
+  merged.detections =
+      ofEachView(std::move(merged.detections), models.size(),
+                 [&](std::size_t m, std::vector<Detection>& of_view) {
+                   const auto before = poses(of_view);
+                   recognizer.resolveTurns(models[m], of_view, scene_mm, sensor, unrefined);
+                   turned = turned || poses(of_view) != before;
+                 });
   // A turn may have moved a detection onto an instance another view's detection holds.
   if (turned)
     merged.detections =

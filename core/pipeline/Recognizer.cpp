@@ -26,10 +26,10 @@
 namespace scanpick::core {
 namespace {
 
-using detail::ModelPrep;
-using detail::PosePolisher;
 using detail::kIcpCoverageSlack;
+using detail::ModelPrep;
 using detail::placeDetections;
+using detail::PosePolisher;
 using detail::PoseRescue;
 using detail::refineDetections;
 using detail::resolveDetectionTurns;
@@ -219,7 +219,6 @@ sharedPairings(const std::vector<std::shared_ptr<const ModelPrep>>& preps,
   std::erase_if(all, [](const SharedPairing& p) { return p.views < 2; });
   return all;
 }
-
 
 } // namespace
 
@@ -506,8 +505,8 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
         verifierFrom(0.5 * params.matching.min_coverage - kIcpCoverageSlack);
     for (auto& d :
          surfaceDetections(*prep->pairs, *cache.surface_scene, scene_pairs.get(), model->features,
-                           *cache.features, params.matching, 0.1 * model->diameter_mm,
-                           verify_voted, polish, rescue, subProgress(progress, 0.95, 0.98)))
+                           *cache.features, params.matching, 0.1 * model->diameter_mm, verify_voted,
+                           polish, rescue, subProgress(progress, 0.95, 0.98)))
       result.detections.push_back(std::move(d));
   }
   sortBestFirst(result.detections);
@@ -521,8 +520,7 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
   result.timings.matching_ms += msSince(t_match);
   if (params.refine.enabled && prep) {
     const auto t0 = Clock::now();
-    refineDetections(result.detections, *prep, *cache.scene_index, params.refine,
-                     verify);
+    refineDetections(result.detections, *prep, *cache.scene_index, params.refine, verify);
     result.timings.refine_ms = msSince(t0);
   }
   placeDetections(result.detections, *model, prep.get(), verify ? &verify_scene : nullptr,

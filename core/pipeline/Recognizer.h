@@ -3,9 +3,9 @@
 /// The recognition pipeline of §3.5: floor removal → downsampling → split into objects → per
 /// object keypoints → features → matching (Algorithm 8, several instances per object; beyond the
 /// thesis, with matching.surface_sampling_mm, also surface point pair voting over the whole
-/// scene) → duplicate suppression → detections with grip points. Each stage's output is cached, keyed by
-/// the scene's content and that stage's parameters, so changing a matching tolerance re-runs the
-/// matching only (the GUI's live tuning relies on this).
+/// scene) → duplicate suppression → detections with grip points. Each stage's output is cached,
+/// keyed by the scene's content and that stage's parameters, so changing a matching tolerance
+/// re-runs the matching only (the GUI's live tuning relies on this).
 
 #include "core/cloud/PointCloud.h"
 #include "core/cloud/Sensor.h"
@@ -25,13 +25,13 @@ namespace scanpick::core {
 
 /// Wall-clock time of each stage of the last run, milliseconds (0 for a stage served from cache).
 struct StageTimings {
-  double preprocess_ms = 0, clustering_ms = 0, keypoints_ms = 0, features_ms = 0,
-         matching_ms = 0, refine_ms = 0, total_ms = 0;
+  double preprocess_ms = 0, clustering_ms = 0, keypoints_ms = 0, features_ms = 0, matching_ms = 0,
+         refine_ms = 0, total_ms = 0;
 };
 
 /// What one recognition produced, intermediate results included (for previews).
 struct RecognitionResult {
-  std::vector<Detection> detections;  ///< best first
+  std::vector<Detection> detections; ///< best first
   StageTimings timings;
   /// The scene after floor removal and downsampling.
   std::shared_ptr<const PointCloud> preprocessed;

@@ -24,8 +24,8 @@ struct ModelSource {
 /// The results document of one recognition of one or more models (views of one part;
 /// Detection::model_index refers to `models`). `scene_path` is stored as given. The first model
 /// is also written as "model", for readers of single-model files.
-nlohmann::json resultsToJson(const RecognitionResult& result, const std::vector<ModelSource>& models,
-                             const std::string& scene_path);
+nlohmann::json resultsToJson(const RecognitionResult& result,
+                             const std::vector<ModelSource>& models, const std::string& scene_path);
 
 /// The results document of one recognition of one model.
 nlohmann::json resultsToJson(const RecognitionResult& result, const TaughtModel& model,

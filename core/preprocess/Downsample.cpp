@@ -17,7 +17,7 @@ PointCloud voxelDownsample(const PointCloud& cloud_mm, double voxel_mm) {
   if (box.isEmpty())
     return PointCloud::fromPoints({});
   const Eigen::Vector3d extent = (box.max() - box.min()).cast<double>() / voxel_mm;
-  if (extent.maxCoeff() >= 2097151.0)  // 21 bits per axis in the voxel key
+  if (extent.maxCoeff() >= 2097151.0) // 21 bits per axis in the voxel key
     throw Error("voxel size " + std::to_string(voxel_mm) +
                 " mm is too small for a cloud this large: increase downsample.voxel_mm");
 
@@ -53,8 +53,9 @@ PointCloud voxelDownsample(const PointCloud& cloud_mm, double voxel_mm) {
     const double n = static_cast<double>(end - begin);
     out.points_mm.push_back((sum / n).cast<float>());
     if (normals)
-      out.normals.push_back(normal.norm() > 0 ? Eigen::Vector3f((normal / normal.norm()).cast<float>())
-                                              : Eigen::Vector3f(invalidPoint()));
+      out.normals.push_back(normal.norm() > 0
+                                ? Eigen::Vector3f((normal / normal.norm()).cast<float>())
+                                : Eigen::Vector3f(invalidPoint()));
     if (colors) {
       const Eigen::Vector3d c = rgb / n;
       out.colors.push_back({static_cast<std::uint8_t>(std::lround(c.x())),

@@ -4,16 +4,15 @@
 #include "core/common/Log.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <optional>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
-#include <tbb/parallel_for.h>
-
-#include <algorithm>
-#include <cmath>
-#include <optional>
 #include <string>
+#include <tbb/parallel_for.h>
 
 namespace scanpick::core {
 namespace {

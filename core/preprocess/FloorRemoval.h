@@ -20,7 +20,7 @@ struct FloorRemovalResult {
   /// The removed planes, largest first: (a, b, c, d) with a unit normal, a x + b y + c z + d = 0 in
   /// millimetres, the normal pointing towards the camera (the origin).
   std::vector<Eigen::Vector4f> planes;
-  std::size_t removed_points = 0;  ///< valid points that were removed
+  std::size_t removed_points = 0; ///< valid points that were removed
 };
 
 /// Finds up to `params.max_planes` planes one after the other with RANSAC (PCL's plane model,

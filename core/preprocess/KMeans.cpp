@@ -2,12 +2,11 @@
 
 #include "core/common/Error.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <limits>
 #include <random>
 #include <string>
+#include <tbb/parallel_for.h>
 
 namespace scanpick::core {
 namespace {
@@ -16,12 +15,13 @@ namespace {
 /// so sums and arg-max ties never depend on thread scheduling.
 constexpr std::size_t kChunk = 8192;
 
-std::size_t chunkCount(std::size_t n) { return (n + kChunk - 1) / kChunk; }
+std::size_t chunkCount(std::size_t n) {
+  return (n + kChunk - 1) / kChunk;
+}
 
 template <typename Body> void forEachChunk(std::size_t n, Body body) {
-  tbb::parallel_for(std::size_t{0}, chunkCount(n), [&](std::size_t c) {
-    body(c, c * kChunk, std::min(n, (c + 1) * kChunk));
-  });
+  tbb::parallel_for(std::size_t{0}, chunkCount(n),
+                    [&](std::size_t c) { body(c, c * kChunk, std::min(n, (c + 1) * kChunk)); });
 }
 
 /// Lowers min_sq[i] with the distance to `centre`; returns the index of the largest min_sq
@@ -56,7 +56,7 @@ std::vector<Eigen::Vector3f> kmeansPlusPlus(const std::vector<Eigen::Vector3f>& 
     for (float d : min_sq)
       total += d;
     if (total <= 0)
-      break;  // fewer distinct points than k
+      break; // fewer distinct points than k
     double pick = std::uniform_real_distribution<double>(0.0, total)(rng);
     std::size_t chosen = points.size() - 1;
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -86,13 +86,14 @@ std::vector<int> farthestFirstTraversal(const std::vector<Eigen::Vector3f>& poin
     picked.push_back(static_cast<int>(next));
     next = updateAndFindFarthest(points, points[next], min_sq);
     if (min_sq[next] <= 0 && picked.size() < count)
-      break;  // every remaining point coincides with a picked one
+      break; // every remaining point coincides with a picked one
   }
   return picked;
 }
 
 KMeansResult kmeans(const std::vector<Eigen::Vector3f>& points, int k,
-                    const ClusteringParams& params, std::uint64_t seed, const ProgressFn& progress) {
+                    const ClusteringParams& params, std::uint64_t seed,
+                    const ProgressFn& progress) {
   if (k < 1)
     throw Error("k-means needs at least one cluster, got k = " + std::to_string(k));
   KMeansResult result;
@@ -162,7 +163,7 @@ KMeansResult kmeans(const std::vector<Eigen::Vector3f>& points, int k,
       }
     result.iterations = iteration;
     if (!(objective < best_objective))
-      break;  // Algorithm 5: stop when the objective no longer decreases
+      break; // Algorithm 5: stop when the objective no longer decreases
     best_objective = objective;
     result.centres = std::move(next);
     result.labels = labels;

@@ -20,10 +20,10 @@ std::vector<int> farthestFirstTraversal(const std::vector<Eigen::Vector3f>& poin
 
 /// A k-means partition.
 struct KMeansResult {
-  std::vector<int> labels;                ///< cluster of each point, in [0, centres.size())
-  std::vector<Eigen::Vector3f> centres;   ///< centroids, millimetres
-  int iterations = 0;                     ///< Lloyd iterations run
-  double objective = 0;                   ///< sum of squared distances to the centres, mm²
+  std::vector<int> labels;              ///< cluster of each point, in [0, centres.size())
+  std::vector<Eigen::Vector3f> centres; ///< centroids, millimetres
+  int iterations = 0;                   ///< Lloyd iterations run
+  double objective = 0;                 ///< sum of squared distances to the centres, mm²
 };
 
 /// Algorithm 5 (Lloyd): initial centres by `params.init` (farthest-first traversal or k-means++,

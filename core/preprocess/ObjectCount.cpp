@@ -2,13 +2,12 @@
 
 #include "core/common/Error.h"
 
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <string>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <unordered_map>
 
 namespace scanpick::core {
@@ -17,7 +16,9 @@ namespace {
 /// Union-find with path halving; union by smaller root keeps the result order-independent.
 class DisjointSets {
 public:
-  explicit DisjointSets(std::size_t n) : m_parent(n) { std::iota(m_parent.begin(), m_parent.end(), 0); }
+  explicit DisjointSets(std::size_t n) : m_parent(n) {
+    std::iota(m_parent.begin(), m_parent.end(), 0);
+  }
   int find(int x) {
     while (m_parent[static_cast<std::size_t>(x)] != x) {
       auto& p = m_parent[static_cast<std::size_t>(x)];
@@ -67,7 +68,8 @@ ObjectCount countObjects(const PointCloud& scene_mm, const SensorModel& sensor,
     for (std::size_t j = r.begin(); j < r.end(); ++j) {
       const Eigen::Vector3d p =
           scene_mm.points_mm[static_cast<std::size_t>(result.source_indices[j])].cast<double>();
-      const Eigen::Vector3d& source = (p - camera).norm() >= (p - projector).norm() ? camera : projector;
+      const Eigen::Vector3d& source =
+          (p - camera).norm() >= (p - projector).norm() ? camera : projector;
       const double dz = p.z() - source.z();
       const Eigen::Vector3d q =
           std::abs(dz) > 1e-9 ? Eigen::Vector3d(source + (z0 - source.z()) / dz * (p - source)) : p;
@@ -103,7 +105,7 @@ ObjectCount countObjects(const PointCloud& scene_mm, const SensorModel& sensor,
     }
   });
   tbb::parallel_sort(keyed.begin(), keyed.end());
-  std::vector<std::size_t> cell_start;  // occupied cells in key order, [start, next start)
+  std::vector<std::size_t> cell_start; // occupied cells in key order, [start, next start)
   std::vector<std::uint64_t> cell_key;
   for (std::size_t j = 0; j < n; ++j)
     if (j == 0 || keyed[j].first != keyed[j - 1].first) {
@@ -125,7 +127,8 @@ ObjectCount countObjects(const PointCloud& scene_mm, const SensorModel& sensor,
       sparse.emplace(cell_key[c], static_cast<int>(c));
   }
   const auto findCell = [&](std::int64_t x, std::int64_t y) -> int {
-    if (x < 0 || y < 0 || static_cast<std::uint64_t>(x) >= nx || static_cast<std::uint64_t>(y) >= ny)
+    if (x < 0 || y < 0 || static_cast<std::uint64_t>(x) >= nx ||
+        static_cast<std::uint64_t>(y) >= ny)
       return -1;
     const std::uint64_t key = static_cast<std::uint64_t>(x) * ny + static_cast<std::uint64_t>(y);
     if (!dense.empty())
@@ -135,7 +138,8 @@ ObjectCount countObjects(const PointCloud& scene_mm, const SensorModel& sensor,
   };
   const auto linked = [&](std::size_t a, std::size_t b) {
     for (std::size_t i = cell_start[a]; i < cell_start[a + 1]; ++i) {
-      const Eigen::Vector2f p = result.projected_mm[static_cast<std::size_t>(keyed[i].second)].head<2>();
+      const Eigen::Vector2f p =
+          result.projected_mm[static_cast<std::size_t>(keyed[i].second)].head<2>();
       for (std::size_t j = cell_start[b]; j < cell_start[b + 1]; ++j)
         if ((result.projected_mm[static_cast<std::size_t>(keyed[j].second)].head<2>() - p)
                 .squaredNorm() <= r2)
@@ -172,7 +176,8 @@ ObjectCount countObjects(const PointCloud& scene_mm, const SensorModel& sensor,
       cluster_of_root[static_cast<std::size_t>(root)] = static_cast<int>(result.clusters.size());
       result.clusters.emplace_back();
     }
-    auto& members = result.clusters[static_cast<std::size_t>(cluster_of_root[static_cast<std::size_t>(root)])];
+    auto& members =
+        result.clusters[static_cast<std::size_t>(cluster_of_root[static_cast<std::size_t>(root)])];
     for (std::size_t i = cell_start[c]; i < cell_start[c + 1]; ++i)
       members.push_back(keyed[i].second);
   }

@@ -4,10 +4,9 @@
 #include "core/common/Log.h"
 #include "core/preprocess/KMeans.h"
 
-#include <nanoflann.hpp>
-
 #include <algorithm>
 #include <limits>
+#include <nanoflann.hpp>
 #include <numeric>
 
 namespace scanpick::core {
@@ -59,13 +58,17 @@ std::vector<PointCloud> buildObjects(const PointCloud& scene, const std::vector<
       dst.confidence.assign(n, 0);
   };
   if (scene.isOrganized()) {
-    struct Window { std::uint32_t r0 = UINT32_MAX, r1 = 0, c0 = UINT32_MAX, c1 = 0; };
+    struct Window {
+      std::uint32_t r0 = UINT32_MAX, r1 = 0, c0 = UINT32_MAX, c1 = 0;
+    };
     std::vector<Window> win(out.size());
     for (std::size_t i = 0; i < labels.size(); ++i)
       if (labels[i] >= 0) {
         auto& w = win[static_cast<std::size_t>(labels[i])];
-        const auto r = static_cast<std::uint32_t>(i / scene.width), c = static_cast<std::uint32_t>(i % scene.width);
-        w.r0 = std::min(w.r0, r), w.r1 = std::max(w.r1, r), w.c0 = std::min(w.c0, c), w.c1 = std::max(w.c1, c);
+        const auto r = static_cast<std::uint32_t>(i / scene.width),
+                   c = static_cast<std::uint32_t>(i % scene.width);
+        w.r0 = std::min(w.r0, r), w.r1 = std::max(w.r1, r), w.c0 = std::min(w.c0, c),
+        w.c1 = std::max(w.c1, c);
       }
     for (std::size_t o = 0; o < out.size(); ++o)
       allocate(out[o], win[o].c1 - win[o].c0 + 1, win[o].r1 - win[o].r0 + 1, true);
@@ -132,7 +135,8 @@ void assignFragments(const ObjectCount& count, std::vector<int>& labels) {
     Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
     for (int j : count.clusters[c])
       centroid += count.projected_mm[static_cast<std::size_t>(j)].head<2>().cast<double>();
-    const Eigen::Vector2f query = (centroid / static_cast<double>(count.clusters[c].size())).cast<float>();
+    const Eigen::Vector2f query =
+        (centroid / static_cast<double>(count.clusters[c].size())).cast<float>();
     std::uint32_t nearest = 0;
     float dist_sq = 0;
     tree.knnSearch(query.data(), 1, &nearest, &dist_sq);
@@ -167,7 +171,7 @@ SceneSplit splitIntoObjects(const PointCloud& scene_mm, const SensorModel& senso
     return split;
   }
   const std::size_t n = count.source_indices.size();
-  std::vector<int> labels(n, -1);  // per valid point
+  std::vector<int> labels(n, -1); // per valid point
 
   if (params.method == ClusteringParams::Method::KMeans) {
     // §3.3: k-means on the 3D points; clusters of fewer than min_cluster_points are outliers,
@@ -177,10 +181,12 @@ SceneSplit splitIntoObjects(const PointCloud& scene_mm, const SensorModel& senso
     for (int run = 0; run < kMaxKMeansRuns && !active.empty(); ++run) {
       std::vector<Eigen::Vector3f> points(active.size());
       for (std::size_t a = 0; a < active.size(); ++a)
-        points[a] = scene_mm.points_mm[static_cast<std::size_t>(count.source_indices[static_cast<std::size_t>(active[a])])];
-      const KMeansResult km = kmeans(points, count.count, params, seed + static_cast<std::uint64_t>(run),
-                                     subProgress(progress, 0.4 + 0.5 * run / kMaxKMeansRuns,
-                                                 0.4 + 0.5 * (run + 1) / kMaxKMeansRuns));
+        points[a] = scene_mm.points_mm[static_cast<std::size_t>(
+            count.source_indices[static_cast<std::size_t>(active[a])])];
+      const KMeansResult km =
+          kmeans(points, count.count, params, seed + static_cast<std::uint64_t>(run),
+                 subProgress(progress, 0.4 + 0.5 * run / kMaxKMeansRuns,
+                             0.4 + 0.5 * (run + 1) / kMaxKMeansRuns));
       ++split.kmeans_runs;
       std::vector<int> size(km.centres.size(), 0);
       for (int l : km.labels)

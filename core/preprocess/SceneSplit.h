@@ -20,8 +20,8 @@ struct SceneSplit {
   /// pixel window of its points (other pixels NaN), so pixel neighbourhoods still work; for an
   /// unorganized scene it is the object's points. Channels follow their points.
   std::vector<PointCloud> objects;
-  ObjectCount count;      ///< Algorithm 7's result (empty when clustering is disabled)
-  int kmeans_runs = 0;    ///< k-means runs (1 + re-runs after removing small clusters)
+  ObjectCount count;   ///< Algorithm 7's result (empty when clustering is disabled)
+  int kmeans_runs = 0; ///< k-means runs (1 + re-runs after removing small clusters)
   /// For each point of the input, the object it went to, or -1 (invalid or removed as outlier).
   std::vector<int> point_labels;
 };

@@ -229,8 +229,8 @@ RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
       x.setZero();
       for (int k = 0; k < 6; ++k)
         if (eigen.eigenvalues()(k) > kStableRatio * strongest)
-          x += eigen.eigenvectors().col(k) * (eigen.eigenvectors().col(k).dot(-b) /
-                                              eigen.eigenvalues()(k));
+          x += eigen.eigenvectors().col(k) *
+               (eigen.eigenvectors().col(k).dot(-b) / eigen.eigenvalues()(k));
       x.head<3>() /= radius_mm;
     } else {
       // A tiny ridge keeps flat or symmetric models (rank-deficient A) from exploding along the
@@ -245,8 +245,8 @@ RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
     dT.translation() += pivot - dT.linear() * pivot;
     T = dT * T;
 
-    const double motion_mm =
-        (x.head<3>().cross(centroid - pivot) + x.tail<3>()).norm() + x.head<3>().norm() * model.radius_mm();
+    const double motion_mm = (x.head<3>().cross(centroid - pivot) + x.tail<3>()).norm() +
+                             x.head<3>().norm() * model.radius_mm();
     const double rms_mm = std::sqrt(sum_sq_distance / static_cast<double>(used));
     distance_mm = std::clamp(3.0 * rms_mm, floor_mm, distance_mm);
     if (!fine) {

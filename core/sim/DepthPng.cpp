@@ -2,11 +2,10 @@
 
 #include "core/common/Error.h"
 
-#include <png.h>
-
 #include <algorithm>
 #include <cmath>
 #include <csetjmp>
+#include <png.h>
 #include <vector>
 
 namespace scanpick::core {
@@ -30,8 +29,8 @@ bool encode(const std::vector<png_bytep>& rows, png_uint_32 w, png_uint_32 h, st
     return false;
   }
   png_set_write_fn(png, out, appendBytes, noFlush);
-  png_set_IHDR(png, info, w, h, 8, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, w, h, 8, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   png_write_image(png, const_cast<png_bytepp>(rows.data()));
   png_write_end(png, nullptr);
@@ -54,7 +53,8 @@ std::string depthPngBytes(const PointCloud& cloud) {
   std::vector<png_byte> pixels(cloud.points_mm.size(), 0);
   for (std::size_t i = 0; i < pixels.size(); ++i)
     if (isValid(cloud.points_mm[i]))
-      pixels[i] = static_cast<png_byte>(std::lround(255.0f - 235.0f * (cloud.points_mm[i].z() - z_min) / range));
+      pixels[i] = static_cast<png_byte>(
+          std::lround(255.0f - 235.0f * (cloud.points_mm[i].z() - z_min) / range));
   std::vector<png_bytep> rows(cloud.height);
   for (std::uint32_t r = 0; r < cloud.height; ++r)
     rows[r] = pixels.data() + static_cast<std::size_t>(r) * cloud.width;

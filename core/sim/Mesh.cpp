@@ -62,7 +62,8 @@ TriangleMesh welded(const TriangleMesh& mesh, double tolerance_mm) {
     for (int dx = -1; dx <= 1 && found < 0; ++dx)
       for (int dy = -1; dy <= 1 && found < 0; ++dy)
         for (int dz = -1; dz <= 1 && found < 0; ++dz) {
-          auto it = grid.find({std::get<0>(key) + dx, std::get<1>(key) + dy, std::get<2>(key) + dz});
+          auto it =
+              grid.find({std::get<0>(key) + dx, std::get<1>(key) + dy, std::get<2>(key) + dz});
           if (it != grid.end() && (out.vertices_mm[it->second] - v).norm() <= tolerance_mm)
             found = it->second;
         }
@@ -174,8 +175,9 @@ double pointTriangleDistanceSquared(const Eigen::Vector3d& p, const Eigen::Vecto
 double pointMeshDistance(const Eigen::Vector3d& p, const TriangleMesh& mesh) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& t : mesh.triangles)
-    best = std::min(best, pointTriangleDistanceSquared(p, mesh.vertices_mm[t[0]],
-                                                       mesh.vertices_mm[t[1]], mesh.vertices_mm[t[2]]));
+    best = std::min(best,
+                    pointTriangleDistanceSquared(p, mesh.vertices_mm[t[0]], mesh.vertices_mm[t[1]],
+                                                 mesh.vertices_mm[t[2]]));
   return std::sqrt(best);
 }
 

@@ -12,8 +12,8 @@ namespace scanpick::core {
 /// An indexed triangle mesh in millimetres. Triangles are counter-clockwise seen from outside
 /// (their right-hand normal points out of the solid).
 struct TriangleMesh {
-  std::vector<Eigen::Vector3d> vertices_mm;  ///< vertex positions, millimetres
-  std::vector<Eigen::Vector3i> triangles;    ///< vertex indices, outward orientation
+  std::vector<Eigen::Vector3d> vertices_mm; ///< vertex positions, millimetres
+  std::vector<Eigen::Vector3i> triangles;   ///< vertex indices, outward orientation
 
   [[nodiscard]] bool empty() const { return triangles.empty(); }
   /// Appends `other` (its indices shifted).

@@ -19,7 +19,9 @@ void appendSegment(std::vector<Eigen::Vector2d>& out, const Eigen::Vector2d& a,
     out.push_back(a + (b - a) * (static_cast<double>(k) / n));
 }
 
-Eigen::Vector2d polar(double r, double a) { return {r * std::cos(a), r * std::sin(a)}; }
+Eigen::Vector2d polar(double r, double a) {
+  return {r * std::cos(a), r * std::sin(a)};
+}
 
 double angleAround(const Eigen::Vector2d& p, const Eigen::Vector2d& c) {
   double a = std::atan2(p.y() - c.y(), p.x() - c.x());
@@ -51,7 +53,7 @@ void triangulateCell(const PlateCell& cell, int hole_segments, std::vector<Eigen
         angleAround(cell.boundary_mm[start], cell.center_mm))
       start = j;
   const double a0 = angleAround(cell.boundary_mm[start], cell.center_mm);
-  auto boundaryAngle = [&](int j) {  // unwrapped, increasing from a0
+  auto boundaryAngle = [&](int j) { // unwrapped, increasing from a0
     if (j == m)
       return a0 + kTwoPi;
     double a = angleAround(cell.boundary_mm[(start + j) % m], cell.center_mm);
@@ -83,8 +85,10 @@ void orientOutwards(TriangleMesh& mesh) {
 TriangleMesh boxMesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   TriangleMesh m;
   for (int k = 0; k < 8; ++k)
-    m.vertices_mm.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    m.vertices_mm.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(),
+                               k & 4 ? hi.z() : lo.z());
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& q : quads) {
     m.triangles.emplace_back(q[0], q[1], q[2]);
     m.triangles.emplace_back(q[0], q[2], q[3]);
@@ -212,7 +216,8 @@ TriangleMesh bentBar(const Eigen::Vector3d& center_mm, const Eigen::Vector3d& u,
     const Eigen::Vector3d axis_point = center_mm + arc_radius_mm * radial;
     for (int j = 0; j < bar_segments; ++j) {
       const double b = kTwoPi * j / bar_segments;
-      m.vertices_mm.push_back(axis_point + bar_radius_mm * (std::cos(b) * radial + std::sin(b) * w));
+      m.vertices_mm.push_back(axis_point +
+                              bar_radius_mm * (std::cos(b) * radial + std::sin(b) * w));
     }
   }
   for (int i = 0; i < arc_segments; ++i)

@@ -20,7 +20,7 @@ TriangleMesh revolveProfile(const std::vector<Eigen::Vector2d>& profile_rz, int 
 /// round hole of `hole_radius_mm` (0 = none) centred there. Neighbouring cells must share the
 /// vertices of their common sides (see rectangleCells / sectorCells).
 struct PlateCell {
-  std::vector<Eigen::Vector2d> boundary_mm;  ///< counter-clockwise, not repeated at the end
+  std::vector<Eigen::Vector2d> boundary_mm; ///< counter-clockwise, not repeated at the end
   Eigen::Vector2d center_mm = Eigen::Vector2d::Zero();
   double hole_radius_mm = 0;
 };

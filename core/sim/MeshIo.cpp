@@ -24,7 +24,8 @@ std::string lower(std::string s) {
 }
 
 /// Fans a polygon into triangles.
-void addPolygon(TriangleMesh& mesh, const std::vector<int>& poly, const std::filesystem::path& path) {
+void addPolygon(TriangleMesh& mesh, const std::vector<int>& poly,
+                const std::filesystem::path& path) {
   const int n = static_cast<int>(mesh.vertices_mm.size());
   for (int i : poly)
     if (i < 0 || i >= n)
@@ -35,7 +36,7 @@ void addPolygon(TriangleMesh& mesh, const std::vector<int>& poly, const std::fil
 
 // ---- PLY ----
 struct PlyProperty {
-  std::string name, type, count_type;  // count_type non-empty for a list
+  std::string name, type, count_type; // count_type non-empty for a list
 };
 struct PlyElement {
   std::string name;
@@ -70,13 +71,20 @@ double readBinary(const char*& p, const char* end, const std::string& t, bool bi
     std::memcpy(&v, b, sizeof(V));
     return static_cast<double>(v);
   };
-  if (t == "char" || t == "int8") return as(std::int8_t{});
-  if (t == "uchar" || t == "uint8") return as(std::uint8_t{});
-  if (t == "short" || t == "int16") return as(std::int16_t{});
-  if (t == "ushort" || t == "uint16") return as(std::uint16_t{});
-  if (t == "int" || t == "int32") return as(std::int32_t{});
-  if (t == "uint" || t == "uint32") return as(std::uint32_t{});
-  if (t == "float" || t == "float32") return as(float{});
+  if (t == "char" || t == "int8")
+    return as(std::int8_t{});
+  if (t == "uchar" || t == "uint8")
+    return as(std::uint8_t{});
+  if (t == "short" || t == "int16")
+    return as(std::int16_t{});
+  if (t == "ushort" || t == "uint16")
+    return as(std::uint16_t{});
+  if (t == "int" || t == "int32")
+    return as(std::int32_t{});
+  if (t == "uint" || t == "uint32")
+    return as(std::uint32_t{});
+  if (t == "float" || t == "float32")
+    return as(float{});
   return as(double{});
 }
 
@@ -142,7 +150,8 @@ TriangleMesh loadPly(const std::filesystem::path& path, const std::string& data)
           }
         } else {
           const double x = value(prop.type);
-          if (e.name == "vertex" && prop.name.size() == 1 && prop.name[0] >= 'x' && prop.name[0] <= 'z')
+          if (e.name == "vertex" && prop.name.size() == 1 && prop.name[0] >= 'x' &&
+              prop.name[0] <= 'z')
             v[prop.name[0] - 'x'] = x;
         }
       }
@@ -232,7 +241,7 @@ TriangleMesh loadVtk(const std::filesystem::path& path, const std::string& data)
   std::getline(in, line);
   if (line.find("vtk DataFile") == std::string::npos)
     malformed(path, "no '# vtk DataFile' header");
-  std::getline(in, line);  // title
+  std::getline(in, line); // title
   std::string word;
   in >> word;
   if (word != "ASCII")
@@ -267,12 +276,14 @@ TriangleMesh loadVtk(const std::filesystem::path& path, const std::string& data)
           addPolygon(mesh, poly, path);
         } else {
           for (std::size_t j = 2; j < k; ++j)
-            addPolygon(mesh, j % 2 ? std::vector<int>{poly[j - 1], poly[j - 2], poly[j]}
-                                   : std::vector<int>{poly[j - 2], poly[j - 1], poly[j]}, path);
+            addPolygon(mesh,
+                       j % 2 ? std::vector<int>{poly[j - 1], poly[j - 2], poly[j]}
+                             : std::vector<int>{poly[j - 2], poly[j - 1], poly[j]},
+                       path);
         }
       }
     } else if (word == "POINT_DATA" || word == "CELL_DATA") {
-      break;  // attributes are not needed
+      break; // attributes are not needed
     }
   }
   return mesh;
@@ -308,7 +319,8 @@ TriangleMesh loadMesh(const std::filesystem::path& path) {
       malformed(path, "a vertex has a non-finite coordinate");
   mesh = welded(mesh, 1e-6);
   if (mesh.empty())
-    throw Error("mesh '" + path.string() + "' has no triangles: export the part as a triangle mesh");
+    throw Error("mesh '" + path.string() +
+                "' has no triangles: export the part as a triangle mesh");
   return mesh;
 }
 

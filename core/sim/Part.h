@@ -12,11 +12,10 @@
 
 namespace scanpick::core {
 
-
 /// An axis of continuous rotational symmetry, in the part frame.
 struct SymmetryAxis {
   Eigen::Vector3d point_mm = Eigen::Vector3d::Zero();
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< unit vector
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< unit vector
 };
 
 /// The part's symmetries: `part ≡ part · S` for every S in `discrete` (identity excluded), and for
@@ -30,7 +29,7 @@ struct PartSymmetry {
 /// outward-oriented mesh (they may overlap). Physics uses the convex hull of each component, which
 /// contains the component, so instances cannot interpenetrate once their hulls do not.
 struct Part {
-  std::string name;                    ///< "support", "cup", ... or the mesh file's stem
+  std::string name; ///< "support", "cup", ... or the mesh file's stem
   std::vector<TriangleMesh> components;
   std::vector<GripPoint> grip_points;
   PartSymmetry symmetry;

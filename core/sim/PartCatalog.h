@@ -18,7 +18,8 @@ std::vector<std::string> builtInPartNames();
 ///   and a triangular gusset; one 180° symmetry swapping the legs.
 /// - `cup`: Ø80 × 95 mm cup (3 mm wall) with a handle; no symmetry.
 /// - `pump-connector`: a 100 mm pipe (Ø40 outside, Ø24 bore) with two equal Ø90 × 8 mm flanges
-///   with four Ø10 mm bolt holes; 90° symmetry about its axis and the end-to-end flip (7 transforms).
+///   with four Ø10 mm bolt holes; 90° symmetry about its axis and the end-to-end flip (7
+///   transforms).
 /// - `coat-rack`: a 60 × 30 × 4 mm plate with two Ø10 mm holes, an L hook and a suction cup.
 /// Throws Error listing the names for an unknown one.
 Part builtInPart(const std::string& name);

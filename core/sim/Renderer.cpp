@@ -2,13 +2,12 @@
 
 #include "core/common/Error.h"
 
-#include <embree3/rtcore.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
+#include <embree3/rtcore.h>
 #include <limits>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace scanpick::core {
 namespace {
@@ -35,13 +34,15 @@ public:
     if (mesh_camera_mm.empty())
       return;
     RTCGeometry g = rtcNewGeometry(m_device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), mesh_camera_mm.vertices_mm.size()));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                          mesh_camera_mm.vertices_mm.size()));
     for (std::size_t i = 0; i < mesh_camera_mm.vertices_mm.size(); ++i)
       for (int k = 0; k < 3; ++k)
         v[3 * i + k] = static_cast<float>(mesh_camera_mm.vertices_mm[i][k]);
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                               3 * sizeof(unsigned), mesh_camera_mm.triangles.size()));
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                mesh_camera_mm.triangles.size()));
     for (std::size_t i = 0; i < mesh_camera_mm.triangles.size(); ++i)
       for (int k = 0; k < 3; ++k)
         idx[3 * i + k] = static_cast<unsigned>(mesh_camera_mm.triangles[i][k]);
@@ -57,13 +58,15 @@ public:
   /// What one camera pixel sees.
   struct Sample {
     std::int32_t label = kLabelNothing;
-    bool lit = false;  ///< in range, lit by the projector, not grazing
+    bool lit = false; ///< in range, lit by the projector, not grazing
     float z_mm = 0;
   };
 
-  Sample trace(const SensorModel& s, int u, int v, const Eigen::Vector3f& projector, float grazing_cos) const {
+  Sample trace(const SensorModel& s, int u, int v, const Eigen::Vector3f& projector,
+               float grazing_cos) const {
     Sample out;
-    const Eigen::Vector3f dir(static_cast<float>((u - s.cx) / s.fx), static_cast<float>((v - s.cy) / s.fy), 1.0f);
+    const Eigen::Vector3f dir(static_cast<float>((u - s.cx) / s.fx),
+                              static_cast<float>((v - s.cy) / s.fy), 1.0f);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh{};
@@ -79,7 +82,7 @@ public:
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
       return out;
     out.label = m_labels[rh.hit.geomID];
-    out.z_mm = rh.ray.tfar;  // dir.z == 1, so t is the depth along the optical axis
+    out.z_mm = rh.ray.tfar; // dir.z == 1, so t is the depth along the optical axis
     if (out.z_mm < s.min_range_mm || out.z_mm > s.max_range_mm)
       return out;
     const Eigen::Vector3f p = dir * rh.ray.tfar;
@@ -87,12 +90,13 @@ public:
     n.normalize();
     const Eigen::Vector3f to_camera = -p.normalized();
     if (n.dot(to_camera) < 0)
-      n = -n;  // the side the camera sees
+      n = -n; // the side the camera sees
     Eigen::Vector3f to_projector = projector - p;
     const float dist = to_projector.norm();
     to_projector /= dist;
     const float cos_projector = n.dot(to_projector);
-    if (cos_projector <= 0 || (grazing_cos > 0 && (cos_projector < grazing_cos || n.dot(to_camera) < grazing_cos)))
+    if (cos_projector <= 0 ||
+        (grazing_cos > 0 && (cos_projector < grazing_cos || n.dot(to_camera) < grazing_cos)))
       return out;
     RTCRay shadow{};
     const Eigen::Vector3f origin = p + n * 0.01f;
@@ -106,7 +110,7 @@ public:
     shadow.tfar = dist - 0.02f;
     shadow.mask = 0xFFFFFFFFu;
     rtcOccluded1(m_scene, &ctx, &shadow);
-    out.lit = shadow.tfar >= 0;  // Embree sets tfar to -inf when occluded
+    out.lit = shadow.tfar >= 0; // Embree sets tfar to -inf when occluded
     return out;
   }
 
@@ -125,13 +129,16 @@ std::array<int, 4> projectedRect(const TriangleMesh& mesh, const SensorModel& s)
     return {0, s.width, 0, s.height};
   double u0 = 1e18, u1 = -1e18, v0 = 1e18, v1 = -1e18;
   for (int k = 0; k < 8; ++k) {
-    const Eigen::Vector2d px = s.project(box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k)));
+    const Eigen::Vector2d px =
+        s.project(box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(k)));
     u0 = std::min(u0, px.x());
     u1 = std::max(u1, px.x());
     v0 = std::min(v0, px.y());
     v1 = std::max(v1, px.y());
   }
-  auto clampTo = [](double x, int hi) { return static_cast<int>(std::clamp(x, 0.0, static_cast<double>(hi))); };
+  auto clampTo = [](double x, int hi) {
+    return static_cast<int>(std::clamp(x, 0.0, static_cast<double>(hi)));
+  };
   return {clampTo(std::floor(u0) - 1, s.width), clampTo(std::ceil(u1) + 2, s.width),
           clampTo(std::floor(v0) - 1, s.height), clampTo(std::ceil(v1) + 2, s.height)};
 }
@@ -152,7 +159,8 @@ RenderResult renderScene(const Scene& scene, const SensorModel& sensor, const Se
   RayScene rays;
   rays.add(transformed(scene.environment_mm, scene.T_camera_world), kLabelEnvironment);
   for (const auto& inst : scene.instances) {
-    posed[static_cast<std::size_t>(inst.id)] = transformed(scene.parts[inst.part].mesh(), scene.T_scene_part(inst));
+    posed[static_cast<std::size_t>(inst.id)] =
+        transformed(scene.parts[inst.part].mesh(), scene.T_scene_part(inst));
     rays.add(posed[static_cast<std::size_t>(inst.id)], inst.id);
   }
   rays.commit();
@@ -160,11 +168,13 @@ RenderResult renderScene(const Scene& scene, const SensorModel& sensor, const Se
   std::vector<RayScene::Sample> samples(N);
   constexpr int kRowsPerChunk = 64;
   for (int row0 = 0; row0 < H; row0 += kRowsPerChunk) {
-    tbb::parallel_for(tbb::blocked_range<int>(row0, std::min(H, row0 + kRowsPerChunk)), [&](const auto& r) {
-      for (int v = r.begin(); v != r.end(); ++v)
-        for (int u = 0; u < W; ++u)
-          samples[static_cast<std::size_t>(v) * W + u] = rays.trace(sensor, u, v, projector, grazing);
-    });
+    tbb::parallel_for(tbb::blocked_range<int>(row0, std::min(H, row0 + kRowsPerChunk)),
+                      [&](const auto& r) {
+                        for (int v = r.begin(); v != r.end(); ++v)
+                          for (int u = 0; u < W; ++u)
+                            samples[static_cast<std::size_t>(v) * W + u] =
+                                rays.trace(sensor, u, v, projector, grazing);
+                      });
     reportProgress(progress, 0.6 * std::min(H, row0 + kRowsPerChunk) / H);
   }
 
@@ -202,9 +212,11 @@ RenderResult renderScene(const Scene& scene, const SensorModel& sensor, const Se
   }
   out.visible_fraction.resize(count);
   for (std::size_t id = 0; id < count; ++id)
-    out.visible_fraction[id] = out.lit_pixels_alone[id] == 0
-        ? 0.0
-        : std::min(1.0, static_cast<double>(out.lit_pixels[id]) / static_cast<double>(out.lit_pixels_alone[id]));
+    out.visible_fraction[id] =
+        out.lit_pixels_alone[id] == 0
+            ? 0.0
+            : std::min(1.0, static_cast<double>(out.lit_pixels[id]) /
+                                static_cast<double>(out.lit_pixels_alone[id]));
 
   // Measurement: dropouts, flying pixels at depth edges, depth noise; reads only the clean samples.
   const double baseline_mm = sensor.T_camera_projector.translation().norm();
@@ -232,13 +244,14 @@ RenderResult renderScene(const Scene& scene, const SensorModel& sensor, const Se
               jump = ns.z_mm - z;
           }
           // A mixed pixel: the sensor averages the two depths seen across the edge.
-          if (std::abs(jump) > noise.flying_edge_mm && hashUniform(seed, i, 11) < noise.flying_probability)
+          if (std::abs(jump) > noise.flying_edge_mm &&
+              hashUniform(seed, i, 11) < noise.flying_probability)
             z += jump * (0.2 + 0.6 * hashUniform(seed, i, 12));
         }
         z = noisyDepth(z, noise, sensor.fx, baseline_mm, seed, i);
-        out.cloud.points_mm[i] = Eigen::Vector3f(static_cast<float>((u - sensor.cx) / sensor.fx * z),
-                                                 static_cast<float>((v - sensor.cy) / sensor.fy * z),
-                                                 static_cast<float>(z));
+        out.cloud.points_mm[i] = Eigen::Vector3f(
+            static_cast<float>((u - sensor.cx) / sensor.fx * z),
+            static_cast<float>((v - sensor.cy) / sensor.fy * z), static_cast<float>(z));
       }
   });
   for (std::size_t i = 0; i < N; ++i)

@@ -15,12 +15,12 @@
 namespace scanpick::core {
 
 /// Pixel labels of RenderResult::labels.
-inline constexpr std::int32_t kLabelEnvironment = -1;  ///< floor, table or bin wall
-inline constexpr std::int32_t kLabelNothing = -2;      ///< the ray hit nothing
+inline constexpr std::int32_t kLabelEnvironment = -1; ///< floor, table or bin wall
+inline constexpr std::int32_t kLabelNothing = -2;     ///< the ray hit nothing
 
 /// A simulated scan and what each pixel saw.
 struct RenderResult {
-  PointCloud cloud;  ///< organized (sensor width × height), scene = camera frame, mm; NaN = no point
+  PointCloud cloud; ///< organized (sensor width × height), scene = camera frame, mm; NaN = no point
   /// Per pixel: the instance id the camera ray hit first, kLabelEnvironment or kLabelNothing
   /// (kept also where the point is missing, e.g. in projector shadow).
   std::vector<std::int32_t> labels;

@@ -22,10 +22,11 @@ std::string layoutName(LayoutKind layout);
 /// Inverse of layoutName; throws Error naming the valid layouts.
 LayoutKind layoutFromName(const std::string& name);
 
-/// One placed part. The world frame has the floor (table) at z = 0, z up, bin centred at the origin.
+/// One placed part. The world frame has the floor (table) at z = 0, z up, bin centred at the
+/// origin.
 struct PartInstance {
   int id = 0;
-  std::size_t part = 0;  ///< index into Scene::parts
+  std::size_t part = 0; ///< index into Scene::parts
   Eigen::Isometry3d T_world_part = Eigen::Isometry3d::Identity();
 };
 
@@ -37,9 +38,9 @@ struct BinGeometry {
 /// What buildScene should make.
 struct SceneSpec {
   LayoutKind layout = LayoutKind::Bin;
-  std::vector<Part> parts;    ///< instance k uses parts[k % parts.size()]
-  int count = 8;              ///< instances (teach: must be 1)
-  std::uint64_t seed = 0;     ///< drives poses and drop positions
+  std::vector<Part> parts; ///< instance k uses parts[k % parts.size()]
+  int count = 8;           ///< instances (teach: must be 1)
+  std::uint64_t seed = 0;  ///< drives poses and drop positions
   BinGeometry bin;
   /// Camera height above the floor, mm; 0 = the sensor's default for the layout (PhoXi: 850 bin,
   /// 700 scatter/teach; Kinect: 1100 bin, 1000 scatter/teach).
@@ -56,8 +57,8 @@ struct Scene {
   std::uint64_t seed = 0;
   std::vector<Part> parts;
   std::vector<PartInstance> instances;
-  TriangleMesh environment_mm;  ///< floor or table and bin walls, world frame (closed boxes)
-  BinGeometry bin;              ///< the bin's size (bin layouts)
+  TriangleMesh environment_mm; ///< floor or table and bin walls, world frame (closed boxes)
+  BinGeometry bin;             ///< the bin's size (bin layouts)
   /// World in the camera (= scene) frame: the camera looks straight down at the origin.
   Eigen::Isometry3d T_camera_world = Eigen::Isometry3d::Identity();
   /// Teach scenes: the box an operator would draw around the part, world frame (axis-aligned).

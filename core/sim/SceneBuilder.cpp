@@ -3,13 +3,12 @@
 #include "core/sim/MeshBuilder.h"
 #include "core/sim/Scene.h"
 
+#include <LinearMath/btConvexHullComputer.h>
+#include <algorithm>
 #include <btBulletCollisionCommon.h>
 #include <btBulletDynamicsCommon.h>
-#include <LinearMath/btConvexHullComputer.h>
-
-#include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -20,10 +19,11 @@ namespace {
 constexpr double kMmPerUnit = 10.0;
 constexpr double kGravity_mm_s2 = 9810.0;
 constexpr double kStep_s = 1.0 / 300.0;
-constexpr float kMargin_units = 0.04f;  // 0.4 mm, outside the hulls: parts rest slightly apart
+constexpr float kMargin_units = 0.04f; // 0.4 mm, outside the hulls: parts rest slightly apart
 
 btVector3 toBt(const Eigen::Vector3d& p_mm) {
-  return {static_cast<btScalar>(p_mm.x() / kMmPerUnit), static_cast<btScalar>(p_mm.y() / kMmPerUnit),
+  return {static_cast<btScalar>(p_mm.x() / kMmPerUnit),
+          static_cast<btScalar>(p_mm.y() / kMmPerUnit),
           static_cast<btScalar>(p_mm.z() / kMmPerUnit)};
 }
 
@@ -35,7 +35,8 @@ Eigen::Isometry3d fromBt(const btTransform& t) {
       T.linear()(r, c) = b[r][c];
   // Bullet keeps single-precision matrices: re-orthonormalize so poses are exact rotations.
   T.linear() = Eigen::Quaterniond(T.linear()).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z()) * kMmPerUnit;
+  T.translation() =
+      Eigen::Vector3d(t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z()) * kMmPerUnit;
   return T;
 }
 
@@ -58,7 +59,9 @@ struct World {
   std::vector<std::unique_ptr<btMotionState>> states;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
 
-  World() { world.setGravity(btVector3(0, 0, static_cast<btScalar>(-kGravity_mm_s2 / kMmPerUnit))); }
+  World() {
+    world.setGravity(btVector3(0, 0, static_cast<btScalar>(-kGravity_mm_s2 / kMmPerUnit)));
+  }
   ~World() {
     for (auto& b : bodies)
       world.removeRigidBody(b.get());
@@ -71,7 +74,8 @@ struct World {
     if (mass > 0)
       shape->calculateLocalInertia(static_cast<btScalar>(mass), inertia);
     states.push_back(std::make_unique<btDefaultMotionState>(pose));
-    btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), states.back().get(), shape, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), states.back().get(),
+                                                  shape, inertia);
     info.m_friction = 0.6f;
     info.m_restitution = 0.05f;
     info.m_linearDamping = 0.05f;
@@ -173,27 +177,37 @@ TriangleMesh environmentMesh(LayoutKind layout, const BinGeometry& bin) {
 
 std::string layoutName(LayoutKind layout) {
   switch (layout) {
-  case LayoutKind::Bin: return "bin";
-  case LayoutKind::Scatter: return "scatter";
-  case LayoutKind::Teach: return "teach";
+  case LayoutKind::Bin:
+    return "bin";
+  case LayoutKind::Scatter:
+    return "scatter";
+  case LayoutKind::Teach:
+    return "teach";
   }
   return "bin";
 }
 
 LayoutKind layoutFromName(const std::string& name) {
-  if (name == "bin") return LayoutKind::Bin;
-  if (name == "scatter") return LayoutKind::Scatter;
-  if (name == "teach") return LayoutKind::Teach;
+  if (name == "bin")
+    return LayoutKind::Bin;
+  if (name == "scatter")
+    return LayoutKind::Scatter;
+  if (name == "teach")
+    return LayoutKind::Teach;
   throw Error("unknown layout '" + name + "': use bin, scatter or teach");
 }
 
 Eigen::Matrix3d teachSideTurn(int side) {
   constexpr double kHalfPi = 1.57079632679489661923;
   switch (side) {
-  case 1: return Eigen::AngleAxisd(2 * kHalfPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  case 2: return Eigen::AngleAxisd(kHalfPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  case 3: return Eigen::AngleAxisd(kHalfPi, Eigen::Vector3d::UnitY()).toRotationMatrix();
-  default: return Eigen::Matrix3d::Identity();
+  case 1:
+    return Eigen::AngleAxisd(2 * kHalfPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  case 2:
+    return Eigen::AngleAxisd(kHalfPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  case 3:
+    return Eigen::AngleAxisd(kHalfPi, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  default:
+    return Eigen::Matrix3d::Identity();
   }
 }
 
@@ -208,12 +222,14 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
   if (spec.parts.empty())
     throw Error("no part to place: give a built-in part name or a mesh file");
   if (spec.count < 1)
-    throw Error("the scene needs at least one instance (count is " + std::to_string(spec.count) + ")");
+    throw Error("the scene needs at least one instance (count is " + std::to_string(spec.count) +
+                ")");
   if (spec.teach_side < 0 || spec.teach_side > kTeachSides - 1)
     throw Error("teach side " + std::to_string(spec.teach_side) + " does not exist: use 0 to " +
                 std::to_string(kTeachSides - 1));
   if (spec.layout == LayoutKind::Teach && spec.count != 1)
-    throw Error("a teach scene holds exactly one part (count is " + std::to_string(spec.count) + ")");
+    throw Error("a teach scene holds exactly one part (count is " + std::to_string(spec.count) +
+                ")");
   if (spec.count > 200)
     throw Error("at most 200 instances per scene (count is " + std::to_string(spec.count) + ")");
 
@@ -249,8 +265,9 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
     Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
     T_world_body.linear() = R;
     T_world_body.translation() = center_world_mm;
-    const double mass = partVolume_mm3(part) * 1e-3;  // grams at 1 g/cm³
-    btRigidBody* body = w.addBody(shapes[static_cast<std::size_t>(id) % shapes.size()], mass, toBt(T_world_body));
+    const double mass = partVolume_mm3(part) * 1e-3; // grams at 1 g/cm³
+    btRigidBody* body =
+        w.addBody(shapes[static_cast<std::size_t>(id) % shapes.size()], mass, toBt(T_world_body));
     body->setCcdMotionThreshold(static_cast<btScalar>(2.0 / kMmPerUnit));
     body->setCcdSweptSphereRadius(static_cast<btScalar>(1.5 / kMmPerUnit));
     body->setSleepingThresholds(0.05f, 0.05f);
@@ -261,7 +278,8 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
     for (int id = 0; id < n; ++id) {
       const Part& part = scene.parts[static_cast<std::size_t>(id) % scene.parts.size()];
       const double r = part.diameter_mm() / 2;
-      const double mx = std::max(0.0, spec.bin.inner_x_mm / 2 - r), my = std::max(0.0, spec.bin.inner_y_mm / 2 - r);
+      const double mx = std::max(0.0, spec.bin.inner_x_mm / 2 - r),
+                   my = std::max(0.0, spec.bin.inner_y_mm / 2 - r);
       const Eigen::Matrix3d R = randomRotation(rng);
       const double x = (2 * unit(rng) - 1) * mx, y = (2 * unit(rng) - 1) * my;
       spawn(id, R, {x, y, pileTop_mm(w, first_dynamic) + r + 5});
@@ -314,7 +332,8 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
   }
 
   // Camera straight above the origin: camera x = world x, camera y = -world y, z down.
-  const double height = spec.camera_height_mm > 0 ? spec.camera_height_mm : defaultCameraHeight_mm(sensor, spec.layout);
+  const double height = spec.camera_height_mm > 0 ? spec.camera_height_mm
+                                                  : defaultCameraHeight_mm(sensor, spec.layout);
   Eigen::Isometry3d T_world_camera = Eigen::Isometry3d::Identity();
   T_world_camera.linear() = Eigen::Vector3d(1, -1, -1).asDiagonal();
   T_world_camera.translation() = Eigen::Vector3d(0, 0, height);
@@ -324,7 +343,8 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
     // The operator's box: the part's extent plus 10 mm around, starting 1 mm above the table so the
     // table itself stays out.
     const auto& inst = scene.instances.front();
-    Eigen::AlignedBox3d box = boundingBox(transformed(scene.parts[inst.part].mesh(), inst.T_world_part));
+    Eigen::AlignedBox3d box =
+        boundingBox(transformed(scene.parts[inst.part].mesh(), inst.T_world_part));
     box.min() -= Eigen::Vector3d(10, 10, 0);
     box.max() += Eigen::Vector3d(10, 10, 10);
     box.min().z() = 1.0;
@@ -338,7 +358,8 @@ namespace {
 /// Outward face planes (unit normal n, offset d: inside where n·p <= d) of a point set's hull.
 std::vector<Eigen::Vector4d> hullPlanes(const std::vector<Eigen::Vector3d>& points) {
   btConvexHullComputer hull;
-  hull.compute(points.front().data(), static_cast<int>(sizeof(Eigen::Vector3d)), static_cast<int>(points.size()), 0, 0);
+  hull.compute(points.front().data(), static_cast<int>(sizeof(Eigen::Vector3d)),
+               static_cast<int>(points.size()), 0, 0);
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (int i = 0; i < hull.vertices.size(); ++i)
     centroid += Eigen::Vector3d(hull.vertices[i].x(), hull.vertices[i].y(), hull.vertices[i].z());
@@ -375,8 +396,8 @@ double depthInside(const std::vector<Eigen::Vector4d>& planes, const Eigen::Vect
 }
 
 struct ConvexPiece {
-  std::vector<Eigen::Vector4d> planes;  ///< in the owner's frame
-  Eigen::AlignedBox3d box;              ///< in the owner's frame
+  std::vector<Eigen::Vector4d> planes; ///< in the owner's frame
+  Eigen::AlignedBox3d box;             ///< in the owner's frame
 };
 
 } // namespace
@@ -398,7 +419,7 @@ double maxInterpenetration_mm(const Scene& scene) {
   for (const auto& inst : scene.instances) {
     const TriangleMesh mesh = transformed(scene.parts[inst.part].mesh(), inst.T_world_part);
     std::vector<Eigen::Vector3d> normals;
-    const auto n = static_cast<std::size_t>(std::min(40000.0, surfaceArea(mesh)));  // ~1 per mm²
+    const auto n = static_cast<std::size_t>(std::min(40000.0, surfaceArea(mesh))); // ~1 per mm²
     auto& pts = samples_world[static_cast<std::size_t>(inst.id)];
     sampleSurface(mesh, n, 1, pts, normals);
     pts.insert(pts.end(), mesh.vertices_mm.begin(), mesh.vertices_mm.end());

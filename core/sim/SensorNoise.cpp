@@ -46,7 +46,7 @@ double hashUniform(std::uint64_t seed, std::uint64_t counter, std::uint64_t stre
 }
 
 double hashGaussian(std::uint64_t seed, std::uint64_t counter, std::uint64_t stream) {
-  const double u1 = 1.0 - hashUniform(seed, counter, 2 * stream);  // (0, 1]
+  const double u1 = 1.0 - hashUniform(seed, counter, 2 * stream); // (0, 1]
   const double u2 = hashUniform(seed, counter, 2 * stream + 1);
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
 }
@@ -63,7 +63,8 @@ double noisyDepth(double z_mm, const SensorNoise& noise, double fx_px, double ba
     if (noise.disparity_sigma_px > 0)
       d += noise.disparity_sigma_px * std::clamp(hashGaussian(seed, pixel, 2), -4.0, 4.0);
     if (noise.disparity_step_px > 0)
-      d = std::max(noise.disparity_step_px, std::round(d / noise.disparity_step_px) * noise.disparity_step_px);
+      d = std::max(noise.disparity_step_px,
+                   std::round(d / noise.disparity_step_px) * noise.disparity_step_px);
     z = fx_px * baseline_mm / d;
   }
   return z;

@@ -12,15 +12,15 @@ namespace scanpick::core {
 
 /// Noise model of a structured-light sensor. Defaults = no noise at all.
 struct SensorNoise {
-  double z_sigma_mm = 0;            ///< Gaussian depth noise along the ray, truncated at ±4σ
-  double disparity_step_px = 0;     ///< Kinect: disparity quantization step (1/8 px); 0 = none
-  double disparity_sigma_px = 0;    ///< Kinect: Gaussian disparity noise before quantization
-  double dropout_probability = 0;   ///< chance that any point is missing
+  double z_sigma_mm = 0;          ///< Gaussian depth noise along the ray, truncated at ±4σ
+  double disparity_step_px = 0;   ///< Kinect: disparity quantization step (1/8 px); 0 = none
+  double disparity_sigma_px = 0;  ///< Kinect: Gaussian disparity noise before quantization
+  double dropout_probability = 0; ///< chance that any point is missing
   /// A point is missing when the camera or the projector sees the surface at an angle whose cosine
   /// is below this (0.1 ≈ 84° from the normal); 0 = off.
   double grazing_cos = 0;
-  double flying_probability = 0;    ///< chance that a pixel at a depth edge is a mixed pixel
-  double flying_edge_mm = 0;        ///< depth jump to a 4-neighbour that makes an edge
+  double flying_probability = 0; ///< chance that a pixel at a depth edge is a mixed pixel
+  double flying_edge_mm = 0;     ///< depth jump to a 4-neighbour that makes an edge
 
   /// The sensor's typical noise: PhoXi M: σ = sensor.noise_sigma_mm (0.1 mm), 0.2 % dropouts,
   /// grazing limit 0.1, a few flying pixels at > 3 mm edges; Kinect v1: 1/8 px disparity steps

@@ -18,8 +18,8 @@ std::string sceneName(std::size_t index) {
   return buf;
 }
 
-std::vector<SuiteScene> binSuite(const std::string& dir, const std::string& sensor, int per_part, int mixed,
-                                 int min_count, int max_count, std::uint64_t seed) {
+std::vector<SuiteScene> binSuite(const std::string& dir, const std::string& sensor, int per_part,
+                                 int mixed, int min_count, int max_count, std::uint64_t seed) {
   std::vector<SuiteScene> out;
   const auto parts = builtInPartNames();
   const int total = per_part * static_cast<int>(parts.size()) + mixed;
@@ -33,8 +33,9 @@ std::vector<SuiteScene> binSuite(const std::string& dir, const std::string& sens
       s.request.parts = {parts[static_cast<std::size_t>(i) % parts.size()]};
     else
       s.request.parts = parts;
-    s.request.count = min_count + static_cast<int>(hashMix(seed, static_cast<std::uint64_t>(i), 2) %
-                                                   static_cast<std::uint64_t>(max_count - min_count + 1));
+    s.request.count =
+        min_count + static_cast<int>(hashMix(seed, static_cast<std::uint64_t>(i), 2) %
+                                     static_cast<std::uint64_t>(max_count - min_count + 1));
     out.push_back(s);
   }
   return out;
@@ -42,7 +43,9 @@ std::vector<SuiteScene> binSuite(const std::string& dir, const std::string& sens
 
 } // namespace
 
-std::vector<std::string> suiteNames() { return {"phoxi-bin", "kinect-bin", "teach"}; }
+std::vector<std::string> suiteNames() {
+  return {"phoxi-bin", "kinect-bin", "teach"};
+}
 
 std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed) {
   if (name == "phoxi-bin")
@@ -77,9 +80,10 @@ std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed)
         b.request.count = 10;
         b.request.seed = hashMix(s.request.seed, 0, 5);
         for (int side = 0; side < kTeachSides; ++side)
-          b.novel_against.push_back(side == 0 ? s.relative_prefix
-                                              : std::filesystem::path(s.relative_prefix.string() +
-                                                                      "-side" + std::to_string(side)));
+          b.novel_against.push_back(side == 0
+                                        ? s.relative_prefix
+                                        : std::filesystem::path(s.relative_prefix.string() +
+                                                                "-side" + std::to_string(side)));
         out.push_back(b);
       }
     return out;
@@ -106,11 +110,11 @@ SynthScene isolateNovelView(SynthScene bin, const std::vector<Eigen::Vector3d>& 
     std::vector<Eigen::Matrix3d> equivalent{Eigen::Matrix3d::Identity()};
     for (const auto& S : part_of(instance).symmetry.discrete)
       equivalent.push_back(S.linear());
-    double nearest = 4.0;  // radians, more than any angle
+    double nearest = 4.0; // radians, more than any angle
     for (const auto& taught : taught_views_part)
       for (const auto& S : equivalent)
-        nearest = std::min(
-            nearest, std::acos(std::clamp((S.transpose() * view).dot(taught), -1.0, 1.0)));
+        nearest =
+            std::min(nearest, std::acos(std::clamp((S.transpose() * view).dot(taught), -1.0, 1.0)));
     return nearest;
   };
   const auto& visible = bin.render.visible_fraction;
@@ -148,13 +152,14 @@ SynthScene isolateNovelView(SynthScene bin, const std::vector<Eigen::Vector3d>& 
   return bin;
 }
 
-std::vector<std::filesystem::path> writeSuite(const std::filesystem::path& out_dir,
-                                              const std::vector<SuiteScene>& scenes, const ProgressFn& progress,
-                                              const std::function<void(const std::filesystem::path&)>& on_scene) {
+std::vector<std::filesystem::path>
+writeSuite(const std::filesystem::path& out_dir, const std::vector<SuiteScene>& scenes,
+           const ProgressFn& progress,
+           const std::function<void(const std::filesystem::path&)>& on_scene) {
   for (const auto& s : scenes)
     validateRequest(s.request);
   std::vector<std::filesystem::path> files;
-  std::map<std::filesystem::path, Eigen::Vector3d> teach_views;  // of the teach scenes written
+  std::map<std::filesystem::path, Eigen::Vector3d> teach_views; // of the teach scenes written
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const double a = static_cast<double>(i) / static_cast<double>(scenes.size());
     const double b = static_cast<double>(i + 1) / static_cast<double>(scenes.size());
@@ -181,7 +186,8 @@ std::vector<std::filesystem::path> writeSuite(const std::filesystem::path& out_d
   return files;
 }
 
-std::vector<std::filesystem::path> writeDemoScenes(const std::filesystem::path& dir, const ProgressFn& progress) {
+std::vector<std::filesystem::path> writeDemoScenes(const std::filesystem::path& dir,
+                                                   const ProgressFn& progress) {
   SuiteScene bin;
   bin.relative_prefix = "demo-bin";
   bin.request.parts = {"support"};

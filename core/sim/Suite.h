@@ -14,7 +14,7 @@ namespace scanpick::core {
 /// One scene of a suite: where it goes (relative to the output folder, without extension) and
 /// what it holds.
 struct SuiteScene {
-  std::filesystem::path relative_prefix;  ///< e.g. "phoxi-bin/scene-000"
+  std::filesystem::path relative_prefix; ///< e.g. "phoxi-bin/scene-000"
   SynthRequest request;
   /// When not empty: a bin scan turned into a teach scan by isolateNovelView (written as kind
   /// "teach"), avoiding the views of these teach scenes of the suite (written before it).
@@ -49,10 +49,10 @@ inline constexpr std::uint64_t kDefaultSuiteSeed = 20160401;
 
 /// Generates `scenes` under `out_dir` (each scene written as by writeSynthScene) and returns the
 /// files written. `on_scene` (may be empty) is called after each scene with its prefix.
-std::vector<std::filesystem::path> writeSuite(
-    const std::filesystem::path& out_dir, const std::vector<SuiteScene>& scenes,
-    const ProgressFn& progress = {},
-    const std::function<void(const std::filesystem::path&)>& on_scene = {});
+std::vector<std::filesystem::path>
+writeSuite(const std::filesystem::path& out_dir, const std::vector<SuiteScene>& scenes,
+           const ProgressFn& progress = {},
+           const std::function<void(const std::filesystem::path&)>& on_scene = {});
 
 /// Writes the demo scenes into `dir`: `demo-bin` (PhoXi M 1032, 8 supports in a bin, seed 7) and
 /// `support-teach` (one support on a table, same sensor) and `support-teach-side1` (the same

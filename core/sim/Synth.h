@@ -18,16 +18,17 @@ namespace scanpick::core {
 struct SynthRequest {
   /// Built-in part names (builtInPartNames()); several make a mixed scene (round robin).
   std::vector<std::string> parts{"support"};
-  std::filesystem::path mesh_path;      ///< a mesh file (mm) instead of built-in parts when set
-  bool close_holes = false;             ///< cap the mesh file's holes (closeHoles) before use
+  std::filesystem::path mesh_path; ///< a mesh file (mm) instead of built-in parts when set
+  bool close_holes = false;        ///< cap the mesh file's holes (closeHoles) before use
   LayoutKind layout = LayoutKind::Bin;
-  int count = 8;                        ///< instances (teach: 1)
-  std::string sensor = "phoxi-m-1032";  ///< sensorPresetNames()
+  int count = 8;                       ///< instances (teach: 1)
+  std::string sensor = "phoxi-m-1032"; ///< sensorPresetNames()
   std::uint64_t seed = 0;
-  std::optional<double> noise_sigma_mm; ///< overrides the sensor's depth noise (SensorNoise::withSigma)
-  bool noiseless = false;               ///< exact geometry (SensorNoise::none), for checks
-  double camera_height_mm = 0;          ///< 0 = default for the sensor and layout
-  int teach_side = 0;                   ///< teach layout: the side it rests on (SceneSpec)
+  std::optional<double>
+      noise_sigma_mm;          ///< overrides the sensor's depth noise (SensorNoise::withSigma)
+  bool noiseless = false;      ///< exact geometry (SensorNoise::none), for checks
+  double camera_height_mm = 0; ///< 0 = default for the sensor and layout
+  int teach_side = 0;          ///< teach layout: the side it rests on (SceneSpec)
   /// Each instance's shape varies by up to this fraction (deformedPart: stretched, sheared and
   /// bent, like pears of one kind); 0 = every instance exactly as designed.
   double deformation = 0.0;
@@ -40,7 +41,7 @@ struct SynthScene {
   Scene scene;
   SensorModel sensor;
   SensorNoise noise;
-  std::uint64_t seed = 0;  ///< the request's seed
+  std::uint64_t seed = 0; ///< the request's seed
   RenderResult render;
 };
 

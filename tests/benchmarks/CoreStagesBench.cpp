@@ -48,7 +48,8 @@ const Data& data() {
     out.scene = scene.render(sensor.width, sensor.height, sensor.fx, sensor.projectorPosition(),
                              sensor.noise_sigma_mm, 1);
     out.remaining = core::removeFloor(out.scene, out.params.floor, out.params.seed).remaining;
-    out.split = core::splitIntoObjects(out.remaining, sensor, out.params.clustering, out.params.seed);
+    out.split =
+        core::splitIntoObjects(out.remaining, sensor, out.params.clustering, out.params.seed);
     for (const auto& object : out.split.objects)
       out.object_keypoints.push_back(core::extractKeypoints(object, out.params.keypoints));
     out.scene_keypoints = core::extractKeypoints(out.remaining, out.params.keypoints);
@@ -138,9 +139,26 @@ void BM_FeaturesOneObject(benchmark::State& state) {
 
 BENCHMARK(BM_FloorRemoval)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_ObjectCount)->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK(BM_SceneSplit)->Arg(0)->Arg(1)->ArgName("method")->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK(BM_Keypoints)->Arg(0)->Arg(1)->Arg(2)->ArgName("method")->Unit(benchmark::kMillisecond)->Iterations(3);
-BENCHMARK(BM_Features)->Arg(0)->Arg(1)->Arg(2)->ArgName("estimator")->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_SceneSplit)
+    ->Arg(0)
+    ->Arg(1)
+    ->ArgName("method")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK(BM_Keypoints)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("method")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
+BENCHMARK(BM_Features)
+    ->Arg(0)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("estimator")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 BENCHMARK(BM_FeaturesOneObject)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 BENCHMARK_MAIN();

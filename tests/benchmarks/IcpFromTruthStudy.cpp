@@ -74,7 +74,8 @@ int run(int argc, char** argv) {
     const PointCloud cloud = loadCloud(scene, LengthUnit::Millimetres).cloud;
     SceneIndexOptions options;
     options.normal_radius_mm = params.keypoints.normal_radius_mm;
-    options.sensor = sensorPreset(truth.sensor_preset.empty() ? "phoxi-m-1032" : truth.sensor_preset);
+    options.sensor =
+        sensorPreset(truth.sensor_preset.empty() ? "phoxi-m-1032" : truth.sensor_preset);
     const SceneIndex index(cloud, options);
     for (const auto& instance : truth.instances) {
       if (instance.part != part || instance.visible_fraction < 0.5)

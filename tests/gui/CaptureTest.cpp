@@ -73,7 +73,8 @@ TEST_F(Capture, DeviceListOpenSingleShotAndSaveScan) {
   EXPECT_FALSE(panel->stateText().isEmpty());
 
   QSignalSpy opened(panel, &ui::DevicePanel::cameraOpened);
-  openThroughUi(QStringLiteral("file:%1").arg(QString::fromStdString(replayFolder(scenes, 2).string())));
+  openThroughUi(
+      QStringLiteral("file:%1").arg(QString::fromStdString(replayFolder(scenes, 2).string())));
   ASSERT_TRUE(opened.wait(30000)) << window.logDock()->text().toStdString();
   ASSERT_NE(panel->camera(), nullptr);
   EXPECT_TRUE(panel->stateText().startsWith(QStringLiteral("Open")));
@@ -90,7 +91,8 @@ TEST_F(Capture, DeviceListOpenSingleShotAndSaveScan) {
   QTest::mouseClick(capture, Qt::LeftButton);
   ASSERT_TRUE(frames.wait(30000)) << window.logDock()->text().toStdString();
   ASSERT_NE(window.scan(), nullptr);
-  const core::PointCloud bin = core::loadCloud(scenes.bin_scan, core::LengthUnit::Millimetres).cloud;
+  const core::PointCloud bin =
+      core::loadCloud(scenes.bin_scan, core::LengthUnit::Millimetres).cloud;
   EXPECT_EQ(window.scan()->validCount(), bin.validCount()) << "the shot is the replayed scan";
   window.viewport()->requestRender();
   QTest::qWait(100);
@@ -101,7 +103,8 @@ TEST_F(Capture, DeviceListOpenSingleShotAndSaveScan) {
 
   const fs::path saved = scenes.dir / "saved.pcd";
   ASSERT_TRUE(window.saveScan(QString::fromStdString(saved.string())));
-  EXPECT_EQ(core::loadCloud(saved, core::LengthUnit::Millimetres).cloud.validCount(), bin.validCount());
+  EXPECT_EQ(core::loadCloud(saved, core::LengthUnit::Millimetres).cloud.validCount(),
+            bin.validCount());
 }
 
 TEST_F(Capture, LiveLoopRunsCyclesUntilStopped) {
@@ -124,7 +127,8 @@ TEST_F(Capture, LiveLoopRunsCyclesUntilStopped) {
       5000));
 
   QSignalSpy opened(panel, &ui::DevicePanel::cameraOpened);
-  openThroughUi(QStringLiteral("file:%1").arg(QString::fromStdString(replayFolder(scenes, 4).string())));
+  openThroughUi(
+      QStringLiteral("file:%1").arg(QString::fromStdString(replayFolder(scenes, 4).string())));
   ASSERT_TRUE(opened.wait(30000)) << window.logDock()->text().toStdString();
 
   QSignalSpy cycles(&window, &MainWindow::liveCycleFinished);
@@ -163,12 +167,14 @@ TEST_F(Capture, LiveLoopRunsCyclesUntilStopped) {
   EXPECT_EQ(window.resultsTable()->rowCount(), cycles.last().at(1).toInt());
   auto* timings = window.findChild<QLabel*>(QStringLiteral("statusTimings"));
   ASSERT_NE(timings, nullptr);
-  EXPECT_TRUE(timings->text().startsWith(QStringLiteral("cycle "))) << timings->text().toStdString();
+  EXPECT_TRUE(timings->text().startsWith(QStringLiteral("cycle ")))
+      << timings->text().toStdString();
   window.viewport()->requestRender();
   QTest::qWait(100);
   const QImage image = window.screenshot();
   image.save(test::screenshotDir() + "/live.png");
-  EXPECT_GT(test::countColour(image, QColor(200, 200, 200), 8), 1000) << "the live scene is not drawn";
+  EXPECT_GT(test::countColour(image, QColor(200, 200, 200), 8), 1000)
+      << "the live scene is not drawn";
   if (!window.lastResult()->detections.empty()) {
     EXPECT_GT(test::countColour(image, ui::detectionColour(0), 30), 20) << "detection not drawn";
   }
@@ -194,7 +200,8 @@ TEST_F(Capture, InvalidOrUnpluggedDeviceShowsAnErrorAndTheWindowKeepsRunning) {
 
   // A camera whose frames run out mid-use: the capture error is reported, nothing crashes.
   QSignalSpy opened(panel, &ui::DevicePanel::cameraOpened);
-  openThroughUi(QStringLiteral("file:%1").arg(QString::fromStdString(replayFolder(scenes, 1).string())));
+  openThroughUi(
+      QStringLiteral("file:%1").arg(QString::fromStdString(replayFolder(scenes, 1).string())));
   ASSERT_TRUE(opened.wait(30000));
   QSignalSpy frames(panel, &ui::DevicePanel::frameCaptured);
   panel->captureOne();

@@ -45,7 +45,8 @@ TEST(DemoLaunch, GuiOpensOnTheDemoAndShowsTheRecognizedBin) {
   process.setProcessChannelMode(QProcess::MergedChannels);
   // A private settings folder, so a restored layout or preset cannot change the run.
   QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-  env.insert(QStringLiteral("XDG_CONFIG_HOME"), QString::fromStdString((scenes.dir / "config").string()));
+  env.insert(QStringLiteral("XDG_CONFIG_HOME"),
+             QString::fromStdString((scenes.dir / "config").string()));
   process.setProcessEnvironment(env);
   process.start(
       gui, QStringList{QStringLiteral("--scan"), QString::fromStdString(scenes.bin_scan.string())}
@@ -63,7 +64,8 @@ TEST(DemoLaunch, GuiOpensOnTheDemoAndShowsTheRecognizedBin) {
   const QImage image(shot);
   ASSERT_FALSE(image.isNull()) << "no screenshot written";
   image.save(test::screenshotDir() + "/demo-launch.png");
-  EXPECT_GT(test::countColour(image, QColor(200, 200, 200), 8), 1000) << "the grey scene is missing";
+  EXPECT_GT(test::countColour(image, QColor(200, 200, 200), 8), 1000)
+      << "the grey scene is missing";
   if (expected > 0) {
     EXPECT_GT(test::countColour(image, ui::detectionColour(0), 30), 20)
         << "the first detection's overlay colour is missing";

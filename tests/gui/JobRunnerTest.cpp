@@ -41,8 +41,9 @@ TEST(JobRunner, StaleResultIsDropped) {
         return 1;
       },
       [&](std::shared_ptr<const int> v) { delivered.push_back(*v); });
-  const quint64 second = runner.run<int>([](const core::ProgressFn&) { return 2; },
-                                         [&](std::shared_ptr<const int> v) { delivered.push_back(*v); });
+  const quint64 second =
+      runner.run<int>([](const core::ProgressFn&) { return 2; },
+                      [&](std::shared_ptr<const int> v) { delivered.push_back(*v); });
   release = true;
   ASSERT_TRUE(QTest::qWaitFor([&] { return spy.count() == 2; }, 5000));
   ASSERT_EQ(delivered.size(), 1u);
@@ -89,11 +90,12 @@ TEST(JobRunner, ErrorMessageReachesTheGui) {
 TEST(JobRunner, CancelBeforeStartDeliversNothing) {
   JobRunner runner;
   bool done_called = false;
-  runner.run<int>([](const core::ProgressFn& progress) {
-                    core::reportProgress(progress, 0.0);
-                    return 1;
-                  },
-                  [&](std::shared_ptr<const int>) { done_called = true; });
+  runner.run<int>(
+      [](const core::ProgressFn& progress) {
+        core::reportProgress(progress, 0.0);
+        return 1;
+      },
+      [&](std::shared_ptr<const int>) { done_called = true; });
   runner.cancel();
   QSignalSpy spy(&runner, &JobRunner::jobFinished);
   ASSERT_TRUE(spy.wait(5000));
@@ -105,11 +107,12 @@ TEST(JobRunner, CancelAfterTheWorkEndedStillDropsTheResult) {
   JobRunner runner;
   bool done_called = false;
   std::atomic<bool> ran{false};
-  runner.run<int>([&ran](const core::ProgressFn&) {
-                    ran = true;
-                    return 1;
-                  },
-                  [&](std::shared_ptr<const int>) { done_called = true; });
+  runner.run<int>(
+      [&ran](const core::ProgressFn&) {
+        ran = true;
+        return 1;
+      },
+      [&](std::shared_ptr<const int>) { done_called = true; });
   // The work finishes on the pool; its result waits for the event loop, which has not run yet.
   while (!ran.load())
     QThread::msleep(1);

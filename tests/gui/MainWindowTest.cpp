@@ -113,7 +113,8 @@ TEST_F(WindowFixture, PreviewFollowsParametersAndReusesKeypoints) {
   }
 
   // A features-stage change through the real editor: keypoints come from the cache.
-  auto* spin = qobject_cast<QDoubleSpinBox*>(window.parameterPanel()->editor("features.circle_threshold_mm"));
+  auto* spin = qobject_cast<QDoubleSpinBox*>(
+      window.parameterPanel()->editor("features.circle_threshold_mm"));
   ASSERT_NE(spin, nullptr);
   spin->setValue(1.5);
   ASSERT_TRUE(previews.wait(30000));
@@ -143,7 +144,7 @@ TEST_F(WindowFixture, RapidChangesDropStalePreviews) {
   window.refreshPreview();
   ASSERT_TRUE(previews.wait(30000));
   ASSERT_TRUE(QTest::qWaitFor([&] { return !window.previewJobs()->busy(); }, 30000));
-  QTest::qWait(300);  // let the debounce timer started by setValue fire and settle, too
+  QTest::qWait(300); // let the debounce timer started by setValue fire and settle, too
   ASSERT_TRUE(QTest::qWaitFor([&] { return !window.previewJobs()->busy(); }, 30000));
   EXPECT_GE(window.previewJobs()->droppedCount() - dropped_before, 1) << "stale job not dropped";
   ASSERT_NE(window.preview(), nullptr);
@@ -165,8 +166,8 @@ TEST_F(WindowFixture, TeachRecognizeAndResultsTable) {
   EXPECT_EQ(window.model()->grip_points.size(), 1u);
 
   // The bin scene: the thesis's 12 rotated copies.
-  window.setScan(std::make_shared<const core::PointCloud>(test::idealScene(
-                     test::idealPartPoints(), test::idealCopyPoses(), 0.0, 2024)),
+  window.setScan(std::make_shared<const core::PointCloud>(
+                     test::idealScene(test::idealPartPoints(), test::idealCopyPoses(), 0.0, 2024)),
                  QStringLiteral("bin"));
   QSignalSpy finished(&window, &MainWindow::recognitionFinished);
   window.recognize();
@@ -178,8 +179,7 @@ TEST_F(WindowFixture, TeachRecognizeAndResultsTable) {
   ui::ResultsTable* table = window.resultsTable();
   ASSERT_EQ(table->rowCount(), static_cast<int>(result->detections.size()));
   for (int row = 0; row < table->rowCount(); ++row) {
-    EXPECT_EQ(table->item(row, 0)->text(),
-              QString::number(result->detections[row].score, 'f', 3));
+    EXPECT_EQ(table->item(row, 0)->text(), QString::number(result->detections[row].score, 'f', 3));
     EXPECT_EQ(table->item(row, 4)->text().count(QLatin1Char('(')),
               static_cast<int>(result->detections[row].grip_points_scene.size()));
   }
@@ -239,14 +239,16 @@ TEST_F(WindowFixture, TeachTakesThePartsNameAndPose) {
 }
 
 TEST_F(WindowFixture, CancelRecognition) {
-  window.setScan(std::make_shared<const core::PointCloud>(test::idealScene(
-                     test::idealPartPoints(), test::idealCopyPoses(), 0.5, 7)),
+  window.setScan(std::make_shared<const core::PointCloud>(
+                     test::idealScene(test::idealPartPoints(), test::idealCopyPoses(), 0.5, 7)),
                  QStringLiteral("bin"));
   // A model taught directly through the core, then handed to the window through a file.
   core::TeachOptions options;
-  options.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
-  const core::TaughtModel taught = core::teach(
-      test::idealScene(test::idealPartPoints(), {teachPose()}, 0.0, 1), options, test::idealParams(0.5));
+  options.crop_box_mm =
+      Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
+  const core::TaughtModel taught =
+      core::teach(test::idealScene(test::idealPartPoints(), {teachPose()}, 0.0, 1), options,
+                  test::idealParams(0.5));
   const QString path = test::screenshotDir() + "/cancel-test.spmodel";
   core::saveModel(path.toStdString(), taught);
   ASSERT_TRUE(window.openModel(path));
@@ -267,9 +269,11 @@ TEST_F(WindowFixture, CancelRecognition) {
 // again keeps them.
 TEST_F(WindowFixture, AViewsOwnParametersAreThePanelsValues) {
   core::TeachOptions options;
-  options.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
-  core::TaughtModel taught = core::teach(
-      test::idealScene(test::idealPartPoints(), {teachPose()}, 0.0, 1), options, test::idealParams(0.5));
+  options.crop_box_mm =
+      Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
+  core::TaughtModel taught =
+      core::teach(test::idealScene(test::idealPartPoints(), {teachPose()}, 0.0, 1), options,
+                  test::idealParams(0.5));
   taught.view_params = {{"matching.min_coverage", 0.42}};
   // Verification on: there is something to prepare.
   taught.params.matching.verify_tolerance_mm = 0.5;
@@ -321,8 +325,9 @@ TEST(Translation, ItalianMenusAndTheNextStartNote) {
   EXPECT_TRUE(teach_entries.contains(QStringLiteral("&Anteprima pavimento")));
   EXPECT_TRUE(file_entries.contains(QStringLiteral("&Aggiungi vista del modello…")))
       << file_entries.join(" | ").toStdString();
-  EXPECT_EQ(QCoreApplication::translate("scanpick::ui::MainWindow", "&Language (applies at next start)"),
-            QStringLiteral("&Language (applies at next start)"))
+  EXPECT_EQ(
+      QCoreApplication::translate("scanpick::ui::MainWindow", "&Language (applies at next start)"),
+      QStringLiteral("&Language (applies at next start)"))
       << "without the translator the English text is back";
 }
 
@@ -359,7 +364,8 @@ TEST(ResultsTableFreeTurn, MarksAlternativePosesTheScanCannotTellApart) {
   // marked, with the count in its tooltip; in Italian too.
   std::vector<core::Detection> detections(2);
   detections[0].score = 0.9;
-  detections[0].alternative_poses = {Eigen::Isometry3d(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()))};
+  detections[0].alternative_poses = {
+      Eigen::Isometry3d(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()))};
   detections[1].score = 0.8;
   ui::ResultsTable table;
   table.setDetections(detections, {});

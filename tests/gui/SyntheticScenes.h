@@ -47,7 +47,8 @@ struct DemoScenes {
     };
     const Eigen::Vector3d lo = vec(box.at("min_mm")), hi = vec(box.at("max_mm"));
     core::OrientedBox oriented;
-    oriented.T_scan_box = (Eigen::Isometry3d(m) * Eigen::Translation3d(0.5 * (lo + hi))).cast<float>();
+    oriented.T_scan_box =
+        (Eigen::Isometry3d(m) * Eigen::Translation3d(0.5 * (lo + hi))).cast<float>();
     oriented.half_extents_mm = (0.5 * (hi - lo)).cast<float>();
     return oriented;
   }
@@ -57,7 +58,8 @@ struct DemoScenes {
     std::vector<Eigen::Vector3d> out;
     const auto doc = nlohmann::json::parse(core::readFile(teach_truth));
     for (const auto& g : doc.at("instances").at(0).value("grip_points", nlohmann::json::array()))
-      out.emplace_back(g.at("position_mm").at(0).get<double>(), g.at("position_mm").at(1).get<double>(),
+      out.emplace_back(g.at("position_mm").at(0).get<double>(),
+                       g.at("position_mm").at(1).get<double>(),
                        g.at("position_mm").at(2).get<double>());
     return out;
   }

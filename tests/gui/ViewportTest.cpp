@@ -44,8 +44,12 @@ struct RedSphereViewport {
   }
 };
 
-bool isRed(QRgb c) { return qRed(c) > 200 && qGreen(c) < 40 && qBlue(c) < 40; }
-bool isBlack(QRgb c) { return qRed(c) < 30 && qGreen(c) < 30 && qBlue(c) < 30; }
+bool isRed(QRgb c) {
+  return qRed(c) > 200 && qGreen(c) < 40 && qBlue(c) < 40;
+}
+bool isBlack(QRgb c) {
+  return qRed(c) < 30 && qGreen(c) < 30 && qBlue(c) < 30;
+}
 
 void sendMouse(QWidget* w, QEvent::Type type, QPoint pos, Qt::MouseButton button,
                Qt::MouseButtons buttons) {

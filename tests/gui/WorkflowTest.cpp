@@ -68,8 +68,9 @@ QString rowPosition(const Eigen::Vector3d& t) {
 TEST_F(Workflow, SyntheticTeachSceneCropTeachThenRecognizeTheBin) {
   const test::DemoScenes scenes;
   window.parameterPanel()->loadPresetFile(test::phoxiBinPreset());
-  EXPECT_EQ(core::paramsToJson(window.parameterPanel()->params()).dump(1),
-            core::paramsToJson(core::loadPreset(test::phoxiBinPreset().toStdString()).params).dump(1))
+  EXPECT_EQ(
+      core::paramsToJson(window.parameterPanel()->params()).dump(1),
+      core::paramsToJson(core::loadPreset(test::phoxiBinPreset().toStdString()).params).dump(1))
       << "the parameter panel changed the preset's values";
   open(scenes.teach_scan);
   const std::size_t scan_points = window.part()->validCount();
@@ -79,7 +80,8 @@ TEST_F(Workflow, SyntheticTeachSceneCropTeachThenRecognizeTheBin) {
     QStringList recent;
     for (QAction* a : next.findChildren<QAction*>())
       recent << a->text();
-    EXPECT_TRUE(recent.contains(QStringLiteral("support-teach-side1.pcd"))) << recent.join(' ').toStdString();
+    EXPECT_TRUE(recent.contains(QStringLiteral("support-teach-side1.pcd")))
+        << recent.join(' ').toStdString();
     EXPECT_EQ(next.parameterPanel()->params().matching.min_coverage,
               window.parameterPanel()->params().matching.min_coverage);
   }
@@ -99,7 +101,7 @@ TEST_F(Workflow, SyntheticTeachSceneCropTeachThenRecognizeTheBin) {
         << "the floor preview colour is not in the picture";
     test::saveDocImage(window, "gui-teach-floor.png");
   }
-  window.removeFloorFromPart();  // applies the preview: synchronous and undoable
+  window.removeFloorFromPart(); // applies the preview: synchronous and undoable
   EXPECT_EQ(window.part()->validCount(), scan_points - floor_points);
   EXPECT_EQ(window.floorPreviewCount(), 0u) << "the preview belongs to the previous working cloud";
 
@@ -137,13 +139,13 @@ TEST_F(Workflow, SyntheticTeachSceneCropTeachThenRecognizeTheBin) {
   // The window shows what the core finds with the same model, scene and parameters.
   {
     core::Recognizer direct(window.model());
-    const core::RecognitionResult expected =
-        direct.recognize(*window.scan(), core::sensorPreset("phoxi-m-1032"),
-                         window.parameterPanel()->params());
+    const core::RecognitionResult expected = direct.recognize(
+        *window.scan(), core::sensorPreset("phoxi-m-1032"), window.parameterPanel()->params());
     ASSERT_EQ(result->detections.size(), expected.detections.size());
     for (std::size_t i = 0; i < expected.detections.size(); ++i) {
       EXPECT_DOUBLE_EQ(result->detections[i].score, expected.detections[i].score);
-      EXPECT_TRUE(result->detections[i].T_scene_model.isApprox(expected.detections[i].T_scene_model));
+      EXPECT_TRUE(
+          result->detections[i].T_scene_model.isApprox(expected.detections[i].T_scene_model));
     }
   }
 
@@ -153,7 +155,8 @@ TEST_F(Workflow, SyntheticTeachSceneCropTeachThenRecognizeTheBin) {
   for (int row = 0; row < table->rowCount(); ++row) {
     const core::Detection& d = result->detections[row];
     EXPECT_EQ(table->item(row, 0)->text(), QString::number(d.score, 'f', 3)) << "row " << row;
-    EXPECT_EQ(table->item(row, 1)->text(), rowPosition(d.T_scene_model.translation())) << "row " << row;
+    EXPECT_EQ(table->item(row, 1)->text(), rowPosition(d.T_scene_model.translation()))
+        << "row " << row;
     EXPECT_EQ(table->item(row, 4)->text().count(QLatin1Char('(')),
               static_cast<int>(d.grip_points_scene.size()));
     if (row > 0) {

@@ -5,8 +5,8 @@
 #include "core/pipeline/Recognizer.h"
 #include "tests/unit/pipeline/IdealScene.h"
 
-#include <gtest/gtest.h>
 #include <cstdio>
+#include <gtest/gtest.h>
 
 using namespace scanpick;
 using namespace scanpick::core;
@@ -14,8 +14,8 @@ using namespace scanpick::core;
 namespace {
 
 struct Outcome {
-  int good = 0;  // copies found with a pose within the tolerance
-  double max_position_mm = 0, max_rotation_deg = 0;  // over the good ones
+  int good = 0;                                     // copies found with a pose within the tolerance
+  double max_position_mm = 0, max_rotation_deg = 0; // over the good ones
   std::size_t detections = 0;
 };
 
@@ -26,7 +26,8 @@ std::shared_ptr<const TaughtModel> teachIdeal() {
   const PointCloud scan = test::idealScene(part, {T_teach_part}, 0.0, 1);
   TeachOptions options;
   options.name = "ideal";
-  options.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
+  options.crop_box_mm =
+      Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
   options.sensor = sensorPreset("phoxi-m-1032");
   return std::make_shared<TaughtModel>(teach(scan, options, test::idealParams(0.001)));
 }
@@ -46,7 +47,8 @@ Outcome run(const TaughtModel& model, double noise_mm, double line_threshold_mm,
   RecognitionParams params = test::idealParams(line_threshold_mm);
   if (verify_mm > 0)
     params = verified(params, verify_mm);
-  const RecognitionResult result = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
+  const RecognitionResult result =
+      recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
   // Expected model pose of copy k: T_scene_part · T_teach_part⁻¹ · T_teach_model, with the teach
   // scan at T_teach_part = translation (0, 0, 700).
   Eigen::Isometry3d T_part_teach = Eigen::Isometry3d::Identity();
@@ -58,8 +60,9 @@ Outcome run(const TaughtModel& model, double noise_mm, double line_threshold_mm,
     double best_dp = 1e9, best_dr = 1e9, best_coverage = -1;
     for (const auto& d : result.detections) {
       const double dp = (d.T_scene_model.translation() - expected.translation()).norm();
-      const double dr = Eigen::AngleAxisd(d.T_scene_model.linear().transpose() * expected.linear())
-                            .angle() * 180.0 / M_PI;
+      const double dr =
+          Eigen::AngleAxisd(d.T_scene_model.linear().transpose() * expected.linear()).angle() *
+          180.0 / M_PI;
       if (dp < best_dp) {
         best_dp = dp;
         best_dr = dr;
@@ -92,7 +95,7 @@ TEST(IdealRecognition, AllTwelveCopiesExactWithoutNoise) {
   const auto model = teachIdeal();
   const Outcome o = run(*model, 0.0, 0.001, 0.1, 0.1);
   EXPECT_EQ(o.good, 12);
-  EXPECT_EQ(o.detections, 12u);  // and nothing else
+  EXPECT_EQ(o.detections, 12u); // and nothing else
 }
 
 TEST(IdealRecognition, AllTwelveWithNoiseOf0_3mm) {

@@ -3,9 +3,8 @@
 #include "core/pipeline/Recognizer.h"
 #include "tests/integration/SynthTeach.h"
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
+#include <gtest/gtest.h>
 
 using namespace scanpick;
 using namespace scanpick::core;

@@ -10,10 +10,9 @@
 #include "core/pipeline/Recognizer.h"
 #include "core/refine/SceneIndex.h"
 
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <filesystem>
+#include <gtest/gtest.h>
 
 using namespace scanpick::core;
 namespace fs = std::filesystem;
@@ -41,7 +40,8 @@ double confirmedShare(const PointCloud& model_mm, const SceneIndex& scene,
 } // namespace
 
 TEST(RealMilk, CartonFoundOnceAndOnTheSurface) {
-  const fs::path model_file = kData / "milk.pcd", scene_file = kData / "milk_cartoon_all_small_clorox.pcd";
+  const fs::path model_file = kData / "milk.pcd",
+                 scene_file = kData / "milk_cartoon_all_small_clorox.pcd";
   if (!fs::exists(model_file) || !fs::exists(scene_file))
     GTEST_SKIP() << "real scans " << model_file << " / " << scene_file
                  << " are absent (they live in ../shared/data/pcl beside the project)";
@@ -55,7 +55,8 @@ TEST(RealMilk, CartonFoundOnceAndOnTheSurface) {
   TeachOptions options;
   options.name = "milk";
   // milk.pcd is already cropped: the box only has to hold it.
-  options.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f::Constant(-1e5f), Eigen::Vector3f::Constant(1e5f));
+  options.crop_box_mm =
+      Eigen::AlignedBox3f(Eigen::Vector3f::Constant(-1e5f), Eigen::Vector3f::Constant(1e5f));
   options.sensor = sensorPreset("kinect-v1");
   options.source_units = LengthUnit::Metres;
   auto model = std::make_shared<TaughtModel>(teach(teach_scan, options, params));
@@ -69,7 +70,8 @@ TEST(RealMilk, CartonFoundOnceAndOnTheSurface) {
   ASSERT_EQ(result.detections.size(), 1u) << "the carton must be found exactly once";
 
   const SceneIndex index(scene);
-  const double share = confirmedShare(model->cloud_mm, index, result.detections[0].T_scene_model, 5.0);
+  const double share =
+      confirmedShare(model->cloud_mm, index, result.detections[0].T_scene_model, 5.0);
   std::printf("milk: %.1f %% of the model points within 5 mm of the scene\n", 100.0 * share);
   EXPECT_GE(share, 0.8);
 

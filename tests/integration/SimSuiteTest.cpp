@@ -7,11 +7,10 @@
 #include "core/sim/Suite.h"
 #include "tests/support/TempDir.h"
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <set>
 
 using namespace scanpick::core;
@@ -45,7 +44,8 @@ TEST(SimSuite, KinectAndTeachSuites) {
     EXPECT_EQ(s.request.sensor, "kinect-v1");
   const auto teach = suiteScenes("teach", kDefaultSuiteSeed);
   // kTeachSides table scans and one view cut from a bin, per part and sensor.
-  EXPECT_EQ(teach.size(), builtInPartNames().size() * sensorPresetNames().size() * (kTeachSides + 1));
+  EXPECT_EQ(teach.size(),
+            builtInPartNames().size() * sensorPresetNames().size() * (kTeachSides + 1));
   EXPECT_EQ(teach.at(kTeachSides).relative_prefix,
             std::filesystem::path("teach/phoxi-m-1032/support-bin"));
   EXPECT_EQ(teach.at(kTeachSides).novel_against.size(), static_cast<std::size_t>(kTeachSides));
@@ -61,17 +61,20 @@ TEST(SimSuite, WrittenScenesFollowTheLayoutAndAreReproducible) {
                                   *std::prev(suiteScenes("teach", kDefaultSuiteSeed).end(), 2)};
   const auto files = writeSuite(dir.path(), some);
   EXPECT_EQ(files.size(), 9u);
-  for (const char* f : {"phoxi-bin/scene-000.pcd", "phoxi-bin/scene-000.png", "phoxi-bin/scene-000.gt.json",
-                        "kinect-bin/scene-011.gt.json", "teach/kinect-v1/coat-rack-side3.gt.json"})
+  for (const char* f :
+       {"phoxi-bin/scene-000.pcd", "phoxi-bin/scene-000.png", "phoxi-bin/scene-000.gt.json",
+        "kinect-bin/scene-011.gt.json", "teach/kinect-v1/coat-rack-side3.gt.json"})
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
   const auto gt = nlohmann::json::parse(readFile(dir / "phoxi-bin/scene-000.gt.json"));
   EXPECT_EQ(gt["instances"].size(), static_cast<std::size_t>(some[0].request.count));
-  EXPECT_TRUE(nlohmann::json::parse(readFile(dir / "teach/kinect-v1/coat-rack-side3.gt.json")).contains("crop_box"));
+  EXPECT_TRUE(nlohmann::json::parse(readFile(dir / "teach/kinect-v1/coat-rack-side3.gt.json"))
+                  .contains("crop_box"));
 
   TempDir again;
   writeSuite(again.path(), {some[0]});
   EXPECT_EQ(readFile(dir / "phoxi-bin/scene-000.pcd"), readFile(again / "phoxi-bin/scene-000.pcd"));
-  EXPECT_EQ(readFile(dir / "phoxi-bin/scene-000.gt.json"), readFile(again / "phoxi-bin/scene-000.gt.json"));
+  EXPECT_EQ(readFile(dir / "phoxi-bin/scene-000.gt.json"),
+            readFile(again / "phoxi-bin/scene-000.gt.json"));
 }
 
 TEST(SimSuite, DemoScenes) {
@@ -81,7 +84,8 @@ TEST(SimSuite, DemoScenes) {
   const auto bin = nlohmann::json::parse(readFile(dir / "demo-bin.gt.json"));
   EXPECT_EQ(bin["instances"].size(), 8u);
   EXPECT_EQ(bin["sensor"]["preset"], "phoxi-m-1032");
-  EXPECT_EQ(nlohmann::json::parse(readFile(dir / "support-teach.gt.json"))["scene"]["kind"], "teach");
+  EXPECT_EQ(nlohmann::json::parse(readFile(dir / "support-teach.gt.json"))["scene"]["kind"],
+            "teach");
 }
 
 TEST(SimSuite, TeachSidesShowThePartFromOtherSides) {
@@ -99,8 +103,8 @@ TEST(SimSuite, TeachSidesShowThePartFromOtherSides) {
   };
   const Eigen::Vector3d upright = viewDirection(0), upside_down = viewDirection(1),
                         lying = viewDirection(2);
-  EXPECT_LT(upright.dot(upside_down), -0.9);  // seen from the other end
-  EXPECT_LT(std::abs(upright.dot(lying)), 0.5);  // seen from the side
+  EXPECT_LT(upright.dot(upside_down), -0.9);    // seen from the other end
+  EXPECT_LT(std::abs(upright.dot(lying)), 0.5); // seen from the side
   SceneSpec bad;
   bad.layout = LayoutKind::Teach;
   bad.parts = {builtInPart("cup")};

@@ -20,10 +20,9 @@
 namespace scanpick::ui {
 
 /// Result of one job: an immutable value shared with the GUI thread, or an error message.
-template <typename R>
-struct JobOutcome {
-  std::shared_ptr<const R> value;  ///< null when the job failed or was cancelled
-  QString error;                   ///< the core::Error text, empty on success
+template <typename R> struct JobOutcome {
+  std::shared_ptr<const R> value; ///< null when the job failed or was cancelled
+  QString error;                  ///< the core::Error text, empty on success
   bool cancelled = false;
 };
 
@@ -96,23 +95,22 @@ quint64 JobRunner::run(std::function<R(const core::ProgressFn&)> work,
     }
     emit jobFinished(gen, accepted);
   });
-  watcher->setFuture(QtConcurrent::run(
-      [work = std::move(work)](QPromise<JobOutcome<R>>& promise) {
-        promise.setProgressRange(0, 1000);
-        const core::ProgressFn progress = [&promise](double fraction) {
-          promise.setProgressValue(static_cast<int>(fraction * 1000));
-          return !promise.isCanceled();
-        };
-        JobOutcome<R> outcome;
-        try {
-          outcome.value = std::make_shared<const R>(work(progress));
-        } catch (const core::Cancelled&) {
-          outcome.cancelled = true;
-        } catch (const std::exception& e) {
-          outcome.error = QString::fromStdString(e.what());
-        }
-        promise.addResult(std::move(outcome));
-      }));
+  watcher->setFuture(QtConcurrent::run([work = std::move(work)](QPromise<JobOutcome<R>>& promise) {
+    promise.setProgressRange(0, 1000);
+    const core::ProgressFn progress = [&promise](double fraction) {
+      promise.setProgressValue(static_cast<int>(fraction * 1000));
+      return !promise.isCanceled();
+    };
+    JobOutcome<R> outcome;
+    try {
+      outcome.value = std::make_shared<const R>(work(progress));
+    } catch (const core::Cancelled&) {
+      outcome.cancelled = true;
+    } catch (const std::exception& e) {
+      outcome.error = QString::fromStdString(e.what());
+    }
+    promise.addResult(std::move(outcome));
+  }));
   jobStarted(watcher);
   return gen;
 }

@@ -94,7 +94,9 @@ DevicePanel::~DevicePanel() {
 #endif
 }
 
-QString DevicePanel::stateText() const { return m_state->text(); }
+QString DevicePanel::stateText() const {
+  return m_state->text();
+}
 
 void DevicePanel::updateButtons() {
   m_open->setText(m_camera ? tr("Close") : tr("Open"));
@@ -117,7 +119,9 @@ void DevicePanel::refresh() {
           auto* item = new QListWidgetItem(
               QStringLiteral("%1 — %2%3")
                   .arg(QString::fromStdString(d.model), QString::fromStdString(d.id),
-                       d.note.empty() ? QString() : QStringLiteral(" (%1)").arg(QString::fromStdString(d.note))),
+                       d.note.empty()
+                           ? QString()
+                           : QStringLiteral(" (%1)").arg(QString::fromStdString(d.note))),
               m_list);
           item->setData(Qt::UserRole, QString::fromStdString(d.id));
         }
@@ -141,7 +145,9 @@ void DevicePanel::openDevice(const QString& id) {
   m_state->setText(tr("Opening %1…").arg(id));
   const std::string sid = id.toStdString();
   m_jobs->run<std::shared_ptr<devices::Camera>>(
-      [sid](const core::ProgressFn&) { return std::shared_ptr<devices::Camera>(devices::openCamera(sid)); },
+      [sid](const core::ProgressFn&) {
+        return std::shared_ptr<devices::Camera>(devices::openCamera(sid));
+      },
       [this, id](std::shared_ptr<const std::shared_ptr<devices::Camera>> camera) {
         m_camera = *camera;
         QSettings().setValue(settings::kLastDevice, id);
@@ -200,16 +206,20 @@ void DevicePanel::setStreaming(bool on) {
             // Device thread: hand over an immutable copy; skip frames while one is pending.
             auto cloud = std::make_shared<const core::PointCloud>(frame.cloud);
             const QString name = tr("stream %1").arg(frame.metadata.frame_index);
-            QMetaObject::invokeMethod(this, [this, cloud, name] { emit frameCaptured(cloud, name); },
-                                      Qt::QueuedConnection);
+            QMetaObject::invokeMethod(
+                this, [this, cloud, name] { emit frameCaptured(cloud, name); },
+                Qt::QueuedConnection);
           },
           [this](const devices::DeviceError& error) {
             const QString message = QString::fromUtf8(error.what());
-            QMetaObject::invokeMethod(this, [this, message] {
-              m_stream->setChecked(false);
-              m_state->setText(message);
-              emit deviceError(message);
-            }, Qt::QueuedConnection);
+            QMetaObject::invokeMethod(
+                this,
+                [this, message] {
+                  m_stream->setChecked(false);
+                  m_state->setText(message);
+                  emit deviceError(message);
+                },
+                Qt::QueuedConnection);
           },
           std::chrono::seconds(5));
     }

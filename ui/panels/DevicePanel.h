@@ -17,7 +17,7 @@ class QPushButton;
 namespace scanpick::devices {
 class Camera;
 class UsbMonitor;
-}
+} // namespace scanpick::devices
 
 namespace scanpick::ui {
 

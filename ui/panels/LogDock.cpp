@@ -43,7 +43,8 @@ private:
   LogDock* m_dock;
 };
 
-LogDock::LogDock(QWidget* parent) : QDockWidget(tr("Log"), parent), m_view(new QPlainTextEdit(this)) {
+LogDock::LogDock(QWidget* parent)
+    : QDockWidget(tr("Log"), parent), m_view(new QPlainTextEdit(this)) {
   setObjectName(QStringLiteral("LogDock"));
   m_view->setReadOnly(true);
   m_view->setMaximumBlockCount(5000);
@@ -61,7 +62,7 @@ LogDock::~LogDock() {
 }
 
 void LogDock::appendLine(int level, const QString& text) {
-  const char* colour = level >= spdlog::level::err ? "#d04040"
+  const char* colour = level >= spdlog::level::err    ? "#d04040"
                        : level == spdlog::level::warn ? "#c08000"
                                                       : nullptr;
   if (colour)
@@ -77,6 +78,8 @@ int LogDock::lineCount() const {
   return m_view->document()->isEmpty() ? 0 : m_view->document()->blockCount();
 }
 
-QString LogDock::text() const { return m_view->toPlainText(); }
+QString LogDock::text() const {
+  return m_view->toPlainText();
+}
 
 } // namespace scanpick::ui

@@ -36,7 +36,9 @@ int decimalsFor(double step) {
   return std::max(decimals, 1);
 }
 
-QString qs(const std::string& s) { return QString::fromStdString(s); }
+QString qs(const std::string& s) {
+  return QString::fromStdString(s);
+}
 
 } // namespace
 
@@ -233,7 +235,8 @@ void ParameterPanel::loadPresetFile(const QString& path) {
 }
 
 void ParameterPanel::savePresetFile(const QString& path, const QString& name) const {
-  core::savePreset(path.toStdString(), core::Preset{name.toStdString(), "saved from scanpick", m_params});
+  core::savePreset(path.toStdString(),
+                   core::Preset{name.toStdString(), "saved from scanpick", m_params});
   core::logger()->info("saved preset to {}", path.toStdString());
 }
 
@@ -249,7 +252,8 @@ void ParameterPanel::fillPresetList() {
   m_presets->clear();
   m_presets->addItem(tr("(choose a preset)"), QString());
   const QDir dir(presetsDirectory());
-  for (const QFileInfo& file : dir.entryInfoList({QStringLiteral("*.json")}, QDir::Files, QDir::Name))
+  for (const QFileInfo& file :
+       dir.entryInfoList({QStringLiteral("*.json")}, QDir::Files, QDir::Name))
     m_presets->addItem(file.completeBaseName(), file.absoluteFilePath());
 }
 

@@ -41,7 +41,9 @@ void ResultsTable::setDetections(const std::vector<core::Detection>& detections,
                    .arg(QString::fromStdString(g.name), fmt(g.position_mm.x()),
                         fmt(g.position_mm.y()), fmt(g.position_mm.z()));
     setItem(row, 0, new QTableWidgetItem(QString::number(d.score, 'f', 3)));
-    setItem(row, 1, new QTableWidgetItem(QStringLiteral("%1, %2, %3").arg(fmt(t.x()), fmt(t.y()), fmt(t.z()))));
+    setItem(
+        row, 1,
+        new QTableWidgetItem(QStringLiteral("%1, %2, %3").arg(fmt(t.x()), fmt(t.y()), fmt(t.z()))));
     auto* orientation = new QTableWidgetItem(
         QStringLiteral("%1, %2, %3").arg(fmt(ypr[2]), fmt(ypr[1]), fmt(ypr[0])));
     if (d.free_turn_axis) {
@@ -51,7 +53,8 @@ void ResultsTable::setDetections(const std::vector<core::Detection>& detections,
                                  "(direction %1, %2, %3), or round but for a detail this scan "
                                  "does not show (a cup's handle): its turn about that axis is not "
                                  "seen. Grip points on the axis are right.")
-                                  .arg(QString::number(a.x(), 'f', 3), QString::number(a.y(), 'f', 3),
+                                  .arg(QString::number(a.x(), 'f', 3),
+                                       QString::number(a.y(), 'f', 3),
                                        QString::number(a.z(), 'f', 3)));
     }
     if (!d.alternative_poses.empty()) {

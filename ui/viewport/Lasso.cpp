@@ -14,7 +14,8 @@ ScreenProjection ScreenProjection::fromRenderer(vtkRenderer* renderer, double wi
   p.width_px = width_px;
   p.height_px = height_px;
   const double aspect = height_px > 0 ? width_px / height_px : 1.0;
-  vtkMatrix4x4* m = renderer->GetActiveCamera()->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  vtkMatrix4x4* m =
+      renderer->GetActiveCamera()->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c)
       p.world_to_ndc(r, c) = m->GetElement(r, c);

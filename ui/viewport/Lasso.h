@@ -19,8 +19,8 @@ namespace scanpick::ui {
 /// World (mm) → viewport widget coordinates (logical pixels, y down) of one camera, captured
 /// once on the GUI thread so points can be projected on any thread.
 struct ScreenProjection {
-  Eigen::Matrix4d world_to_ndc = Eigen::Matrix4d::Identity();  ///< VTK's composite projection
-  double width_px = 0, height_px = 0;                          ///< widget size, logical pixels
+  Eigen::Matrix4d world_to_ndc = Eigen::Matrix4d::Identity(); ///< VTK's composite projection
+  double width_px = 0, height_px = 0;                         ///< widget size, logical pixels
 
   /// The renderer's current camera for a widget of `width_px` × `height_px` logical pixels.
   static ScreenProjection fromRenderer(vtkRenderer* renderer, double width_px, double height_px);

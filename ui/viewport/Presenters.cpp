@@ -128,7 +128,7 @@ vtkSmartPointer<vtkActor> makeFeaturesActor(const core::FeatureList& features,
         const Eigen::Vector3d p = c + f.size_mm * (std::cos(a) * u + std::sin(a) * v);
         lines->InsertCellPoint(points->InsertNextPoint(p.data()));
       }
-      lines->InsertCellPoint(first);  // close the ring
+      lines->InsertCellPoint(first); // close the ring
       colours->InsertNextTypedTuple(circle_rgb.data());
     }
   }

@@ -13,26 +13,46 @@ namespace {
 /// VTK key symbol (X11 names) of a non-printing Qt key, or nullptr.
 const char* keySym(int key) {
   switch (key) {
-  case Qt::Key_Left: return "Left";
-  case Qt::Key_Right: return "Right";
-  case Qt::Key_Up: return "Up";
-  case Qt::Key_Down: return "Down";
-  case Qt::Key_PageUp: return "Prior";
-  case Qt::Key_PageDown: return "Next";
-  case Qt::Key_Home: return "Home";
-  case Qt::Key_End: return "End";
-  case Qt::Key_Escape: return "Escape";
-  case Qt::Key_Return: return "Return";
-  case Qt::Key_Enter: return "KP_Enter";
-  case Qt::Key_Tab: return "Tab";
-  case Qt::Key_Backspace: return "BackSpace";
-  case Qt::Key_Delete: return "Delete";
-  case Qt::Key_Insert: return "Insert";
-  case Qt::Key_Space: return "space";
-  case Qt::Key_Shift: return "Shift_L";
-  case Qt::Key_Control: return "Control_L";
-  case Qt::Key_Alt: return "Alt_L";
-  default: return nullptr;
+  case Qt::Key_Left:
+    return "Left";
+  case Qt::Key_Right:
+    return "Right";
+  case Qt::Key_Up:
+    return "Up";
+  case Qt::Key_Down:
+    return "Down";
+  case Qt::Key_PageUp:
+    return "Prior";
+  case Qt::Key_PageDown:
+    return "Next";
+  case Qt::Key_Home:
+    return "Home";
+  case Qt::Key_End:
+    return "End";
+  case Qt::Key_Escape:
+    return "Escape";
+  case Qt::Key_Return:
+    return "Return";
+  case Qt::Key_Enter:
+    return "KP_Enter";
+  case Qt::Key_Tab:
+    return "Tab";
+  case Qt::Key_Backspace:
+    return "BackSpace";
+  case Qt::Key_Delete:
+    return "Delete";
+  case Qt::Key_Insert:
+    return "Insert";
+  case Qt::Key_Space:
+    return "space";
+  case Qt::Key_Shift:
+    return "Shift_L";
+  case Qt::Key_Control:
+    return "Control_L";
+  case Qt::Key_Alt:
+    return "Alt_L";
+  default:
+    return nullptr;
   }
 }
 

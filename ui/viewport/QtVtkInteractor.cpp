@@ -29,7 +29,8 @@ void QtVtkTimerHost::stop(int platform_id) {
 
 vtkStandardNewMacro(QtVtkInteractor)
 
-QtVtkInteractor::QtVtkInteractor() : m_timers(this) {}
+    QtVtkInteractor::QtVtkInteractor()
+    : m_timers(this) {}
 
 QtVtkInteractor::~QtVtkInteractor() = default;
 

@@ -33,8 +33,8 @@ public:
   static QtVtkInteractor* New();
   vtkTypeMacro(QtVtkInteractor, vtkRenderWindowInteractor)
 
-  /// Called by the timer host when a Qt timer fires.
-  void onTimer(int platform_id);
+      /// Called by the timer host when a Qt timer fires.
+      void onTimer(int platform_id);
 
 protected:
   QtVtkInteractor();

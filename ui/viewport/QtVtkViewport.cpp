@@ -17,16 +17,17 @@ namespace scanpick::ui {
 
 QtVtkViewport::QtVtkViewport(QWidget* parent) : QOpenGLWidget(parent) {
   setFocusPolicy(Qt::StrongFocus);
-  setMouseTracking(true);  // hover highlighting of 3D widgets
+  setMouseTracking(true); // hover highlighting of 3D widgets
   setMinimumSize(160, 120);
   // Qt owns the context; VTK renders into its own framebuffers that paintGL blits.
   m_render_window->SetReadyForRendering(false);
   m_render_window->SetFrameBlitModeToNoBlit();
   m_render_window->SetMultiSamples(0);
   m_render_window->SetOwnContext(false);
-  for (const unsigned long id : {vtkCommand::WindowMakeCurrentEvent, vtkCommand::WindowIsCurrentEvent,
-                                 vtkCommand::WindowFrameEvent, vtkCommand::WindowSupportsOpenGLEvent,
-                                 vtkCommand::WindowIsDirectEvent})
+  for (const unsigned long id :
+       {vtkCommand::WindowMakeCurrentEvent, vtkCommand::WindowIsCurrentEvent,
+        vtkCommand::WindowFrameEvent, vtkCommand::WindowSupportsOpenGLEvent,
+        vtkCommand::WindowIsDirectEvent})
     m_render_window->AddObserver(id, this, &QtVtkViewport::onRenderWindowEvent);
 
   m_renderer->SetBackground(0.11, 0.12, 0.14);
@@ -67,9 +68,15 @@ QSurfaceFormat QtVtkViewport::defaultFormat() {
   return format;
 }
 
-vtkGenericOpenGLRenderWindow* QtVtkViewport::renderWindow() const { return m_render_window; }
-vtkRenderer* QtVtkViewport::renderer() const { return m_renderer; }
-QtVtkInteractor* QtVtkViewport::interactor() const { return m_interactor; }
+vtkGenericOpenGLRenderWindow* QtVtkViewport::renderWindow() const {
+  return m_render_window;
+}
+vtkRenderer* QtVtkViewport::renderer() const {
+  return m_renderer;
+}
+QtVtkInteractor* QtVtkViewport::interactor() const {
+  return m_interactor;
+}
 
 void QtVtkViewport::requestRender() {
   m_needs_render = true;
@@ -118,7 +125,7 @@ void QtVtkViewport::initializeGL() {
   // Runs again when the widget moves to another top-level window (new context).
   auto* state = m_render_window->GetState();
   state->Reset();
-  state->vtkglDepthFunc(GL_LEQUAL);  // Qt leaves GL_LESS
+  state->vtkglDepthFunc(GL_LEQUAL); // Qt leaves GL_LESS
   m_render_window->SetOwnContext(false);
   m_render_window->SetReadyForRendering(true);
   m_render_window->OpenGLInitContext();

@@ -1,4 +1,5 @@
 #include "core/common/AtomicFile.h"
+
 #include "core/common/Error.h"
 #include "tests/support/TempDir.h"
 

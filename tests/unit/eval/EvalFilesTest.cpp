@@ -164,7 +164,8 @@ TEST(EvalFiles, BadInputThrowsClearErrors) {
   alternatives_not_array["detections"][0]["alternative_poses"] = 3;
   expectError([&] { f.evalResults(alternatives_not_array); }, "alternative_poses must be an array");
   json alternative_scaled = good;
-  alternative_scaled["detections"][0]["alternative_poses"] = {scaled["detections"][0]["T_scene_model"]};
+  alternative_scaled["detections"][0]["alternative_poses"] = {
+      scaled["detections"][0]["T_scene_model"]};
   expectError([&] { f.evalResults(alternative_scaled); }, "alternative_poses[0]");
   json axes_unpaired = good;
   axes_unpaired["detections"][0]["alternative_free_turn_axes"] = {nullptr};
@@ -307,20 +308,23 @@ TEST(EvalFiles, ViewsOfOnePartAreEvaluatedEachAgainstItsOwnTeachScan) {
   f.teach["scene"]["cloud"] = "teach.pcd";
   write(f.dir / "teach.gt.json", f.teach);
   write(f.dir / "side.gt.json", side);
-  const std::vector<core::eval::GroundTruth> teach = {core::eval::loadGroundTruth(f.dir / "teach.gt.json"),
-                                                      core::eval::loadGroundTruth(f.dir / "side.gt.json")};
+  const std::vector<core::eval::GroundTruth> teach = {
+      core::eval::loadGroundTruth(f.dir / "teach.gt.json"),
+      core::eval::loadGroundTruth(f.dir / "side.gt.json")};
   // Instance 0 found through view 0, instance 1 through view 1 (whose frame differs).
   json results = resultsJson({f.poses[0]}, f.teach);
   const json side_detection = resultsJson({f.poses[1]}, side)["detections"][0];
   results["detections"].push_back(side_detection);
   results["detections"][1]["id"] = 1;
   results["detections"][1]["model"] = 1;
-  const json model = {{"name", "widget"}, {"T_teach_model", transformToJson(test::testTeachModel())}};
+  const json model = {{"name", "widget"},
+                      {"T_teach_model", transformToJson(test::testTeachModel())}};
   results["models"] = json::array({model, model});
   results["models"][0]["teach_scan"] = "teach.pcd";
   results["models"][1]["teach_scan"] = "side.pcd";
   write(f.dir / "result.json", results);
-  const auto report = core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {});
+  const auto report =
+      core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {});
   EXPECT_DOUBLE_EQ(*report.overall.precision, 1.0);
   EXPECT_DOUBLE_EQ(*report.overall.recall, 1.0);
   EXPECT_NEAR(report.overall.translation_mm.max, 0.0, 1e-6);
@@ -328,17 +332,20 @@ TEST(EvalFiles, ViewsOfOnePartAreEvaluatedEachAgainstItsOwnTeachScan) {
   // Evaluated against the wrong view's teach scan, detection 1 is off.
   results["models"][1]["teach_scan"] = "teach.pcd";
   write(f.dir / "result.json", results);
-  const auto wrong = core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {});
+  const auto wrong =
+      core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {});
   EXPECT_DOUBLE_EQ(*wrong.overall.recall, 0.5);
 
   // A view whose teach scan has no ground truth, or a detection naming no model: clear errors.
   results["models"][1]["teach_scan"] = "other.pcd";
   write(f.dir / "result.json", results);
-  expectError([&] { core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {}); },
-              "other.pcd");
+  expectError(
+      [&] { core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {}); },
+      "other.pcd");
   results["models"][1]["teach_scan"] = "side.pcd";
   results["detections"][1]["model"] = 2;
   write(f.dir / "result.json", results);
-  expectError([&] { core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {}); },
-              "names no entry");
+  expectError(
+      [&] { core::eval::evaluateFiles(f.dir / "scene.gt.json", f.dir / "result.json", teach, {}); },
+      "names no entry");
 }

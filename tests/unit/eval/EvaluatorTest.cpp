@@ -170,7 +170,8 @@ TEST(Evaluator, ReportedFreeTurnIsAcceptedOnlyWhenAsked) {
     ASSERT_EQ(scene.outcomes.size(), 2u);
     EXPECT_EQ(scene.outcomes[0].true_positive, accept);
     EXPECT_NEAR(scene.outcomes[0].error->rotation_deg, accept ? 0.0 : 30.0, 1e-6);
-    EXPECT_NEAR(scene.outcomes[0].error->translation_mm, accept ? 0.0 : 2.0 * 5.0 * std::sin(test::degToRad(15.0)), 1e-6);
+    EXPECT_NEAR(scene.outcomes[0].error->translation_mm,
+                accept ? 0.0 : 2.0 * 5.0 * std::sin(test::degToRad(15.0)), 1e-6);
     EXPECT_FALSE(scene.outcomes[1].true_positive) << "turned about another axis";
   }
 }
@@ -191,9 +192,10 @@ TEST(Evaluator, ReportedAlternativePoseIsAcceptedOnlyWhenAsked) {
     auto results = test::makeResults();
     test::addDetection(results, 0.9, T_turned, teach);
     test::addDetection(results, 0.8, T_turned, teach);
-    results.detections[0].alternative_poses = {test::modelPoseFor(T_true * pose({0, 0, 0}, 90), teach),
-                                               test::modelPoseFor(T_true, teach)};
-    results.detections[1].alternative_poses = {test::modelPoseFor(T_true * pose({0, 0, 0}, 90), teach)};
+    results.detections[0].alternative_poses = {
+        test::modelPoseFor(T_true * pose({0, 0, 0}, 90), teach), test::modelPoseFor(T_true, teach)};
+    results.detections[1].alternative_poses = {
+        test::modelPoseFor(T_true * pose({0, 0, 0}, 90), teach)};
     core::eval::Tolerances tolerances;
     tolerances.accept_free_turns = accept;
     const auto scene = core::eval::evaluateScene(truth, results, teach, tolerances, "scene");

@@ -1,9 +1,9 @@
-#include "core/common/Error.h"
 #include "core/features/FeatureExtraction.h"
+
+#include "core/common/Error.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
-
 #include <map>
 #include <random>
 
@@ -11,8 +11,8 @@ using namespace scanpick;
 
 namespace {
 // `n` points evenly along [a, b] with Gaussian noise sigma (mm), fixed seed.
-std::vector<Eigen::Vector3f> segment(const Eigen::Vector3f& a, const Eigen::Vector3f& b, int n, float sigma,
-                                     std::uint64_t seed) {
+std::vector<Eigen::Vector3f> segment(const Eigen::Vector3f& a, const Eigen::Vector3f& b, int n,
+                                     float sigma, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<float> noise(0.0f, sigma);
   std::vector<Eigen::Vector3f> pts;
@@ -23,8 +23,8 @@ std::vector<Eigen::Vector3f> segment(const Eigen::Vector3f& a, const Eigen::Vect
   return pts;
 }
 // `n` points on a circle of `radius` around `centre` in the plane with unit `normal`.
-std::vector<Eigen::Vector3f> ring(const Eigen::Vector3f& centre, const Eigen::Vector3f& normal, float radius,
-                                  int n, float sigma) {
+std::vector<Eigen::Vector3f> ring(const Eigen::Vector3f& centre, const Eigen::Vector3f& normal,
+                                  float radius, int n, float sigma) {
   std::mt19937_64 rng(3);
   std::normal_distribution<float> noise(0.0f, sigma);
   const Eigen::Vector3f u = normal.unitOrthogonal(), v = normal.cross(u);
@@ -52,7 +52,7 @@ TEST(FeatureExtraction, NoisyLineGivesOneLineOfTheRightLengthCentreAndDirection)
   ASSERT_EQ(out.features.size(), 1u);
   const auto& f = out.features[0];
   EXPECT_EQ(f.type, core::FeatureType::Line);
-  EXPECT_NEAR(f.size_mm, 100.0f, 1.0f);  // extremes move by about the noise
+  EXPECT_NEAR(f.size_mm, 100.0f, 1.0f); // extremes move by about the noise
   EXPECT_LT((f.centre_mm - Eigen::Vector3f(30, 40, 500)).norm(), 0.5f);
   EXPECT_GT(std::abs(f.direction.dot(Eigen::Vector3f(0.6f, 0.8f, 0))), 0.999f);
   EXPECT_NEAR(f.direction.norm(), 1.0f, 1e-5);
@@ -65,7 +65,7 @@ TEST(FeatureExtraction, RingGivesOneCircleWithItsRadiusAndNormal) {
   const Eigen::Vector3f normal = Eigen::Vector3f(0.3f, -0.2f, 1.0f).normalized();
   const auto pts = ring({10, 20, 600}, normal, 10.0f, 120, 0.05f);
   const auto out = core::extractFeatures(pts, testParams(), 7);
-  ASSERT_EQ(out.features.size(), 1u);  // a chord holds far fewer than 30 points within 0.5 mm
+  ASSERT_EQ(out.features.size(), 1u); // a chord holds far fewer than 30 points within 0.5 mm
   const auto& f = out.features[0];
   EXPECT_EQ(f.type, core::FeatureType::Circle);
   EXPECT_NEAR(f.size_mm, 10.0f, 0.1f);
@@ -74,7 +74,7 @@ TEST(FeatureExtraction, RingGivesOneCircleWithItsRadiusAndNormal) {
   EXPECT_EQ(f.inlier_count, 120);
 
   auto params = testParams();
-  params.max_circle_radius_mm = 8.0;  // the only circle is now out of range: nothing qualifies
+  params.max_circle_radius_mm = 8.0; // the only circle is now out of range: nothing qualifies
   const auto none = core::extractFeatures(pts, params, 7);
   for (const auto& g : none.features)
     EXPECT_NE(g.type, core::FeatureType::Circle);
@@ -102,17 +102,19 @@ TEST(FeatureExtraction, CollinearSeparateSegmentsGiveTwoLinesNotOneLong) {
 TEST(FeatureExtraction, AllEstimatorsRunAndTheSameSeedGivesTheSameOutput) {
   // A square outline (4 x 50 mm edges) plus a ring: lines and a circle to find.
   std::vector<Eigen::Vector3f> pts;
-  const std::array<Eigen::Vector3f, 4> c{Eigen::Vector3f(0, 0, 500), {50, 0, 500}, {50, 50, 500}, {0, 50, 500}};
+  const std::array<Eigen::Vector3f, 4> c{
+      Eigen::Vector3f(0, 0, 500), {50, 0, 500}, {50, 50, 500}, {0, 50, 500}};
   for (int e = 0; e < 4; ++e) {
-    const auto s = segment(c[static_cast<std::size_t>(e)], c[static_cast<std::size_t>((e + 1) % 4)], 100, 0.05f,
-                           static_cast<std::uint64_t>(e));
+    const auto s = segment(c[static_cast<std::size_t>(e)], c[static_cast<std::size_t>((e + 1) % 4)],
+                           100, 0.05f, static_cast<std::uint64_t>(e));
     pts.insert(pts.end(), s.begin(), s.end());
   }
   const auto r = ring({25, 25, 480}, {0, 0, 1}, 12.0f, 150, 0.05f);
   pts.insert(pts.end(), r.begin(), r.end());
   std::map<int, std::size_t> found;
-  for (auto estimator : {core::FeatureParams::Estimator::Ransac, core::FeatureParams::Estimator::Mlesac,
-                         core::FeatureParams::Estimator::Prosac}) {
+  for (auto estimator :
+       {core::FeatureParams::Estimator::Ransac, core::FeatureParams::Estimator::Mlesac,
+        core::FeatureParams::Estimator::Prosac}) {
     auto params = testParams();
     params.estimator = estimator;
     const auto a = core::extractFeatures(pts, params, 123);
@@ -139,7 +141,7 @@ TEST(FeatureExtraction, AllEstimatorsRunAndTheSameSeedGivesTheSameOutput) {
 TEST(FeatureExtraction, LimitsAndBadParameters) {
   const auto pts = segment({0, 0, 500}, {100, 0, 500}, 100, 0.05f, 1);
   auto params = testParams();
-  params.ransac_size = 101;  // more than there are points
+  params.ransac_size = 101; // more than there are points
   EXPECT_TRUE(core::extractFeatures(pts, params, 1).features.empty());
   EXPECT_TRUE(core::extractFeatures({}, testParams(), 1).features.empty());
   params = testParams();

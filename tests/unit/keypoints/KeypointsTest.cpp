@@ -1,12 +1,12 @@
-#include "core/common/Error.h"
 #include "core/keypoints/Keypoints.h"
+
+#include "core/common/Error.h"
 #include "core/keypoints/Neighbourhoods.h"
 #include "tests/support/RaycastScene.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 
 using namespace scanpick;
 
@@ -35,7 +35,7 @@ float edgeDistance(const Eigen::Vector3f& p) {
   Eigen::Vector3f q = p - Eigen::Vector3f(0, 0, 500);
   std::array<float, 3> d{20 - std::abs(q.x()), 20 - std::abs(q.y()), 20 - std::abs(q.z())};
   std::sort(d.begin(), d.end());
-  return d[1];  // d[0] is 0: the point's own face
+  return d[1]; // d[0] is 0: the point's own face
 }
 // A box and a cylinder on a floor 700 mm from the camera.
 test::RaycastScene boxAndCylinder() {
@@ -49,14 +49,15 @@ test::RaycastScene boxAndCylinder() {
 
 TEST(NeighbourhoodAnalysis, MarksTheCubeEdgesNotTheFaceCentres) {
   const auto pts = cubeSurface();
-  core::KeypointParams params;  // r = 3 mm, range 0.6 mm
+  core::KeypointParams params; // r = 3 mm, range 0.6 mm
   const auto k = core::neighbourhoodAnalysis(core::PointCloud::fromPoints(pts), params);
   ASSERT_FALSE(k.source_indices.empty());
   EXPECT_TRUE(std::is_sorted(k.source_indices.begin(), k.source_indices.end()));
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const float e = edgeDistance(pts[i]);
     // On an edge the neighbourhood is two perpendicular half discs: their centroid lies
-    // 4r/(3 pi) / sqrt(2) * ... = 0.3 r = 0.9 mm inwards (>= 0.6). A point 3 mm or more from every edge has a full, symmetric disc.
+    // 4r/(3 pi) / sqrt(2) * ... = 0.3 r = 0.9 mm inwards (>= 0.6). A point 3 mm or more from every
+    // edge has a full, symmetric disc.
     if (e < 0.01f) {
       EXPECT_TRUE(contains(k, static_cast<int>(i))) << "edge point " << pts[i].transpose();
     }
@@ -64,8 +65,9 @@ TEST(NeighbourhoodAnalysis, MarksTheCubeEdgesNotTheFaceCentres) {
       EXPECT_FALSE(contains(k, static_cast<int>(i))) << "face point " << pts[i].transpose();
     }
   }
-  params.position_range_mm = -1;  // the thesis's "keep everything"
-  EXPECT_EQ(core::neighbourhoodAnalysis(core::PointCloud::fromPoints(pts), params).points_mm.size(), pts.size());
+  params.position_range_mm = -1; // the thesis's "keep everything"
+  EXPECT_EQ(core::neighbourhoodAnalysis(core::PointCloud::fromPoints(pts), params).points_mm.size(),
+            pts.size());
 }
 
 TEST(NeighbourhoodAnalysis, PixelWindowsGiveTheSameKeypointsAsTheKdTree) {
@@ -90,7 +92,8 @@ TEST(NeighbourhoodAnalysis, PixelWindowsGiveTheSameKeypointsAsTheKdTree) {
   // The box's top border is found and its centre is not.
   const auto pixelOf = [&](double x, double y, double z) {
     const double f = 650 / 0.66 / 2;
-    const int c = static_cast<int>(std::lround(x / z * f + 119.5)), r = static_cast<int>(std::lround(y / z * f + 89.5));
+    const int c = static_cast<int>(std::lround(x / z * f + 119.5)),
+              r = static_cast<int>(std::lround(y / z * f + 89.5));
     return r * 240 + c;
   };
   EXPECT_FALSE(contains(a, pixelOf(-10, 0, 660)));
@@ -114,7 +117,7 @@ TEST(NeighbourhoodAnalysis, PixelWindowsSumTheSameOffsetsAsTheKdTree) {
     const auto [sum_a, found_a] = pixels.offsetSum(valid[j], radius_mm);
     const auto [sum_b, found_b] = tree.offsetSum(static_cast<int>(j), radius_mm);
     ASSERT_EQ(found_a, found_b) << "point " << j;
-    ASSERT_GE(found_a, 1u); // itself
+    ASSERT_GE(found_a, 1u);                   // itself
     ASSERT_EQ(sum_a, sum_b) << "point " << j; // exact: no rounding in either sum
     const int column = valid[j] % 199;
     border += column < 3 || column > 195 ? 1 : 0;
@@ -139,13 +142,15 @@ TEST(NormalsGradient, FindsTheCreaseOfAFoldedSheetAndNothingOnAPlane) {
   ASSERT_GT(crease.points_mm.size(), 20u) << "about one peak per row along the 40 mm crease";
   for (const auto& p : crease.points_mm)
     EXPECT_LE(std::abs(p.x()), 1.0f) << "peaks lie on the crease, got " << p.transpose();
-  EXPECT_TRUE(core::normalsGradientAnalysis(core::PointCloud::fromPoints(flat), params).points_mm.empty());
+  EXPECT_TRUE(
+      core::normalsGradientAnalysis(core::PointCloud::fromPoints(flat), params).points_mm.empty());
 
   // Both = the union of the two extractors.
   params.method = core::KeypointParams::Method::Both;
   const auto both = core::extractKeypoints(core::PointCloud::fromPoints(folded), params);
   const auto edges = core::neighbourhoodAnalysis(core::PointCloud::fromPoints(folded), params);
-  EXPECT_GE(both.source_indices.size(), std::max(edges.source_indices.size(), crease.source_indices.size()));
+  EXPECT_GE(both.source_indices.size(),
+            std::max(edges.source_indices.size(), crease.source_indices.size()));
   EXPECT_LE(both.source_indices.size(), edges.source_indices.size() + crease.source_indices.size());
   for (int i : crease.source_indices)
     EXPECT_TRUE(contains(both, i));

@@ -1,5 +1,6 @@
-#include "core/common/Error.h"
 #include "core/matching/FeatureMatcher.h"
+
+#include "core/common/Error.h"
 
 #include <gtest/gtest.h>
 #include <random>
@@ -50,7 +51,7 @@ FeatureList moved(const FeatureList& features, const Eigen::Isometry3d& T) {
 }
 
 MatchingParams idealParams() {
-  MatchingParams p;  // thesis table 5.1
+  MatchingParams p; // thesis table 5.1
   p.length_tolerance_mm = 10.0;
   p.radius_tolerance_mm = 10.0;
   p.position_tolerance_mm = 2.0;
@@ -74,7 +75,7 @@ TEST(FeatureMatcher, RecoversAKnownTransformExactlyWithFullScore) {
   EXPECT_LT((best->T_scene_model.translation() - T.translation()).norm(), 1e-3);
   EXPECT_LT(rotationErrorDeg(best->T_scene_model, T), 1e-3);
   for (const auto& [m, s] : best->matched_features)
-    EXPECT_EQ(m, s);  // a perfect copy matches index to index
+    EXPECT_EQ(m, s); // a perfect copy matches index to index
 }
 
 TEST(FeatureMatcher, ToleratesNoisyFeatures) {
@@ -84,7 +85,8 @@ TEST(FeatureMatcher, ToleratesNoisyFeatures) {
   std::normal_distribution<float> noise(0.0f, 0.3f);
   for (auto& f : scene) {
     f.centre_mm += Eigen::Vector3f(noise(rng), noise(rng), noise(rng));
-    f.direction = (f.direction + 0.01f * Eigen::Vector3f(noise(rng), noise(rng), noise(rng))).normalized();
+    f.direction =
+        (f.direction + 0.01f * Eigen::Vector3f(noise(rng), noise(rng), noise(rng))).normalized();
     f.size_mm += noise(rng);
   }
   const auto best = findBestTransformation(testPart(), scene, idealParams());
@@ -144,7 +146,7 @@ TEST(FeatureMatcher, SameResultWhateverTheThreadCount) {
   ASSERT_EQ(many.size(), one.size());
   ASSERT_FALSE(many.empty());
   for (std::size_t i = 0; i < many.size(); ++i) {
-    EXPECT_EQ(many[i].T_scene_model.matrix(), one[i].T_scene_model.matrix());  // bitwise
+    EXPECT_EQ(many[i].T_scene_model.matrix(), one[i].T_scene_model.matrix()); // bitwise
     EXPECT_EQ(many[i].matched_features, one[i].matched_features);
     EXPECT_EQ(many[i].seed1, one[i].seed1);
   }
@@ -153,14 +155,14 @@ TEST(FeatureMatcher, SameResultWhateverTheThreadCount) {
 TEST(FeatureMatcher, ScoreCountsConfirmedFeatures) {
   const Eigen::Isometry3d T = pose(0.5, {0, 0, 1}, {0, 0, 500});
   FeatureList scene = moved(testPart(), T);
-  scene.erase(scene.begin() + 2);  // one line missing: 5 of 6 model features confirmed
+  scene.erase(scene.begin() + 2); // one line missing: 5 of 6 model features confirmed
   const auto c = scoreTransformation(testPart(), scene, T, idealParams());
   EXPECT_NEAR(c.score, 5.0 / 6.0, 1e-12);
 }
 
 TEST(FeatureMatcher, CancelsWhenAsked) {
   const auto scene = moved(testPart(), pose(0.5, {0, 0, 1}, {0, 0, 500}));
-  EXPECT_THROW(findBestTransformation(testPart(), scene, idealParams(), {},
-                                      [](double) { return false; }),
-               Cancelled);
+  EXPECT_THROW(
+      findBestTransformation(testPart(), scene, idealParams(), {}, [](double) { return false; }),
+      Cancelled);
 }

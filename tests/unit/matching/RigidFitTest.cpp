@@ -6,7 +6,8 @@ using namespace scanpick::core;
 
 TEST(RigidFit, RotationBetweenMapsFromOntoTo) {
   const Eigen::Vector3d a = Eigen::Vector3d(1, 2, 3).normalized();
-  for (const Eigen::Vector3d& b : {Eigen::Vector3d(-2, 0.5, 1).normalized(), a, Eigen::Vector3d(-a)}) {
+  for (const Eigen::Vector3d& b :
+       {Eigen::Vector3d(-2, 0.5, 1).normalized(), a, Eigen::Vector3d(-a)}) {
     const Eigen::Matrix3d R = rotationBetween(a, b);
     EXPECT_LT((R * a - b).norm(), 1e-12);
     EXPECT_NEAR(R.determinant(), 1.0, 1e-12);
@@ -32,7 +33,8 @@ TEST(RigidFit, TwoPairsRecoverAKnownTransform) {
     f.direction = -(T.linear() * f.direction.cast<double>()).cast<float>();
   }
   Eigen::Isometry3d guess = T;
-  guess.linear() = Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX()).toRotationMatrix() * T.linear();
+  guess.linear() =
+      Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX()).toRotationMatrix() * T.linear();
   const Eigen::Isometry3d fit = fitFeaturePairs(model, scene, {{0, 0}, {1, 1}}, guess);
   EXPECT_LT((fit.matrix() - T.matrix()).norm(), 1e-4);
 }

@@ -1,6 +1,7 @@
+#include "core/model/ModelFile.h"
+
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
-#include "core/model/ModelFile.h"
 #include "tests/support/TempDir.h"
 #include "tests/unit/pipeline/IdealScene.h"
 
@@ -40,9 +41,10 @@ TEST(Teach, ModelFrameIsTheCentroidWithGripsMoved) {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& p : m.cloud_mm.points_mm)
     centroid += p.cast<double>();
-  EXPECT_LT((centroid / double(m.cloud_mm.size())).norm(), 1e-3);  // origin at the centroid
+  EXPECT_LT((centroid / double(m.cloud_mm.size())).norm(), 1e-3); // origin at the centroid
   ASSERT_EQ(m.grip_points.size(), 1u);
-  EXPECT_LT((m.T_teach_model * m.grip_points[0].position_mm - Eigen::Vector3d(0, 0, 700)).norm(), 1e-6);
+  EXPECT_LT((m.T_teach_model * m.grip_points[0].position_mm - Eigen::Vector3d(0, 0, 700)).norm(),
+            1e-6);
   EXPECT_GT(m.diameter_mm, 60.0);
 }
 
@@ -53,7 +55,8 @@ TEST(Teach, TooSmallCropAndTooFewFeaturesAreExplained) {
               HasSubstr("widen the crop box"));
   // Only circle A (radius 10 around the origin) inside the crop: one feature.
   TeachOptions one = cropAll();
-  one.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-11, -11, 690), Eigen::Vector3f(11, 11, 710));
+  one.crop_box_mm =
+      Eigen::AlignedBox3f(Eigen::Vector3f(-11, -11, 690), Eigen::Vector3f(11, 11, 710));
   EXPECT_THAT(messageOf([&] { teach(teachScan(), one, test::idealParams(0.001)); }),
               HasSubstr("found 1 feature"));
 }
@@ -61,7 +64,8 @@ TEST(Teach, TooSmallCropAndTooFewFeaturesAreExplained) {
 TEST(Teach, SurfaceVotingModelNeedsNoFeatures) {
   // The same one-feature crop is a valid model when the part is found by its surface.
   TeachOptions one = cropAll();
-  one.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-11, -11, 690), Eigen::Vector3f(11, 11, 710));
+  one.crop_box_mm =
+      Eigen::AlignedBox3f(Eigen::Vector3f(-11, -11, 690), Eigen::Vector3f(11, 11, 710));
   RecognitionParams params = test::idealParams(0.001);
   params.matching.surface_sampling_mm = 2.0;
   EXPECT_EQ(teach(teachScan(), one, params).features.size(), 1u);
@@ -176,8 +180,9 @@ TEST(ModelFile, AViewsOwnParametersAreKeptAndChecked) {
     return at == std::string::npos ? text : text.replace(at, from.size(), to);
   };
   EXPECT_THAT(messageOf([&] {
-                decodeModel(edited("\"matching.min_coverage\":0.5", "\"matching.min_coverage\":1.5"),
-                            "p.spmodel");
+                decodeModel(
+                    edited("\"matching.min_coverage\":0.5", "\"matching.min_coverage\":1.5"),
+                    "p.spmodel");
               }),
               HasSubstr("'matching.min_coverage' = 1.500000 is outside its range"));
   EXPECT_THAT(messageOf([&] {
@@ -212,6 +217,7 @@ TEST(ModelFile, DamagedFilesAreRejectedClearly) {
   ASSERT_NE(at, std::string::npos);
   future.replace(at, 11, "\"version\":9");
   EXPECT_THAT(messageOf([&] { decodeModel(future, "p.spmodel"); }), HasSubstr("newer scanpick"));
-  EXPECT_THAT(messageOf([&] { decodeModel("hello\n", "p.spmodel"); }), HasSubstr("not a scanpick model"));
+  EXPECT_THAT(messageOf([&] { decodeModel("hello\n", "p.spmodel"); }),
+              HasSubstr("not a scanpick model"));
   EXPECT_THAT(messageOf([&] { loadModel("/nonexistent/p.spmodel"); }), HasSubstr("p.spmodel"));
 }

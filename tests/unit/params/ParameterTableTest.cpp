@@ -1,12 +1,13 @@
+#include "core/params/ParameterTable.h"
+
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
-#include "core/params/ParameterTable.h"
 #include "core/params/ParamsJson.h"
 #include "core/params/ViewParams.h"
 #include "tests/support/TempDir.h"
 
-#include <gtest/gtest.h>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <set>
 
 using namespace scanpick;
@@ -59,13 +60,15 @@ TEST(ParamsJson, PresetRoundTripAndErrors) {
     core::paramsFromJson(nlohmann::json{{"matching.surface_poses", 60.5}});
     FAIL() << "a fractional count was accepted";
   } catch (const core::Error& e) {
-    EXPECT_NE(std::string(e.what()).find("'matching.surface_poses' = 60.500000 is outside its range"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("'matching.surface_poses' = 60.500000 is outside its range"),
+        std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("(a whole number)"), std::string::npos) << e.what();
   }
-  EXPECT_EQ(core::paramsFromJson(nlohmann::json{{"matching.surface_poses", 60}}).matching.surface_poses,
-            60);
+  EXPECT_EQ(
+      core::paramsFromJson(nlohmann::json{{"matching.surface_poses", 60}}).matching.surface_poses,
+      60);
 
   core::writeFileAtomic(dir / "future.json",
                         R"({"format":"scanpick-preset","version":99,"params":{}})");
@@ -79,9 +82,10 @@ TEST(ParamsJson, PresetRoundTripAndErrors) {
 
 TEST(ViewParams, OnlyMatchingValuesInRangeAndFoldedIntoTheParameters) {
   core::RecognitionParams params;
-  core::ViewParams view{{"matching.min_coverage", 0.5}, {"matching.surface_reference_stride", 2},
+  core::ViewParams view{{"matching.min_coverage", 0.5},
+                        {"matching.surface_reference_stride", 2},
                         {"refine.enabled", 1}};
-  EXPECT_THROW(core::withViewParams(params, view), core::Error);  // refinement: not per view
+  EXPECT_THROW(core::withViewParams(params, view), core::Error); // refinement: not per view
   view.erase("refine.enabled");
   const core::RecognitionParams own = core::withViewParams(params, view);
   EXPECT_EQ(own.matching.min_coverage, 0.5);

@@ -134,7 +134,9 @@ TEST(Presets, BasePresetsAreResolved) {
 
 // The bundled bin presets are built on one another; each resolves to its full parameter set.
 TEST(Presets, BinPresetsBuildOnEachOther) {
-  const auto load = [](const char* name) { return core::loadPreset(kPresetDir / (std::string(name) + ".json")).params; };
+  const auto load = [](const char* name) {
+    return core::loadPreset(kPresetDir / (std::string(name) + ".json")).params;
+  };
   const auto cup = load("phoxi-bin-cup");
   const auto coat_rack = load("phoxi-bin-coat-rack");
   EXPECT_EQ(cup.keypoints, coat_rack.keypoints);
@@ -143,6 +145,6 @@ TEST(Presets, BinPresetsBuildOnEachOther) {
   EXPECT_FALSE(cup.features.lines);
   EXPECT_FALSE(cup.clustering.enabled); // nothing to match per object
   EXPECT_TRUE(coat_rack.clustering.enabled);
-  EXPECT_EQ(load("phoxi-bin-surface").matching.symmetry_overlap, 0.0);  // phoxi-bin's 0.75 undone
+  EXPECT_EQ(load("phoxi-bin-surface").matching.symmetry_overlap, 0.0); // phoxi-bin's 0.75 undone
   EXPECT_EQ(load("phoxi-bin").matching.symmetry_overlap, 0.75);
 }

@@ -30,9 +30,9 @@ inline std::vector<Eigen::Vector3f> idealPartPoints() {
   };
   circle({0, 0}, 10.0f, 300);
   circle({38, 8}, 15.0f, 450);
-  line({-10, -22}, {30, -22}, 0.2f);  // 40 mm
+  line({-10, -22}, {30, -22}, 0.2f); // 40 mm
   const Eigen::Vector2f dir(std::sin(float(M_PI) / 12), std::cos(float(M_PI) / 12));
-  line({-20, -15}, Eigen::Vector2f(-20, -15) + 60.0f * dir, 0.2f);  // 60 mm
+  line({-20, -15}, Eigen::Vector2f(-20, -15) + 60.0f * dir, 0.2f); // 60 mm
   return pts;
 }
 

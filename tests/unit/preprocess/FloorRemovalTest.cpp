@@ -1,6 +1,7 @@
+#include "core/preprocess/FloorRemoval.h"
+
 #include "core/common/Error.h"
 #include "core/preprocess/Downsample.h"
-#include "core/preprocess/FloorRemoval.h"
 #include "tests/support/RaycastScene.h"
 
 #include <gtest/gtest.h>
@@ -24,9 +25,9 @@ TEST(FloorRemoval, RemovesTheFloorPlaneAndKeepsTheBox) {
   for (std::size_t i = 0; i < cloud.size(); ++i)
     if (core::isValid(cloud.points_mm[i]))
       (scene.labels[i] < 0 ? floor_points : box_points)++;
-  ASSERT_GT(floor_points, box_points);  // the floor is the dominant plane
+  ASSERT_GT(floor_points, box_points); // the floor is the dominant plane
 
-  core::FloorParams params;  // 2 mm, one plane, 15 % of the points
+  core::FloorParams params; // 2 mm, one plane, 15 % of the points
   const auto result = core::removeFloor(cloud, params, 42);
   ASSERT_EQ(result.planes.size(), 1u);
   // The plane is z = 1000 with its normal towards the camera: (0, 0, -1, 1000).
@@ -62,7 +63,7 @@ TEST(FloorRemoval, BinFloorGoesAndTheRimAndPartsStay) {
   const core::PointCloud cloud = scene.render(320, 240, 300.0, {300, 0, 0}, 0.1, 3);
   constexpr int kBinFloor = 0, kFirstPart = 5;
 
-  core::FloorParams params;  // the ground only
+  core::FloorParams params; // the ground only
   const auto ground_only = core::removeFloor(cloud, params, 42);
   ASSERT_EQ(ground_only.planes.size(), 1u);
   EXPECT_NEAR(ground_only.planes[0].w(), 1000.0f, 0.5);
@@ -106,7 +107,7 @@ TEST(FloorRemoval, SmallPlanesAreKeptAndDisabledIsACopy) {
   auto scene = boxOnFloor();
   const core::PointCloud cloud = scene.render(160, 120, 400.0, {300, 0, 0});
   core::FloorParams params;
-  params.min_plane_fraction = 0.99;  // no plane holds 99 % of the points
+  params.min_plane_fraction = 0.99; // no plane holds 99 % of the points
   EXPECT_TRUE(core::removeFloor(cloud, params, 1).planes.empty());
   params.min_plane_fraction = 0.15;
   params.enabled = false;
@@ -119,7 +120,8 @@ TEST(FloorRemoval, SmallPlanesAreKeptAndDisabledIsACopy) {
 
 TEST(FloorRemoval, SameSeedSameResultAndUnorganizedInput) {
   auto scene = boxOnFloor();
-  const core::PointCloud cloud = core::dropInvalid(scene.render(200, 150, 500.0, {300, 0, 0}, 0.2, 3));
+  const core::PointCloud cloud =
+      core::dropInvalid(scene.render(200, 150, 500.0, {300, 0, 0}, 0.2, 3));
   const auto a = core::removeFloor(cloud, {}, 9), b = core::removeFloor(cloud, {}, 9);
   ASSERT_EQ(a.planes.size(), 1u);
   EXPECT_EQ(a.planes, b.planes);

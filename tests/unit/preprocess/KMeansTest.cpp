@@ -1,8 +1,8 @@
-#include "core/common/Error.h"
 #include "core/preprocess/KMeans.h"
 
-#include <gtest/gtest.h>
+#include "core/common/Error.h"
 
+#include <gtest/gtest.h>
 #include <random>
 #include <set>
 
@@ -18,11 +18,13 @@ std::vector<Eigen::Vector3f> blobs(const std::vector<Eigen::Vector3f>& centres, 
   for (std::size_t c = 0; c < centres.size(); ++c)
     for (int i = 0; i < per_blob; ++i) {
       pts.push_back(centres[c] + Eigen::Vector3f(n(rng), n(rng), n(rng)));
-      if (truth) truth->push_back(static_cast<int>(c));
+      if (truth)
+        truth->push_back(static_cast<int>(c));
     }
   return pts;
 }
-const std::vector<Eigen::Vector3f> kCentres{{0, 0, 1000}, {100, 0, 1000}, {0, 100, 1000}, {100, 100, 950}};
+const std::vector<Eigen::Vector3f> kCentres{
+    {0, 0, 1000}, {100, 0, 1000}, {0, 100, 1000}, {100, 100, 950}};
 } // namespace
 
 TEST(FarthestFirstTraversal, PicksOnePointPerFarBlob) {
@@ -37,7 +39,10 @@ TEST(FarthestFirstTraversal, PicksOnePointPerFarBlob) {
     EXPECT_EQ(blobs_hit.size(), 4u) << "blobs are 100 mm apart, their spread ~10 mm";
     for (std::size_t a = 0; a < picked.size(); ++a)
       for (std::size_t b = a + 1; b < picked.size(); ++b)
-        EXPECT_GT((pts[static_cast<std::size_t>(picked[a])] - pts[static_cast<std::size_t>(picked[b])]).norm(), 70.0f);
+        EXPECT_GT(
+            (pts[static_cast<std::size_t>(picked[a])] - pts[static_cast<std::size_t>(picked[b])])
+                .norm(),
+            70.0f);
   }
   EXPECT_EQ(core::farthestFirstTraversal(pts, 4, 11), core::farthestFirstTraversal(pts, 4, 11));
   EXPECT_EQ(core::farthestFirstTraversal(pts, 1000, 1).size(), pts.size());
@@ -46,7 +51,8 @@ TEST(FarthestFirstTraversal, PicksOnePointPerFarBlob) {
 TEST(KMeans, RecoversWellSeparatedBlobsWithBothSeedings) {
   std::vector<int> truth;
   const auto pts = blobs(kCentres, 300, &truth);
-  for (auto init : {core::ClusteringParams::Init::FarthestFirst, core::ClusteringParams::Init::KMeansPlusPlus}) {
+  for (auto init : {core::ClusteringParams::Init::FarthestFirst,
+                    core::ClusteringParams::Init::KMeansPlusPlus}) {
     core::ClusteringParams params;
     params.init = init;
     const auto result = core::kmeans(pts, 4, params, 42);
@@ -61,7 +67,7 @@ TEST(KMeans, RecoversWellSeparatedBlobsWithBothSeedings) {
       EXPECT_LT((result.centres[static_cast<std::size_t>(label)] - kCentres[c]).norm(), 0.5f);
     }
     EXPECT_GE(result.iterations, 1);
-    EXPECT_LT(result.objective, 1200.0 * 3 * 4 * 2);  // ~ n * 3 sigma^2 = 14400, with slack
+    EXPECT_LT(result.objective, 1200.0 * 3 * 4 * 2); // ~ n * 3 sigma^2 = 14400, with slack
     const auto again = core::kmeans(pts, 4, params, 42);
     EXPECT_EQ(again.labels, result.labels);
     EXPECT_EQ(again.centres, result.centres);

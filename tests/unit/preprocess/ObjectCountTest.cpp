@@ -1,5 +1,6 @@
-#include "core/common/Error.h"
 #include "core/preprocess/ObjectCount.h"
+
+#include "core/common/Error.h"
 #include "tests/support/RaycastScene.h"
 
 #include <gtest/gtest.h>
@@ -23,14 +24,14 @@ const Eigen::Vector3d kProjector(300, 0, 0);
 TEST(ObjectCount, CountsSeparatedBoxes) {
   // Four 30 x 30 mm boxes, 20 mm apart, no floor (as after floor removal).
   test::RaycastScene scene;
-  for (const auto& c : {Eigen::Vector2d(-45, -30), Eigen::Vector2d(15, -30), Eigen::Vector2d(-45, 25),
-                        Eigen::Vector2d(15, 25)})
+  for (const auto& c : {Eigen::Vector2d(-45, -30), Eigen::Vector2d(15, -30),
+                        Eigen::Vector2d(-45, 25), Eigen::Vector2d(15, 25)})
     scene.boxes.emplace_back(Eigen::Vector3d(c.x() - 15, c.y() - 15, 960),
                              Eigen::Vector3d(c.x() + 15, c.y() + 15, 1000));
   const auto cloud = scene.render(400, 300, 2000, kProjector);
   core::ClusteringParams params;
   params.count_radius_mm = 1.5;
-  params.count_min_points = 1000;  // each box top holds about 60 x 60 = 3600 pixels
+  params.count_min_points = 1000; // each box top holds about 60 x 60 = 3600 pixels
   const auto count = core::countObjects(cloud, testSensor(kProjector), params);
   EXPECT_EQ(count.count, 4);
   ASSERT_GE(count.clusters.size(), 4u);
@@ -41,9 +42,13 @@ TEST(ObjectCount, CountsSeparatedBoxes) {
   EXPECT_EQ(count.projected_mm.size(), cloud.validCount());
   // Each counted cluster is exactly one box.
   for (int k = 0; k < 4; ++k) {
-    const int box = scene.labels[static_cast<std::size_t>(count.source_indices[static_cast<std::size_t>(count.clusters[static_cast<std::size_t>(k)].front())])];
+    const int box =
+        scene.labels[static_cast<std::size_t>(count.source_indices[static_cast<std::size_t>(
+            count.clusters[static_cast<std::size_t>(k)].front())])];
     for (int j : count.clusters[static_cast<std::size_t>(k)])
-      ASSERT_EQ(scene.labels[static_cast<std::size_t>(count.source_indices[static_cast<std::size_t>(j)])], box);
+      ASSERT_EQ(
+          scene.labels[static_cast<std::size_t>(count.source_indices[static_cast<std::size_t>(j)])],
+          box);
   }
 }
 
@@ -75,6 +80,7 @@ TEST(ObjectCount, EmptyAndBadInput) {
   EXPECT_EQ(core::countObjects(empty, testSensor(kProjector), {}).count, 0);
   core::ClusteringParams params;
   params.count_radius_mm = 0;
-  EXPECT_THROW(core::countObjects(core::PointCloud::fromPoints({{0, 0, 1}}), testSensor(kProjector), params),
-               core::Error);
+  EXPECT_THROW(
+      core::countObjects(core::PointCloud::fromPoints({{0, 0, 1}}), testSensor(kProjector), params),
+      core::Error);
 }

@@ -1,8 +1,8 @@
 #include "core/preprocess/SceneSplit.h"
+
 #include "tests/support/RaycastScene.h"
 
 #include <gtest/gtest.h>
-
 #include <map>
 
 using namespace scanpick;
@@ -32,7 +32,8 @@ TEST(SceneSplit, KMeansRemovesATwoPointOutlierClusterAndReRuns) {
   pts.emplace_back(2000.5f, 0, 800);
   core::ClusteringParams params;
   params.count_min_points = 1000;
-  const auto split = core::splitIntoObjects(core::PointCloud::fromPoints(pts), sensor(), params, 42);
+  const auto split =
+      core::splitIntoObjects(core::PointCloud::fromPoints(pts), sensor(), params, 42);
   EXPECT_EQ(split.count.count, 2);
   EXPECT_EQ(split.kmeans_runs, 2);
   ASSERT_EQ(split.objects.size(), 2u);
@@ -43,7 +44,8 @@ TEST(SceneSplit, KMeansRemovesATwoPointOutlierClusterAndReRuns) {
   EXPECT_NE(split.point_labels[0], split.point_labels[patch]);
 
   params.enabled = false;
-  const auto whole = core::splitIntoObjects(core::PointCloud::fromPoints(pts), sensor(), params, 42);
+  const auto whole =
+      core::splitIntoObjects(core::PointCloud::fromPoints(pts), sensor(), params, 42);
   ASSERT_EQ(whole.objects.size(), 1u);
   EXPECT_EQ(whole.objects[0].size(), pts.size());
 }
@@ -84,9 +86,11 @@ TEST(SceneSplit, ProjectedClustersKeepALongPartApartFromASmallOne) {
   EXPECT_EQ(kmeans.count.count, 2);
   ASSERT_EQ(projected.objects.size(), 2u);
   EXPECT_DOUBLE_EQ(purity(projected), 1.0);
-  EXPECT_LT(purity(kmeans), 0.95) << "k-means splits the bar (the thesis's method, kept as default)";
+  EXPECT_LT(purity(kmeans), 0.95)
+      << "k-means splits the bar (the thesis's method, kept as default)";
   // Organized input: each object is its bounding pixel window, still organized.
   EXPECT_TRUE(projected.objects[0].isOrganized());
   EXPECT_LT(projected.objects[0].size(), cloud.size());
-  EXPECT_EQ(projected.objects[0].validCount() + projected.objects[1].validCount(), cloud.validCount());
+  EXPECT_EQ(projected.objects[0].validCount() + projected.objects[1].validCount(),
+            cloud.validCount());
 }

@@ -30,7 +30,6 @@ core::SensorModel floorCamera() {
   return sensor;
 }
 
-
 /// Asks both indexes for the nearest point to every `stride`-th indexed point moved by each of
 /// `offsets`, within each of `radii`, and expects the same answers. Returns how many were found.
 std::size_t expectSameNearest(const core::SceneIndex& windows, const core::SceneIndex& tree,
@@ -209,7 +208,8 @@ TEST(SceneIndex, PixelWindowsOfAnyWidthGiveTheNearestAndTheLowestIndexAtTies) {
         continue;
       const int u = pixel % width, v = pixel / width;
       for (const Eigen::Vector3f& offset :
-           {Eigen::Vector3f(0, 0, -0.5f), Eigen::Vector3f(0.6f, 0, 0), Eigen::Vector3f(0.6f, 0.6f, -0.2f)})
+           {Eigen::Vector3f(0, 0, -0.5f), Eigen::Vector3f(0.6f, 0, 0),
+            Eigen::Vector3f(0.6f, 0.6f, -0.2f)})
         for (const auto& [hu, hv] : {std::pair{0, 0}, {1, 2}, {3, 3}, {4, 1}, {6, 6}, {9, 9}})
           for (const float max_sq : {0.5f, 25.0f}) {
             const Eigen::Vector3f query = index.points()[std::size_t(k)] + offset;

@@ -1,13 +1,13 @@
 // Mesh files: every supported format loads the same closed solid; bad files say what is wrong.
+#include "core/sim/MeshIo.h"
+
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 #include "core/sim/MeshBuilder.h"
-#include "core/sim/MeshIo.h"
 #include "core/sim/PartCatalog.h"
 #include "tests/support/TempDir.h"
 
 #include <gtest/gtest.h>
-
 #include <sstream>
 
 using namespace scanpick::core;
@@ -44,7 +44,8 @@ std::string asAsciiStl(const TriangleMesh& m) {
 
 std::string asVtk(const TriangleMesh& m) {
   std::ostringstream s;
-  s << "# vtk DataFile Version 3.0\nbox\nASCII\nDATASET POLYDATA\nPOINTS " << m.vertices_mm.size() << " float\n";
+  s << "# vtk DataFile Version 3.0\nbox\nASCII\nDATASET POLYDATA\nPOINTS " << m.vertices_mm.size()
+    << " float\n";
   for (const auto& v : m.vertices_mm)
     s << v.x() << " " << v.y() << " " << v.z() << "\n";
   s << "POLYGONS " << m.triangles.size() << " " << 4 * m.triangles.size() << "\n";
@@ -71,7 +72,8 @@ TEST(MeshIo, PlyRoundTrip) {
 TEST(MeshIo, AsciiPlyObjStlVtkLoad) {
   TempDir dir;
   std::ostringstream ply;
-  ply << "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty float z\n"
+  ply << "ply\nformat ascii 1.0\nelement vertex 8\nproperty float x\nproperty float y\nproperty "
+         "float z\n"
       << "element face 12\nproperty list uchar int vertex_indices\nend_header\n";
   for (const auto& v : kBox.vertices_mm)
     ply << v.x() << " " << v.y() << " " << v.z() << "\n";
@@ -108,7 +110,7 @@ TEST(MeshIo, BadFilesThrowError) {
   TempDir dir;
   EXPECT_THROW(loadMesh(dir / "missing.ply"), Error);
   writeFileAtomic(dir / "notes.txt", "hello");
-  EXPECT_THROW(loadMesh(dir / "notes.txt"), Error);  // unknown extension
+  EXPECT_THROW(loadMesh(dir / "notes.txt"), Error); // unknown extension
   writeFileAtomic(dir / "garbage.ply", "this is not a mesh\n");
   EXPECT_THROW(loadMesh(dir / "garbage.ply"), Error);
   writeFileAtomic(dir / "empty.obj", "# nothing\n");

@@ -1,13 +1,11 @@
 // Procedural parts: closed, outward, sized like the thesis objects, and truly symmetric.
+#include "core/common/Error.h"
 #include "core/sim/MeshBuilder.h"
 #include "core/sim/PartCatalog.h"
 
-#include <gtest/gtest.h>
-
-#include "core/common/Error.h"
-
 #include <algorithm>
 #include <cmath>
+#include <gtest/gtest.h>
 #include <numbers>
 
 using namespace scanpick::core;
@@ -31,10 +29,12 @@ TEST(Mesh, PlateWithHolesIsClosedAndLosesTheHoleVolume) {
 }
 
 TEST(Mesh, RevolvedProfileAndBentBarAreClosed) {
-  const TriangleMesh cup = revolveProfile({{0, 0}, {40, 0}, {40, 95}, {37, 95}, {37, 6}, {0, 6}}, 64);
+  const TriangleMesh cup =
+      revolveProfile({{0, 0}, {40, 0}, {40, 95}, {37, 95}, {37, 6}, {0, 6}}, 64);
   EXPECT_EQ(openEdgeCount(cup), 0u);
   EXPECT_GT(signedVolume(cup), 0);
-  const TriangleMesh bar = bentBar({0, 0, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), 20, 4, -1.5, 1.5, 20, 12);
+  const TriangleMesh bar = bentBar({0, 0, 0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(),
+                                   20, 4, -1.5, 1.5, 20, 12);
   EXPECT_EQ(openEdgeCount(bar), 0u);
   // Pappus: volume = area of the section × path length of its centre (polygon section).
   const double section = 0.5 * 12 * 16 * std::sin(2 * std::numbers::pi / 12);
@@ -49,9 +49,12 @@ TEST(Mesh, OpenMeshIsDetected) {
 
 TEST(Mesh, PointTriangleDistance) {
   const Eigen::Vector3d a(0, 0, 0), b(10, 0, 0), c(0, 10, 0);
-  EXPECT_NEAR(std::sqrt(pointTriangleDistanceSquared({2, 2, 3}, a, b, c)), 3.0, 1e-12);  // above the face
-  EXPECT_NEAR(std::sqrt(pointTriangleDistanceSquared({-3, -4, 0}, a, b, c)), 5.0, 1e-12);  // vertex region
-  EXPECT_NEAR(std::sqrt(pointTriangleDistanceSquared({5, -2, 0}, a, b, c)), 2.0, 1e-12);  // edge region
+  EXPECT_NEAR(std::sqrt(pointTriangleDistanceSquared({2, 2, 3}, a, b, c)), 3.0,
+              1e-12); // above the face
+  EXPECT_NEAR(std::sqrt(pointTriangleDistanceSquared({-3, -4, 0}, a, b, c)), 5.0,
+              1e-12); // vertex region
+  EXPECT_NEAR(std::sqrt(pointTriangleDistanceSquared({5, -2, 0}, a, b, c)), 2.0,
+              1e-12); // edge region
 }
 
 class BuiltInPart : public ::testing::TestWithParam<std::string> {};
@@ -90,7 +93,8 @@ TEST_P(BuiltInPart, DeclaredSymmetriesMapTheSurfaceOntoItself) {
   }
   // The cup's handle breaks every symmetry: make sure a wrong one would be caught.
   if (GetParam() == "cup") {
-    const Eigen::Isometry3d half_turn(Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitZ()));
+    const Eigen::Isometry3d half_turn(
+        Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitZ()));
     double worst = 0;
     for (const auto& q : pts)
       worst = std::max(worst, pointMeshDistance(half_turn * q, mesh));

@@ -1,13 +1,14 @@
-// The virtual scanner: points lie on surfaces, the projector casts shadows, visible fractions add up.
+// The virtual scanner: points lie on surfaces, the projector casts shadows, visible fractions add
+// up.
+#include "core/sim/Renderer.h"
+
 #include "core/common/Error.h"
 #include "core/sim/MeshBuilder.h"
 #include "core/sim/PartCatalog.h"
-#include "core/sim/Renderer.h"
-
-#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <gtest/gtest.h>
 
 using namespace scanpick::core;
 
@@ -127,9 +128,10 @@ TEST(Renderer, ProjectorShadowRemovesPointsTheCameraSees) {
     for (int u = 0; u < s.width; ++u) {
       const std::size_t i = static_cast<std::size_t>(v) * s.width + u;
       if (r.labels[i] != kLabelEnvironment)
-        continue;  // only where the camera sees the table
+        continue; // only where the camera sees the table
       // Where the camera ray meets the table top (z = 0 in the world).
-      const Eigen::Vector3d dir_world = T_world_camera.linear() * Eigen::Vector3d((u - s.cx) / s.fx, (v - s.cy) / s.fy, 1);
+      const Eigen::Vector3d dir_world =
+          T_world_camera.linear() * Eigen::Vector3d((u - s.cx) / s.fx, (v - s.cy) / s.fy, 1);
       const Eigen::Vector3d origin = T_world_camera.translation();
       const Eigen::Vector3d table = origin + dir_world * (-origin.z() / dir_world.z());
       if (std::abs(table.x()) > 500 || std::abs(table.y()) > 500)
@@ -142,7 +144,7 @@ TEST(Renderer, ProjectorShadowRemovesPointsTheCameraSees) {
         ++lit;
       }
     }
-  EXPECT_GT(shadowed, 200u);  // the shadow is large: the pillar is 250 mm tall
+  EXPECT_GT(shadowed, 200u); // the shadow is large: the pillar is 250 mm tall
   EXPECT_GT(lit, 10000u);
 }
 
@@ -182,8 +184,12 @@ TEST(Renderer, SameSeedSameBitsDifferentSeedDifferentNoise) {
   const RenderResult a = renderScene(scene, s, noise, 21), b = renderScene(scene, s, noise, 21);
   const RenderResult c = renderScene(scene, s, noise, 22);
   ASSERT_EQ(a.cloud.size(), b.cloud.size());
-  EXPECT_EQ(std::memcmp(a.cloud.points_mm.data(), b.cloud.points_mm.data(), a.cloud.size() * sizeof(Eigen::Vector3f)), 0);
-  EXPECT_NE(std::memcmp(a.cloud.points_mm.data(), c.cloud.points_mm.data(), a.cloud.size() * sizeof(Eigen::Vector3f)), 0);
+  EXPECT_EQ(std::memcmp(a.cloud.points_mm.data(), b.cloud.points_mm.data(),
+                        a.cloud.size() * sizeof(Eigen::Vector3f)),
+            0);
+  EXPECT_NE(std::memcmp(a.cloud.points_mm.data(), c.cloud.points_mm.data(),
+                        a.cloud.size() * sizeof(Eigen::Vector3f)),
+            0);
 }
 
 TEST(SensorNoise, KinectDepthStepsGrowWithDistanceSquared) {

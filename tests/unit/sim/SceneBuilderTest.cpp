@@ -4,9 +4,8 @@
 #include "core/sim/PartCatalog.h"
 #include "core/sim/Scene.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
+#include <gtest/gtest.h>
 
 using namespace scanpick::core;
 
@@ -25,7 +24,8 @@ TEST_P(BinDrop, InstancesRestInsideTheBinWithoutInterpenetration) {
   ASSERT_EQ(scene.instances.size(), 12u);
   EXPECT_LT(maxInterpenetration_mm(scene), 0.5);
   for (const auto& inst : scene.instances) {
-    const Eigen::AlignedBox3d box = boundingBox(transformed(scene.parts[inst.part].mesh(), inst.T_world_part));
+    const Eigen::AlignedBox3d box =
+        boundingBox(transformed(scene.parts[inst.part].mesh(), inst.T_world_part));
     // Inside the walls (180 × 140 mm half sizes) and on or above the floor.
     EXPECT_GT(box.min().x(), -180.5);
     EXPECT_LT(box.max().x(), 180.5);
@@ -46,7 +46,8 @@ static std::string partTestName(const ::testing::TestParamInfo<std::string>& par
 INSTANTIATE_TEST_SUITE_P(Parts, BinDrop, ::testing::ValuesIn(builtInPartNames()), partTestName);
 
 TEST(SceneBuilder, InterpenetrationCheckSeesOverlap) {
-  // Two 40 mm cubes side by side along x, overlapping by 2 mm, then 0.3 mm, then deeply, then apart.
+  // Two 40 mm cubes side by side along x, overlapping by 2 mm, then 0.3 mm, then deeply, then
+  // apart.
   SceneSpec spec;
   Part cube;
   cube.name = "cube";
@@ -92,7 +93,7 @@ TEST(SceneBuilder, TeachSceneHasOnePartInItsNaturalPoseAndACropBox) {
   const Eigen::AlignedBox3d part_box =
       boundingBox(transformed(scene.parts[0].mesh(), scene.instances[0].T_world_part));
   EXPECT_TRUE(scene.crop_box_world->contains(Eigen::Vector3d(part_box.max())));
-  EXPECT_GT(scene.crop_box_world->min().z(), 0.0);  // the table stays out
+  EXPECT_GT(scene.crop_box_world->min().z(), 0.0); // the table stays out
 }
 
 TEST(SceneBuilder, ScatterKeepsPartsOnTheTable) {
@@ -105,7 +106,7 @@ TEST(SceneBuilder, ScatterKeepsPartsOnTheTable) {
   EXPECT_EQ(scene.instances[1].part, 1u);
   EXPECT_LT(maxInterpenetration_mm(scene), 0.5);
   for (const auto& inst : scene.instances)
-    EXPECT_LT(inst.T_world_part.translation().z(), 100.0);  // resting, not stacked
+    EXPECT_LT(inst.T_world_part.translation().z(), 100.0); // resting, not stacked
 }
 
 TEST(SceneBuilder, BadSpecsThrow) {
