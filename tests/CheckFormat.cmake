@@ -1,0 +1,21 @@
+# Fails when a C++ source under app/, ui/, core/, devices/ or tests/ differs from what
+# clang-format makes of it with the committed .clang-format. Fix with:
+#   clang-format -i <file>   (Debian 12: apt install clang-format, version 14)
+if(NOT CLANG_FORMAT)
+  message(FATAL_ERROR "clang-format not found: apt install clang-format, then re-run cmake")
+endif()
+set(files "")
+foreach(dir app ui core devices tests)
+  file(GLOB_RECURSE found ${SOURCE_DIR}/${dir}/*.h ${SOURCE_DIR}/${dir}/*.hpp ${SOURCE_DIR}/${dir}/*.cpp)
+  list(APPEND files ${found})
+endforeach()
+list(LENGTH files count)
+if(count EQUAL 0)
+  message(FATAL_ERROR "no sources found under ${SOURCE_DIR}: wrong SOURCE_DIR?")
+endif()
+execute_process(COMMAND ${CLANG_FORMAT} --style=file --dry-run --Werror ${files}
+                RESULT_VARIABLE result ERROR_VARIABLE report)
+if(NOT result EQUAL 0)
+  message(FATAL_ERROR "sources differ from .clang-format (run clang-format -i on them):\n${report}")
+endif()
+message(STATUS "checked ${count} files against .clang-format")
