@@ -121,15 +121,9 @@ Neighbourhoods::Neighbourhoods(const PointCloud& cloud, double max_radius_mm) : 
     m_tree = std::make_unique<Tree>(m_cloud, m_valid);
     return;
   }
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  for (auto* coordinate : {&m_x, &m_y, &m_z})
-    coordinate->assign(cloud.size() + kPadding, nan);
-  for (const int i : m_valid) {
-    const auto& p = cloud.points_mm[static_cast<std::size_t>(i)];
-    m_x[static_cast<std::size_t>(i)] = p.x();
-    m_y[static_cast<std::size_t>(i)] = p.y();
-    m_z[static_cast<std::size_t>(i)] = p.z();
-  }
+  m_pixels = PixelCoordinates(cloud.size());
+  for (const int i : m_valid)
+    m_pixels.set(static_cast<std::size_t>(i), cloud.points_mm[static_cast<std::size_t>(i)]);
 }
 
 std::pair<Eigen::Vector3d, std::size_t> Neighbourhoods::offsetSum(int index,
@@ -150,9 +144,9 @@ std::pair<Eigen::Vector3d, std::size_t> Neighbourhoods::offsetSum(int index,
   double sum[3];
   const PixelWindow window{std::max(0, col - half), std::min(w - 1, col + half),
                            std::max(0, row - half), std::min(h - 1, row + half)};
-  const std::size_t found =
-      sumOffsetsInWindow(m_x.data(), m_y.data(), m_z.data(), static_cast<std::size_t>(w), window, p,
-                         static_cast<float>(radius_mm * radius_mm), sum);
+  const std::size_t found = sumOffsetsInWindow(
+      m_pixels.x.data(), m_pixels.y.data(), m_pixels.z.data(), static_cast<std::size_t>(w), window,
+      p, static_cast<float>(radius_mm * radius_mm), sum);
   return {Eigen::Vector3d(sum[0], sum[1], sum[2]), found};
 }
 

@@ -3,6 +3,7 @@
 /// Internal to the keypoints module: radius and k-nearest neighbourhoods of the valid points of
 /// a cloud, on pixel windows when the cloud is an organized camera grid, on a kd-tree otherwise.
 
+#include "core/cloud/PixelCoordinates.h"
 #include "core/cloud/PointCloud.h"
 
 #include <algorithm>
@@ -72,10 +73,8 @@ private:
 
   struct Tree;
   const PointCloud& m_cloud;
-  /// Organized clouds: the points' coordinates, each in its own array (NaN where invalid), with
-  /// kPadding NaNs past the last pixel so that a window row is read eight pixels at a time.
-  std::vector<float> m_x, m_y, m_z;
-  static constexpr std::size_t kPadding = 8;
+  /// Organized clouds: the valid points by pixel, for window scans.
+  PixelCoordinates m_pixels;
   std::vector<int> m_valid;
   bool m_organized = false;
   double m_pixel_angle = 0; ///< smallest angle between neighbouring pixel rays, radians

@@ -198,7 +198,8 @@ double bodyScore(const VerifyModel& body, const RevolutionAxis& axis, const Veri
   for (int step = -steps; step <= steps; ++step) {
     const Eigen::Isometry3d T =
         T_scene_model * Eigen::Translation3d(step * kBodySlideStepMm * axis.direction);
-    const PointTally t = tallyPoints(body, scene, T, tolerance_mm, &subset, {}, false);
+    const PointTally t = tallyPoints(body, scene, T, tolerance_mm,
+                                     {.subset = &subset, .stop = {}, .sort_unmeasured = false});
     best = std::max(best, (double(t.confirmed) - double(t.violations)) /
                               double(std::max<std::size_t>(8, t.points - t.turned_away)));
   }
@@ -404,12 +405,13 @@ DetailTally tallyDetail(const ModelPrep& prep, Detail which, const VerifyScene& 
                         const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                         const TallyStop& stop = {}) {
   if (which == Detail::Own) {
-    const PointTally t = tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm,
-                                     &prep.near_axis_detail, stop, false);
+    const PointTally t =
+        tallyPoints(*prep.verify, scene, T_scene_model, tolerance_mm,
+                    {.subset = &prep.near_axis_detail, .stop = stop, .sort_unmeasured = false});
     return {t, double(std::max<std::size_t>(1, t.points))};
   }
-  const PointTally t =
-      tallyPoints(*prep.joined_detail, scene, T_scene_model, tolerance_mm, nullptr, stop, false);
+  const PointTally t = tallyPoints(*prep.joined_detail, scene, T_scene_model, tolerance_mm,
+                                   {.subset = nullptr, .stop = stop, .sort_unmeasured = false});
   const double facing = double(t.points - t.turned_away);
   return {t, std::max({1.0, facing, 0.25 * double(t.points)})};
 }
@@ -554,10 +556,10 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
         d.alternative_poses.push_back(d.T_scene_model * s.S_model);
         continue;
       }
-      const double as_found =
-          contradictedShare(tallyPoints(*prep.verify, scene, d.T_scene_model,
-                                        params.verify_tolerance_mm, &s.differing_inverse),
-                            min_seen);
+      const double as_found = contradictedShare(
+          tallyPoints(*prep.verify, scene, d.T_scene_model, params.verify_tolerance_mm,
+                      {.subset = &s.differing_inverse, .stop = {}, .sort_unmeasured = true}),
+          min_seen);
       Eigen::Isometry3d T_turned = polish(d.T_scene_model * s.S_model);
       double coverage = verify(T_turned);
       // Turned end over end, a cup's handle lies at another turn about its axis: its detail says
@@ -570,7 +572,8 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
         coverage = turn->coverage;
       }
       const double turned = contradictedShare(
-          tallyPoints(*prep.verify, scene, T_turned, params.verify_tolerance_mm, &s.differing),
+          tallyPoints(*prep.verify, scene, T_turned, params.verify_tolerance_mm,
+                      {.subset = &s.differing, .stop = {}, .sort_unmeasured = true}),
           min_seen);
       logger()->trace("detection {}: {:.2f} of the differing points contradicted as found, {:.2f} "
                       "turned",

@@ -111,8 +111,10 @@ std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
 
 PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
-                       const std::vector<std::uint32_t>* subset, const TallyStop& stop,
-                       bool sort_unmeasured) {
+                       const TallyOptions& options) {
+  const std::vector<std::uint32_t>* subset = options.subset;
+  const TallyStop& stop = options.stop;
+  const bool sort_unmeasured = options.sort_unmeasured;
   const SceneIndex& index = *scene.index;
   const PointCloud& scan = *scene.scan;
   const SensorModel& sensor = *scene.sensor;
@@ -225,9 +227,10 @@ double verifyPose(const VerifyModel& model, const VerifyScene& scene,
   const auto cannot_reach = [&](const PointTally& so_far, std::size_t left) {
     return surfaceScoreBound(so_far, left) < drop_below;
   };
-  const PointTally t =
-      drop_below > 0 ? tallyPoints(model, scene, T_scene_model, tolerance_mm, nullptr, cannot_reach)
-                     : tallyPoints(model, scene, T_scene_model, tolerance_mm);
+  const PointTally t = tallyPoints(model, scene, T_scene_model, tolerance_mm,
+                                   {.subset = nullptr,
+                                    .stop = drop_below > 0 ? TallyStop(cannot_reach) : TallyStop(),
+                                    .sort_unmeasured = true});
   if (const std::size_t left = model.points.size() - t.points; left > 0)
     return surfaceScoreBound(t, left); // stopped: under drop_below
   const double seeable = double(t.points - t.shadowed);

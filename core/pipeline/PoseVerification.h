@@ -75,6 +75,19 @@ struct PointTally {
 /// Whether a tally of points may stop (tallyPoints): given the tally so far and the points left.
 using TallyStop = std::function<bool(const PointTally& so_far, std::size_t left)>;
 
+/// What tallyPoints looks at, and how far.
+struct TallyOptions {
+  /// Indices of the model points to look at; null: every point.
+  const std::vector<std::uint32_t>* subset = nullptr;
+  /// Asked every few points with the tally so far and the number of points left: true ends the
+  /// tally there (it then counts the points looked at). Empty: the tally runs to the end.
+  TallyStop stop;
+  /// False for a caller that counts only confirmations and violations: points without a
+  /// measurement are then neither hidden nor shadowed, and their walks through the model's body
+  /// are saved.
+  bool sort_unmeasured = true;
+};
+
 /// Where a structured-light scan's projector light reached: for each projector pixel, the depth
 /// (along the projector's axis) of the nearest measured point. A point without a measurement lay
 /// in the projector's shadow when measured surface lies between the projector and it (the inside
@@ -124,15 +137,11 @@ struct VerifyScene {
 /// hidden when the model's own body lies between it and the camera, and shadowed when scene.shadow
 /// says the projector's light to it was blocked or the model's body lies between it and the
 /// projector.
-/// A caller that needs a tally only while it can still reach something stops it: `stop` is asked
-/// every few points with the tally so far and the number of points left, and true ends the tally
-/// there (it then counts the points looked at). A caller that counts only confirmations and
-/// violations passes `sort_unmeasured` false: points without a measurement are then neither
-/// hidden nor shadowed, and their walks through the model's body are saved.
+/// `options` chooses the points, a stop for a caller that needs the tally only while it can still
+/// reach something, and whether unmeasured points are sorted.
 PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
-                       const std::vector<std::uint32_t>* subset = nullptr,
-                       const TallyStop& stop = {}, bool sort_unmeasured = true);
+                       const TallyOptions& options = {});
 
 /// The highest surface score (verifyPose's, before the edge agreement) that a tally can still
 /// reach with `left` points not looked at: each of them confirmed, and the expected count at its

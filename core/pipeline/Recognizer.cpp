@@ -105,6 +105,25 @@ struct FeatureKey {
 /// the other views of a part (their diameters differ by a few per cent) share the pairing.
 constexpr double kPairingMargin = 1.1;
 
+/// Point-level verification of poses of `prep`'s view in `scene`. A search that drops every pose
+/// scoring under `drop_below` may skip those poses' edge check (verifyPose). Every argument taken
+/// by reference must outlive the verifier.
+PoseVerifier verifierFor(const ModelPrep& prep, const VerifyScene& scene, double tolerance_mm,
+                         const EdgeCheck& edges, double drop_below = 0.0) {
+  return [&prep, &scene, tolerance_mm, &edges, drop_below](const Eigen::Isometry3d& T) {
+    return verifyPose(*prep.verify, scene, T, tolerance_mm, edges, drop_below);
+  };
+}
+
+/// ICP of `prep`'s view in `scene` where the view was prepared for it, else the pose unchanged.
+/// Every argument must outlive the polisher.
+PosePolisher polisherFor(const ModelPrep& prep, const SceneIndex& scene,
+                         const RefineParams& params) {
+  return [&prep, &scene, &params](const Eigen::Isometry3d& T) {
+    return prep.refine ? refinePose(*prep.refine, scene, T, params).T_scene_model : T;
+  };
+}
+
 } // namespace
 
 struct Recognizer::Cache {
@@ -448,15 +467,10 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
   const auto t_match = Clock::now();
   const VerifyScene verify_scene{cache.scene_index.get(), &scene_mm, &sensor, cache.floor_plane,
                                  cache.shadow.get()};
-  // Verification; for a search that drops every pose scoring under `drop_below`, one that may skip
-  // those poses' edge check (verifyPose).
   const auto verifierFrom = [&](double drop_below) -> PoseVerifier {
-    if (!verifying || !prep)
-      return {};
-    return [&, drop_below](const Eigen::Isometry3d& T) {
-      return verifyPose(*prep->verify, verify_scene, T, params.matching.verify_tolerance_mm, edges,
-                        drop_below);
-    };
+    return verifying && prep ? verifierFor(*prep, verify_scene, params.matching.verify_tolerance_mm,
+                                           edges, drop_below)
+                             : PoseVerifier{};
   };
   const PoseVerifier verify = verifierFrom(0.0);
   // The pooled search keeps the poses reaching the minimum coverage, and nothing else of them.
@@ -480,13 +494,9 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
       d.cluster = static_cast<int>(i);
       result.detections.push_back(std::move(d));
     }
-  const auto icp = [&](const Eigen::Isometry3d& T) {
-    return refinePose(*prep->refine, *cache.scene_index, T, params.refine);
-  };
   // ICP where the model was prepared for it (refinement, surface voting, near symmetries).
-  const auto polish = [&](const Eigen::Isometry3d& T) {
-    return prep && prep->refine ? icp(T).T_scene_model : T;
-  };
+  const PosePolisher polish =
+      prep ? polisherFor(*prep, *cache.scene_index, params.refine) : PosePolisher{};
   // A view that is a surface of revolution but for a detail may be found turned about its axis,
   // its detail (a cup's handle) where the scan has none: the turn its detail says can verify. (Its
   // own detail only: a turn the joined detail says keeps the coverage the pose was found with.)
@@ -591,11 +601,8 @@ void Recognizer::refine(const std::shared_ptr<const TaughtModel>& model,
     return;
   const PreparedScene at = preparedScene(model, scene_mm, sensor, params, "refinement");
   const double tolerance = params.matching.verify_tolerance_mm;
-  PoseVerifier verify;
-  if (tolerance > 0)
-    verify = [&](const Eigen::Isometry3d& T) {
-      return verifyPose(*at.prep->verify, at.scene, T, tolerance, at.edges);
-    };
+  const PoseVerifier verify =
+      tolerance > 0 ? verifierFor(*at.prep, at.scene, tolerance, at.edges) : PoseVerifier{};
   refineDetections(detections, *at.prep, *at.cache.scene_index, params.refine, verify);
   placeDetections(detections, *model, at.prep.get(), verify ? &at.scene : nullptr, tolerance);
 }
@@ -612,14 +619,8 @@ void Recognizer::resolveTurns(const std::shared_ptr<const TaughtModel>& model,
   const ModelPrep& prep = *at.prep;
   if (!prep.near_axis && prep.symmetries.empty())
     return;
-  const PoseVerifier verify = [&](const Eigen::Isometry3d& T) {
-    return verifyPose(*prep.verify, at.scene, T, tolerance, at.edges);
-  };
-  const PosePolisher polish = [&](const Eigen::Isometry3d& T) {
-    return prep.refine
-               ? refinePose(*prep.refine, *at.cache.scene_index, T, params.refine).T_scene_model
-               : T;
-  };
+  const PoseVerifier verify = verifierFor(prep, at.scene, tolerance, at.edges);
+  const PosePolisher polish = polisherFor(prep, *at.cache.scene_index, params.refine);
   sortBestFirst(detections);
   resolveDetectionTurns(detections, prep, at.scene, params.matching, verify, polish,
                         0.25 * model->diameter_mm);
@@ -667,8 +668,8 @@ PartScorer Recognizer::partScorer(const std::vector<std::shared_ptr<const Taught
     const ViewPart& view = views[static_cast<std::size_t>(d.model_index)];
     if (!view.points)
       return std::numeric_limits<double>::quiet_NaN();
-    const PointTally t =
-        tallyPoints(*view.points, scene, d.T_scene_model, view.tolerance_mm, &view.every);
+    const PointTally t = tallyPoints(*view.points, scene, d.T_scene_model, view.tolerance_mm,
+                                     {.subset = &view.every, .stop = {}, .sort_unmeasured = true});
     const double expected = double(t.points) - double(t.hidden) - double(t.shadowed);
     return expected > 0 ? (double(t.confirmed) - double(t.violations)) / expected : 0.0;
   };

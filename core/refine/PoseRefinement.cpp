@@ -53,12 +53,6 @@ bool facesViewpoint(const Eigen::Vector3f& p, const Eigen::Vector3f& n,
   return n.dot(viewpoint - p) > 0.0f;
 }
 
-/// Pairs every stride-th model point with its nearest scene point within sqrt(max_distance_sq).
-/// A point that moved less than `reuse_within_mm` since its last search keeps that search's
-/// answer (another sample of the same surface at most that much closer changes nothing for
-/// point-to-plane); pass 0 to search every point. `pairs` must come from a call with the same
-/// stride, or be empty. Each slot is written by one task only, so the result is independent of
-/// scheduling.
 /// The squared distance (mm²) within which the nearest scene point to `p` is looked for: at most
 /// `max_distance_sq`, and no farther than the point found for it last time (`last`, -1 for none),
 /// with a little to spare (the window of a smaller ball is smaller). Every point as near as the
@@ -71,6 +65,12 @@ float searchBound(const SceneIndex& scene, const Eigen::Vector3f& p, std::int64_
   return std::min(max_distance_sq, 1.001f * last_sq + 1e-6f);
 }
 
+/// Pairs every stride-th model point with its nearest scene point within sqrt(max_distance_sq).
+/// A point that moved less than `reuse_within_mm` since its last search keeps that search's
+/// answer (another sample of the same surface at most that much closer changes nothing for
+/// point-to-plane); pass 0 to search every point. `pairs` must come from a call with the same
+/// stride, or be empty. Each slot is written by one task only, so the result is independent of
+/// scheduling.
 void findPairs(const RefineModel& model, const SceneIndex& scene, const Eigen::Isometry3d& T,
                std::size_t stride, float max_distance_sq, bool need_normals, float reuse_within_mm,
                std::vector<Pair>& pairs) {

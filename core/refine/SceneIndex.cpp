@@ -177,16 +177,10 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
     m_width = static_cast<int>(scene_mm.width);
     m_height = static_cast<int>(scene_mm.height);
     m_pixel_index = std::move(pixel_to_index);
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    for (auto* coordinate : {&m_pixel_x, &m_pixel_y, &m_pixel_z})
-      coordinate->assign(m_pixel_index.size() + kPixelPadding, nan);
+    m_pixel_points = PixelCoordinates(m_pixel_index.size());
     for (std::size_t pixel = 0; pixel < m_pixel_index.size(); ++pixel)
-      if (m_pixel_index[pixel] >= 0) {
-        const Eigen::Vector3f& p = indexed[static_cast<std::size_t>(m_pixel_index[pixel])];
-        m_pixel_x[pixel] = p.x();
-        m_pixel_y[pixel] = p.y();
-        m_pixel_z[pixel] = p.z();
-      }
+      if (m_pixel_index[pixel] >= 0)
+        m_pixel_points.set(pixel, indexed[static_cast<std::size_t>(m_pixel_index[pixel])]);
     if (options.sensor)
       m_pixel_slack = measurePixelSlack(*options.sensor);
   }
@@ -327,8 +321,8 @@ std::int64_t SceneIndex::nearestInWindow(const Eigen::Vector3f& query_mm, float 
                            std::max(0, v - half_v), std::min(m_height - 1, v + half_v)};
   float best = max_distance_sq;
   const std::int64_t best_index =
-      nearestInPixels(m_pixel_x.data(), m_pixel_y.data(), m_pixel_z.data(), m_pixel_index.data(),
-                      std::size_t(m_width), window, query_mm, best);
+      nearestInPixels(m_pixel_points.x.data(), m_pixel_points.y.data(), m_pixel_points.z.data(),
+                      m_pixel_index.data(), std::size_t(m_width), window, query_mm, best);
   if (best_index >= 0 && distance_sq)
     *distance_sq = best;
   return best_index;

@@ -3,6 +3,7 @@
 /// Scene points with unit normals in a kd-tree: built once per scene, then shared (read-only) by
 /// the refinement and verification of every detection in that scene.
 
+#include "core/cloud/PixelCoordinates.h"
 #include "core/cloud/PointCloud.h"
 #include "core/cloud/Sensor.h"
 #include "core/common/Progress.h"
@@ -115,11 +116,9 @@ private:
   [[nodiscard]] float measurePixelSlack(const SensorModel& sensor) const;
   SceneIndexOptions m_options;
   std::vector<std::int32_t> m_pixel_index;
-  /// Organized clouds: each pixel's indexed point (NaN where none), one coordinate per array and
-  /// kPixelPadding NaN pixels past the last, so that a pixel window is read row by row, eight
-  /// pixels at a time, without looking up each pixel's index.
-  std::vector<float> m_pixel_x, m_pixel_y, m_pixel_z;
-  static constexpr std::size_t kPixelPadding = 8;
+  /// Organized clouds: each pixel's indexed point, so that a pixel window is read row by row
+  /// without looking up each pixel's index.
+  PixelCoordinates m_pixel_points;
   int m_width = 0, m_height = 0;
   float m_pixel_slack = -1.0f;
   std::vector<Eigen::Vector3f> m_normals;

@@ -78,9 +78,12 @@ TEST_F(VerificationDropBelow, APoseThatCannotReachTheBoundStopsEarlyWithTheSameV
     const auto cannot_reach = [&](const PointTally& so_far, std::size_t left) {
       return surfaceScoreBound(so_far, left) < bound;
     };
-    const PointTally off = tallyPoints(*c.view, scene, T_off, tolerance, nullptr, cannot_reach);
+    const PointTally off =
+        tallyPoints(*c.view, scene, T_off, tolerance,
+                    {.subset = nullptr, .stop = cannot_reach, .sort_unmeasured = true});
     const PointTally at_truth =
-        tallyPoints(*c.view, scene, c.T_true, tolerance, nullptr, cannot_reach);
+        tallyPoints(*c.view, scene, c.T_true, tolerance,
+                    {.subset = nullptr, .stop = cannot_reach, .sort_unmeasured = true});
     std::printf("bound %.1f: the pose 30 mm off stopped after %zu of %zu points\n", bound,
                 off.points, all);
     EXPECT_LT(off.points, all);

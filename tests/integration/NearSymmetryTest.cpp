@@ -98,7 +98,9 @@ TEST(NearSymmetry, DifferingPointsTellTheTrueTurnAndRecognitionReportsIt) {
   const VerifyScene scene{&index, &scan.render.cloud, &scan.sensor, std::nullopt};
   const double tolerance = params.matching.verify_tolerance_mm;
   const auto contradicted = [&](const Eigen::Isometry3d& T, const std::vector<std::uint32_t>& set) {
-    return contradictedShare(tallyPoints(*view, scene, T, tolerance, &set), 8);
+    return contradictedShare(tallyPoints(*view, scene, T, tolerance,
+                                         {.subset = &set, .stop = {}, .sort_unmeasured = true}),
+                             8);
   };
   // The true pose, as found: its own differing points against those of its turn (true·S).
   const double true_as_found = contradicted(T_true, s.differing_inverse);
