@@ -48,8 +48,7 @@ Eigen::AlignedBox3f boundingBox(const PointCloud& cloud) {
   return box;
 }
 
-namespace {
-template <typename Keep> PointCloud selectPoints(const PointCloud& cloud, Keep keep) {
+PointCloud selectPoints(const PointCloud& cloud, const std::function<bool(std::size_t)>& keep) {
   PointCloud out;
   for (std::size_t i = 0; i < cloud.points_mm.size(); ++i) {
     if (!keep(i))
@@ -68,7 +67,6 @@ template <typename Keep> PointCloud selectPoints(const PointCloud& cloud, Keep k
   out.height = 1;
   return out;
 }
-} // namespace
 
 PointCloud dropInvalid(const PointCloud& cloud) {
   return selectPoints(cloud, [&](std::size_t i) { return isValid(cloud.points_mm[i]); });

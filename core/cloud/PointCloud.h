@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -52,6 +53,10 @@ inline bool isValid(const Eigen::Vector3f& p) {
 
 /// Axis-aligned bounding box of the valid points (empty box if none).
 Eigen::AlignedBox3f boundingBox(const PointCloud& cloud);
+
+/// Copy of the points whose index `keep` accepts, in order, unorganized; other channels follow
+/// their points.
+PointCloud selectPoints(const PointCloud& cloud, const std::function<bool(std::size_t)>& keep);
 
 /// Copy of the valid points only, unorganized; other channels follow their points.
 PointCloud dropInvalid(const PointCloud& cloud);

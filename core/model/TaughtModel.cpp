@@ -15,30 +15,10 @@ namespace scanpick::core {
 
 PointCloud cropToOrientedBox(const PointCloud& cloud, const OrientedBox& box) {
   const Eigen::Isometry3f T_box_scan = box.T_scan_box.inverse();
-  std::vector<std::size_t> keep;
-  for (std::size_t i = 0; i < cloud.points_mm.size(); ++i) {
+  return selectPoints(cloud, [&](std::size_t i) {
     const auto& p = cloud.points_mm[i];
-    if (!isValid(p))
-      continue;
-    const Eigen::Vector3f local = T_box_scan * p;
-    if ((local.cwiseAbs().array() <= box.half_extents_mm.array()).all())
-      keep.push_back(i);
-  }
-  PointCloud out;
-  for (std::size_t i : keep) {
-    out.points_mm.push_back(cloud.points_mm[i]);
-    if (!cloud.normals.empty())
-      out.normals.push_back(cloud.normals[i]);
-    if (!cloud.colors.empty())
-      out.colors.push_back(cloud.colors[i]);
-    if (!cloud.intensity.empty())
-      out.intensity.push_back(cloud.intensity[i]);
-    if (!cloud.confidence.empty())
-      out.confidence.push_back(cloud.confidence[i]);
-  }
-  out.width = static_cast<std::uint32_t>(out.points_mm.size());
-  out.height = 1;
-  return out;
+    return isValid(p) && ((T_box_scan * p).cwiseAbs().array() <= box.half_extents_mm.array()).all();
+  });
 }
 
 TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,

@@ -57,26 +57,11 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   preset_row->addWidget(save);
   outer->addLayout(preset_row);
   fillPresetList();
-  connect(m_presets, &QComboBox::activated, this, [this](int index) {
-    const QString path = m_presets->itemData(index).toString();
-    if (path.isEmpty())
-      return;
-    try {
-      loadPresetFile(path);
-    } catch (const std::exception& e) {
-      QMessageBox::warning(this, tr("Preset"), QString::fromUtf8(e.what()));
-    }
-  });
+  connect(m_presets, &QComboBox::activated, this,
+          [this](int index) { loadPresetOrWarn(m_presets->itemData(index).toString()); });
   connect(load, &QPushButton::clicked, this, [this] {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Load preset"), presetsDirectory(),
-                                                      tr("Presets (*.json)"));
-    if (path.isEmpty())
-      return;
-    try {
-      loadPresetFile(path);
-    } catch (const std::exception& e) {
-      QMessageBox::warning(this, tr("Preset"), QString::fromUtf8(e.what()));
-    }
+    loadPresetOrWarn(QFileDialog::getOpenFileName(this, tr("Load preset"), presetsDirectory(),
+                                                  tr("Presets (*.json)")));
   });
   connect(save, &QPushButton::clicked, this, [this] {
     const QString path =
@@ -232,6 +217,16 @@ void ParameterPanel::loadPresetFile(const QString& path) {
   emit presetLoaded(path);
   emit paramsChanged(m_params,
                      core::firstChangedStage(before, m_params).value_or(core::Stage::Preprocess));
+}
+
+void ParameterPanel::loadPresetOrWarn(const QString& path) {
+  if (path.isEmpty())
+    return;
+  try {
+    loadPresetFile(path);
+  } catch (const std::exception& e) {
+    QMessageBox::warning(this, tr("Preset"), QString::fromUtf8(e.what()));
+  }
 }
 
 void ParameterPanel::savePresetFile(const QString& path, const QString& name) const {

@@ -44,6 +44,8 @@ signals:
   void presetLoaded(const QString& path);
 
 private:
+  /// loadPresetFile, a message box instead of an exception; nothing for an empty path.
+  void loadPresetOrWarn(const QString& path);
   QWidget* makeEditor(const core::ParamInfo& info);
   void editorChanged(const core::ParamInfo& info, double value);
   void refreshEditors();
