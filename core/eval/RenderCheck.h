@@ -53,6 +53,11 @@ public:
   [[nodiscard]] int instanceAt(const std::string& part,
                                const Eigen::Isometry3d& T_scene_part) const;
 
+  /// The scene as the truth places it: its instance k is the truth's instance truthIds()[k].
+  [[nodiscard]] const Scene& scene() const { return m_scene; }
+  [[nodiscard]] const std::vector<int>& truthIds() const { return m_truth_ids; }
+  [[nodiscard]] const SensorModel& sensor() const { return m_sensor; }
+
 private:
   Scene m_scene; ///< the renderer's instance k is the truth's instance m_truth_ids[k]
   std::vector<int> m_truth_ids;
