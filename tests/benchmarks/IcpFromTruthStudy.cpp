@@ -8,35 +8,21 @@
 // with `--preset PRESET --set refine.enabled=true` (views that know their place in the part are
 // joined, and ICP fits all of them). Prints each instance's error at the model origin and the
 // medians. Not a test: run it by hand and write the figures in the docs.
+#include "FromTruthStudy.h"
 #include "core/cloud/CloudIo.h"
-#include "core/common/Error.h"
-#include "core/eval/GroundTruth.h"
-#include "core/model/ModelFile.h"
-#include "core/params/ParamsJson.h"
-#include "core/params/ViewParams.h"
-#include "core/pipeline/ModelPrep.h"
-#include "core/refine/PoseRefinement.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
 
 namespace fs = std::filesystem;
 using namespace scanpick::core;
+using namespace scanpick::study;
 
 namespace {
-
-double median(std::vector<double> values) {
-  if (values.empty())
-    return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
 
 int run(int argc, char** argv) {
   if (argc < 5) {
@@ -48,54 +34,19 @@ int run(int argc, char** argv) {
   const std::string part = argv[2];
   RecognitionParams params = loadPreset(argv[3]).params;
   params.refine.enabled = true;
-  std::vector<std::shared_ptr<const TaughtModel>> views;
-  for (int a = 4; a < argc; ++a)
-    views.push_back(std::make_shared<const TaughtModel>(loadModel(argv[a])));
-  requireOnePart(views);
-  views = joinViews(views);
-  std::vector<std::shared_ptr<const detail::ModelPrep>> preps, cache;
-  for (const auto& view : views) {
-    if (!view->T_part_model)
-      throw Error(view->teach_scan + " does not know its place in the part (teach it with "
-                                     "--crop-from-truth or --part-pose)");
-    preps.push_back(detail::prepareModel(cache, view, withViewParams(params, view->view_params)));
-  }
+  const PreparedViews views = prepareViews({argv + 4, argv + argc}, params);
 
   std::vector<double> origin_mm, rotation_deg;
-  std::vector<fs::path> scenes;
-  for (const auto& entry : fs::directory_iterator(suite))
-    if (entry.path().extension() == ".pcd")
-      scenes.push_back(entry.path());
-  std::sort(scenes.begin(), scenes.end());
-  for (const auto& scene : scenes) {
-    fs::path truth_path = scene;
-    truth_path.replace_extension(".gt.json");
-    const auto truth = eval::loadGroundTruth(truth_path);
+  for (const auto& scene : sceneFiles(suite)) {
+    const auto truth = truthOf(scene);
     const PointCloud cloud = loadCloud(scene, LengthUnit::Millimetres).cloud;
-    SceneIndexOptions options;
-    options.normal_radius_mm = params.keypoints.normal_radius_mm;
-    options.sensor =
-        sensorPreset(truth.sensor_preset.empty() ? "phoxi-m-1032" : truth.sensor_preset);
-    const SceneIndex index(cloud, options);
+    const SceneIndex index = sceneIndexFor(cloud, truth, params);
     for (const auto& instance : truth.instances) {
       if (instance.part != part || instance.visible_fraction < 0.5)
         continue;
-      // The view the scan covers best at the true pose: the one recognition would find it with.
-      std::size_t best = 0;
-      double best_coverage = -1.0;
-      for (std::size_t v = 0; v < views.size(); ++v) {
-        const double coverage =
-            coverageScore(*preps[v]->refine, index, instance.T_scene_part * *views[v]->T_part_model,
-                          params.matching.verify_tolerance_mm);
-        if (coverage > best_coverage) {
-          best_coverage = coverage;
-          best = v;
-        }
-      }
-      const detail::ModelPrep& prep = *preps[best];
-      const Eigen::Isometry3d T_true = instance.T_scene_part * *views[best]->T_part_model;
-      const RefinementResult r = refinePose(prep.joined_refine ? *prep.joined_refine : *prep.refine,
-                                            index, T_true, params.refine);
+      const std::size_t best = bestView(views, index, instance.T_scene_part, params);
+      const Eigen::Isometry3d T_true = instance.T_scene_part * *views.views[best]->T_part_model;
+      const RefinementResult r = refineFrom(views, best, index, T_true, params);
       const Eigen::Isometry3d error = T_true.inverse() * r.T_scene_model;
       origin_mm.push_back(error.translation().norm());
       rotation_deg.push_back(Eigen::AngleAxisd(error.linear()).angle() * 180.0 / std::numbers::pi);

@@ -20,16 +20,10 @@
 // OWN_VIEW=1 renders each view's own points only, not those of the views joined to it.
 // PRINT_CURVES=1 prints the cost along each direction. Not a test: run it by hand and write the
 // figures in the docs.
+#include "FromTruthStudy.h"
 #include "core/cloud/CloudIo.h"
 #include "core/cloud/PointKdTree.h"
-#include "core/common/Error.h"
-#include "core/eval/GroundTruth.h"
 #include "core/eval/RenderCheck.h"
-#include "core/model/ModelFile.h"
-#include "core/params/ParamsJson.h"
-#include "core/params/ViewParams.h"
-#include "core/pipeline/ModelPrep.h"
-#include "core/refine/PoseRefinement.h"
 #include "core/sim/PartCatalog.h"
 #include "core/sim/Renderer.h"
 
@@ -43,21 +37,14 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
-#include <numbers>
 #include <string>
 #include <vector>
 
 namespace fs = std::filesystem;
 using namespace scanpick::core;
+using namespace scanpick::study;
 
 namespace {
-
-double median(std::vector<double> values) {
-  if (values.empty())
-    return 0.0;
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
 
 /// The pixel rectangle [u0, u1) × [v0, v1) of the scan compared.
 struct Window {
@@ -333,17 +320,8 @@ int run(int argc, char** argv) {
   const bool print_curves = std::getenv("PRINT_CURVES") != nullptr;
   const double weak_share = std::getenv("WEAK") ? std::atof(std::getenv("WEAK")) : 0.0;
   const bool part_axes = std::getenv("PART_AXES") != nullptr; // the true part's axes, not PCA
-  std::vector<std::shared_ptr<const TaughtModel>> views;
-  for (int a = 6; a < argc; ++a)
-    views.push_back(std::make_shared<const TaughtModel>(loadModel(argv[a])));
-  requireOnePart(views);
-  views = joinViews(views);
-  std::vector<std::shared_ptr<const detail::ModelPrep>> preps, cache;
-  for (const auto& view : views) {
-    if (!view->T_part_model)
-      throw Error(view->teach_scan + " does not know its place in the part");
-    preps.push_back(detail::prepareModel(cache, view, withViewParams(params, view->view_params)));
-  }
+  const PreparedViews prepared = prepareViews({argv + 6, argv + argc}, params);
+  const auto& views = prepared.views;
   std::vector<std::unique_ptr<SplatModel>> splats;
   std::vector<Eigen::Matrix3d> axes;
   if (splat_factor > 0)
@@ -370,45 +348,23 @@ int run(int argc, char** argv) {
     }
 
   std::vector<double> icp_mm, pinned_mm;
-  std::vector<fs::path> scenes;
-  for (const auto& entry : fs::directory_iterator(suite))
-    if (entry.path().extension() == ".pcd")
-      scenes.push_back(entry.path());
-  std::sort(scenes.begin(), scenes.end());
-  for (const auto& scene : scenes) {
-    fs::path truth_path = scene;
-    truth_path.replace_extension(".gt.json");
-    const auto truth = eval::loadGroundTruth(truth_path);
+  for (const auto& scene : sceneFiles(suite)) {
+    const auto truth = truthOf(scene);
     bool wanted = false;
     for (const auto& instance : truth.instances)
       wanted = wanted || (instance.part == part && instance.visible_fraction >= 0.5);
     if (!wanted)
       continue;
     const PointCloud cloud = loadCloud(scene, LengthUnit::Millimetres).cloud;
-    SceneIndexOptions options;
-    options.normal_radius_mm = params.keypoints.normal_radius_mm;
-    options.sensor = sensorPreset(truth.sensor_preset);
-    const SceneIndex index(cloud, options);
+    const SceneIndex index = sceneIndexFor(cloud, truth, params);
     const eval::TruthRenderer renderer(truth);
     for (const auto& instance : truth.instances) {
       if (instance.part != part || instance.visible_fraction < 0.5)
         continue;
-      std::size_t best = 0;
-      double best_coverage = -1.0;
-      for (std::size_t v = 0; v < views.size(); ++v) {
-        const double coverage =
-            coverageScore(*preps[v]->refine, index, instance.T_scene_part * *views[v]->T_part_model,
-                          params.matching.verify_tolerance_mm);
-        if (coverage > best_coverage) {
-          best_coverage = coverage;
-          best = v;
-        }
-      }
-      const detail::ModelPrep& prep = *preps[best];
+      const std::size_t best = bestView(prepared, index, instance.T_scene_part, params);
       const Eigen::Isometry3d T_part_model = *views[best]->T_part_model;
       const Eigen::Isometry3d T_true = instance.T_scene_part * T_part_model;
-      const RefinementResult r = refinePose(prep.joined_refine ? *prep.joined_refine : *prep.refine,
-                                            index, T_true, params.refine);
+      const RefinementResult r = refineFrom(prepared, best, index, T_true, params);
       // The part at ICP's pose, then moved along its own axes (scene frame) to the least
       // difference.
       Eigen::Isometry3d T_scene_part = r.T_scene_model * T_part_model.inverse();
