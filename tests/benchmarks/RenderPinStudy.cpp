@@ -148,17 +148,8 @@ public:
   /// the model.
   [[nodiscard]] bool blocks(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
                             double skip_mm) const {
-    const Eigen::Vector3d dir = (to - from).normalized();
-    RTCRay ray{};
-    ray.org_x = static_cast<float>(from.x());
-    ray.org_y = static_cast<float>(from.y());
-    ray.org_z = static_cast<float>(from.z());
-    ray.dir_x = static_cast<float>(dir.x());
-    ray.dir_y = static_cast<float>(dir.y());
-    ray.dir_z = static_cast<float>(dir.z());
-    ray.tnear = static_cast<float>(skip_mm);
-    ray.tfar = static_cast<float>((to - from).norm());
-    ray.mask = 0xFFFFFFFFu;
+    RTCRay ray = rayAlong(from, (to - from).normalized(), static_cast<float>(skip_mm),
+                          static_cast<float>((to - from).norm()));
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     rtcOccluded1(m_scene, &context, &ray);
@@ -167,19 +158,12 @@ public:
   /// Depth (z, mm) of the model at pose T_scene_model seen by `sensor` at pixel (u, v); NaN: none.
   [[nodiscard]] float depth(const Eigen::Isometry3d& T_model_scene, const SensorModel& sensor,
                             int u, int v) const {
+    // The camera ray in the model frame; its direction has z = 1 in the camera frame, so the hit's
+    // distance along it is the depth.
     const Eigen::Vector3d d((u - sensor.cx) / sensor.fx, (v - sensor.cy) / sensor.fy, 1.0);
-    const Eigen::Vector3d o = T_model_scene.translation();
-    const Eigen::Vector3d dm = T_model_scene.linear() * d;
     RTCRayHit rh{};
-    rh.ray.org_x = static_cast<float>(o.x());
-    rh.ray.org_y = static_cast<float>(o.y());
-    rh.ray.org_z = static_cast<float>(o.z());
-    rh.ray.dir_x = static_cast<float>(dm.x());
-    rh.ray.dir_y = static_cast<float>(dm.y());
-    rh.ray.dir_z = static_cast<float>(dm.z());
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray = rayAlong(T_model_scene.translation(), T_model_scene.linear() * d, 0.0f,
+                      std::numeric_limits<float>::infinity());
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -210,6 +194,21 @@ public:
   }
 
 private:
+  static RTCRay rayAlong(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                         float tnear, float tfar) {
+    RTCRay ray{};
+    ray.org_x = static_cast<float>(origin.x());
+    ray.org_y = static_cast<float>(origin.y());
+    ray.org_z = static_cast<float>(origin.z());
+    ray.dir_x = static_cast<float>(direction.x());
+    ray.dir_y = static_cast<float>(direction.y());
+    ray.dir_z = static_cast<float>(direction.z());
+    ray.tnear = tnear;
+    ray.tfar = tfar;
+    ray.mask = 0xFFFFFFFFu;
+    return ray;
+  }
+
   RTCDevice m_device;
   RTCScene m_scene;
 };
@@ -247,20 +246,27 @@ double mismatch(const SplatModel& model, const Eigen::Isometry3d& T_scene_model,
   return cost;
 }
 
+/// The truth's scene with instance `label` at `T_scene_part`.
+Scene movedScene(const eval::TruthRenderer& truth, std::size_t label,
+                 const Eigen::Isometry3d& T_scene_part) {
+  Scene moved = truth.scene();
+  moved.instances[label].T_world_part = moved.T_camera_world.inverse() * T_scene_part;
+  return moved;
+}
+
 /// Renders the truth's scene, instance `label` at `T_scene_part`, over `window` only, and returns
 /// how much it differs from the scan there: per pixel min(|Δz| / tolerance, 1)², 1 where only one
 /// of the two measures a point.
 double difference(const eval::TruthRenderer& truth, std::size_t label,
                   const Eigen::Isometry3d& T_scene_part, const PointCloud& scan,
                   const Window& window, double tolerance_mm) {
-  Scene moved = truth.scene();
-  moved.instances[label].T_world_part = moved.T_camera_world.inverse() * T_scene_part;
   SensorModel sensor = truth.sensor();
   sensor.width = window.u1 - window.u0;
   sensor.height = window.v1 - window.v0;
   sensor.cx -= window.u0;
   sensor.cy -= window.v0;
-  const RenderResult render = renderScene(moved, sensor, SensorNoise{}, 0);
+  const RenderResult render =
+      renderScene(movedScene(truth, label, T_scene_part), sensor, SensorNoise{}, 0);
   double cost = 0.0;
   for (int v = 0; v < sensor.height; ++v)
     for (int u = 0; u < sensor.width; ++u) {
@@ -281,10 +287,9 @@ double difference(const eval::TruthRenderer& truth, std::size_t label,
 /// The window around the pixels where instance `label` is seen at `T_scene_part`, `margin` wider.
 Window windowAround(const eval::TruthRenderer& truth, std::size_t label,
                     const Eigen::Isometry3d& T_scene_part, int margin) {
-  Scene moved = truth.scene();
-  moved.instances[label].T_world_part = moved.T_camera_world.inverse() * T_scene_part;
   const SensorModel& sensor = truth.sensor();
-  const RenderResult render = renderScene(moved, sensor, SensorNoise{}, 0);
+  const RenderResult render =
+      renderScene(movedScene(truth, label, T_scene_part), sensor, SensorNoise{}, 0);
   Window w{sensor.width, sensor.height, 0, 0};
   for (int v = 0; v < sensor.height; ++v)
     for (int u = 0; u < sensor.width; ++u)
@@ -299,6 +304,73 @@ Window windowAround(const eval::TruthRenderer& truth, std::size_t label,
     throw Error("the instance is not seen at the pose ICP settled at");
   return {std::max(0, w.u0 - margin), std::max(0, w.v0 - margin),
           std::min(sensor.width, w.u1 + margin), std::min(sensor.height, w.v1 + margin)};
+}
+
+/// The shift (mm) along one direction where `cost` is least in the middle of its run of least
+/// costs: sampled every 0.05 mm within ±0.8 mm; the run is the samples next to the least cost
+/// nearest 0 that lie within max(2, 3 % of it) of it; at the end of the range, that least cost.
+template <class Cost> double leastCostRunMiddle(const Cost& cost_at, bool print) {
+  std::vector<double> at, cost;
+  for (int k = -16; k <= 16; ++k) {
+    at.push_back(0.05 * k);
+    cost.push_back(cost_at(at.back()));
+  }
+  const double least = *std::min_element(cost.begin(), cost.end());
+  const double slack = std::max(2.0, 0.03 * least);
+  std::size_t m = 16;
+  for (std::size_t k = 0; k < cost.size(); ++k)
+    if (cost[k] == least && (cost[m] != least || std::abs(at[k]) < std::abs(at[m])))
+      m = k;
+  std::size_t lo = m, hi = m;
+  while (lo > 0 && cost[lo - 1] <= least + slack)
+    --lo;
+  while (hi + 1 < cost.size() && cost[hi + 1] <= least + slack)
+    ++hi;
+  const double shift = (lo == 0 || hi + 1 == cost.size()) ? at[m] : 0.5 * (at[lo] + at[hi]);
+  if (print) {
+    for (const double c : cost)
+      std::printf(" %.0f", c);
+    std::printf(" -> %.3f", shift);
+  }
+  return shift;
+}
+
+/// The shift (mm) with the least `cost`: within ±0.6 mm by 0.1 mm, then ±0.1 mm around it by
+/// 0.02 mm; ties go to the smaller shift.
+template <class Cost> double leastCostShift(const Cost& cost_at) {
+  double step = 0.1, centre = 0.0;
+  for (const int reach : {6, 5}) {
+    double best_cost = std::numeric_limits<double>::infinity(), best_at = centre;
+    for (int k = -reach; k <= reach; ++k) {
+      const double at = centre + k * step;
+      const double cost = cost_at(at);
+      if (cost < best_cost || (cost == best_cost && std::abs(at) < std::abs(best_at))) {
+        best_cost = cost;
+        best_at = at;
+      }
+    }
+    centre = best_at;
+    step = 0.02;
+  }
+  return centre;
+}
+
+/// Eigenvectors of the points' covariance, smallest eigenvalue first.
+Eigen::Matrix3d principalAxes(const std::vector<Eigen::Vector3f>& points) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : points)
+    mean += p.cast<double>();
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& p : points)
+    cov += (p.cast<double>() - mean) * (p.cast<double>() - mean).transpose();
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors();
+}
+
+/// `T` moved by `shift_mm` along `direction` (scene frame).
+Eigen::Isometry3d movedBy(Eigen::Isometry3d T, const Eigen::Vector3d& direction, double shift_mm) {
+  T.pretranslate(shift_mm * direction);
+  return T;
 }
 
 int run(int argc, char** argv) {
@@ -326,25 +398,19 @@ int run(int argc, char** argv) {
   std::vector<Eigen::Matrix3d> axes;
   if (splat_factor > 0)
     for (const auto& view : views) {
-      std::vector<std::pair<const PointCloud*, Eigen::Vector3d>> clouds{
-          {&view->cloud_mm, view->T_teach_model.inverse().translation()}};
-      if (!std::getenv("OWN_VIEW"))
-        for (const auto& joined : view->joined_views)
-          clouds.emplace_back(&joined.cloud_mm, joined.camera_mm);
-      if (mode == "mesh")
+      if (mode == "mesh") {
         splats.push_back(std::make_unique<SplatModel>(
             transformed(builtInPart(part).mesh(), view->T_part_model->inverse())));
-      else
+      } else {
+        std::vector<std::pair<const PointCloud*, Eigen::Vector3d>> clouds{
+            {&view->cloud_mm, view->T_teach_model.inverse().translation()}};
+        if (!std::getenv("OWN_VIEW"))
+          for (const auto& joined : view->joined_views)
+            clouds.emplace_back(&joined.cloud_mm, joined.camera_mm);
         splats.push_back(
             std::make_unique<SplatModel>(clouds, splat_factor, params.keypoints.normal_radius_mm));
-      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-      for (const auto& p : splats.back()->points_all)
-        mean += p.cast<double>();
-      mean /= static_cast<double>(splats.back()->points_all.size());
-      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-      for (const auto& p : splats.back()->points_all)
-        cov += (p.cast<double>() - mean) * (p.cast<double>() - mean).transpose();
-      axes.push_back(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors());
+      }
+      axes.push_back(principalAxes(splats.back()->points_all));
     }
 
   std::vector<double> icp_mm, pinned_mm;
@@ -390,37 +456,17 @@ int run(int argc, char** argv) {
                                       : part_axes
                                           ? Eigen::Vector3d(T_scene_part.linear().col(axis))
                                           : Eigen::Vector3d(T.linear() * axes[best].col(axis));
-            std::vector<double> at, cost;
-            for (int k = -16; k <= 16; ++k) {
-              at.push_back(0.05 * k);
-              Eigen::Isometry3d moved = T;
-              moved.pretranslate(at.back() * d);
-              cost.push_back(
-                  mismatch(model, moved, renderer.sensor(), cloud, window, tolerance_mm));
-            }
-            // The middle of the least-cost run around the least cost nearest to the start.
-            const double least = *std::min_element(cost.begin(), cost.end());
-            const double slack = std::max(2.0, 0.03 * least);
-            std::size_t m = 16;
-            for (std::size_t k = 0; k < cost.size(); ++k)
-              if (cost[k] == least &&
-                  std::abs(at[k]) < std::abs(at[m]) + (cost[m] == least ? 0 : 99))
-                m = k;
-            std::size_t lo = m, hi = m;
-            while (lo > 0 && cost[lo - 1] <= least + slack)
-              --lo;
-            while (hi + 1 < cost.size() && cost[hi + 1] <= least + slack)
-              ++hi;
-            const double shift =
-                (lo == 0 || hi + 1 == cost.size()) ? at[m] : 0.5 * (at[lo] + at[hi]);
-            if (print_curves) {
+            if (print_curves)
               std::printf("  axis %d:", axis);
-              for (const double c : cost)
-                std::printf(" %.0f", c);
-              std::printf(" -> %.3f (truth at %.3f)\n", shift,
-                          d.dot((T_true * T_part_model.inverse()).translation() -
-                                (T * T_part_model.inverse()).translation()));
-            }
+            const double shift = leastCostRunMiddle(
+                [&](double at) {
+                  return mismatch(model, movedBy(T, d, at), renderer.sensor(), cloud, window,
+                                  tolerance_mm);
+                },
+                print_curves);
+            if (print_curves)
+              std::printf(" (truth at %.3f)\n", d.dot(instance.T_scene_part.translation() -
+                                                      (T * T_part_model.inverse()).translation()));
             T.pretranslate(shift * d);
           }
         T_scene_part = T * T_part_model.inverse();
@@ -428,23 +474,12 @@ int run(int argc, char** argv) {
         for (int round = 0; round < 2; ++round)
           for (int axis = 0; axis < 3; ++axis) {
             const Eigen::Vector3d d = T_scene_part.linear().col(axis);
-            double step = 0.1, centre = 0.0;
-            for (const int reach : {6, 5}) { // ±0.6 mm by 0.1, then ±0.1 by 0.02
-              double best_cost = std::numeric_limits<double>::infinity(), best_at = centre;
-              for (int k = -reach; k <= reach; ++k) {
-                const double at = centre + k * step;
-                Eigen::Isometry3d T = T_scene_part;
-                T.pretranslate(at * d);
-                const double cost = difference(renderer, label, T, cloud, window, tolerance_mm);
-                if (cost < best_cost || (cost == best_cost && std::abs(at) < std::abs(best_at))) {
-                  best_cost = cost;
-                  best_at = at;
-                }
-              }
-              centre = best_at;
-              step = 0.02;
-            }
-            T_scene_part.pretranslate(centre * d);
+            T_scene_part.pretranslate(leastCostShift([&](double at) {
+                                        return difference(renderer, label,
+                                                          movedBy(T_scene_part, d, at), cloud,
+                                                          window, tolerance_mm);
+                                      }) *
+                                      d);
           }
       }
       icp_mm.push_back(before);
