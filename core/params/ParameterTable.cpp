@@ -339,6 +339,20 @@ std::vector<ParamInfo> buildTable() {
       make("refine.min_inlier_fraction", "ICP min inliers", "", Stage::Refine, D, 0, 1, 0.01,
            "A refined pose counts as converged only if this share of the visible model points "
            "has a scene point within the inlier distance.")));
+  t.push_back(entry(
+      &RP::refine, &RefineParams::axial_ends,
+      make("refine.axial_ends", "Slide to the ends", "", Stage::Refine, B, 0, 1, 1,
+           "After ICP, a view that is a surface of revolution (a cup or pipe on its side) is slid "
+           "along its axis to where the scan shows its wall's two ends, which ICP hardly pins; "
+           "the middle between the ends is where the part's middle is, whatever the pixel size.")));
+  t.push_back(entry(
+      &RP::refine, &RefineParams::outline_ends,
+      make("refine.outline_ends", "Slide to the outline", "", Stage::Refine, B, 0, 1, 1,
+           "After ICP, a view that is no surface of revolution is moved along each direction ICP "
+           "hardly pins (a plate seen face-on, in its own plane) to where the scan's points end "
+           "as the view's do, both sides of the outline together; other views of the part tell "
+           "where this view's ends were hidden when it was taught. Helps plates; a view cut from "
+           "a cluttered scan can lose by it.")));
   // --- Seed ---
   ParamInfo seed = make("seed", "Random seed", "", Stage::Preprocess, I, 0, 2147483647, 1,
                         "Seed of every random choice; the same input and seed give the same "

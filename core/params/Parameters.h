@@ -143,6 +143,15 @@ struct RefineParams {
   /// purpose: a part seen edge-on along an extrusion can settle a few mm off along it with
   /// ~0.85 of its points still confirmed (the true pose: ~0.98 when unoccluded).
   double min_inlier_fraction = 0.9;
+  /// After ICP, a view that is a surface of revolution is slid along its axis to where the scan
+  /// shows its wall's ends (AxialEnds): ICP hardly pins that direction on a cup or pipe lying on
+  /// its side.
+  bool axial_ends = true;
+  /// After ICP, other views are moved, along each direction ICP hardly pins (a plate seen face-on
+  /// in its own plane), to where the scan's points end as the view's do (outlineShift). Off by
+  /// default: it helps plates (coat-rack) and hurts a view cut from a cluttered scan
+  /// (docs/accuracy.md).
+  bool outline_ends = false;
   bool operator==(const RefineParams&) const = default;
 };
 

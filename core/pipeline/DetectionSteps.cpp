@@ -5,8 +5,11 @@
 #include "core/pipeline/Recognizer.h"
 #include "core/refine/PoseRefinement.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
+#include <limits>
+#include <optional>
 #include <tbb/parallel_for.h>
 
 namespace scanpick::core::detail {
@@ -21,35 +24,158 @@ bool keepsRefinedPose(double coverage_before, double coverage_after) {
   return coverage_after >= coverage_before - kIcpCoverageSlack;
 }
 
+namespace {
+
+/// The scene's points within the view's diameter of where `T_scene_model` puts its origin.
+std::vector<Eigen::Vector3f> pointsNear(const ModelPrep& prep, const SceneIndex& scene,
+                                        const Eigen::Vector3d& centre_mm) {
+  const auto reach_sq = static_cast<float>(prep.model->diameter_mm * prep.model->diameter_mm);
+  const Eigen::Vector3f centre = centre_mm.cast<float>();
+  std::vector<Eigen::Vector3f> near;
+  for (const auto& p : scene.points())
+    if ((p - centre).squaredNorm() <= reach_sq)
+      near.push_back(p);
+  return near;
+}
+
+/// Largest slide along the axis (mm): ICP leaves a pose a few tenths of a millimetre off there; a
+/// larger difference means an end is hidden.
+constexpr double kMaxWallSlideMm = 2.0;
+/// The two ends' slides must agree this closely (mm) for their mean to count.
+constexpr double kMaxWallEndsDisagreementMm = 0.5;
+
+/// `T_scene_model` slid along its view's axis to where the scan shows the ends of the view's wall
+/// (ModelPrep::wall_ends); nothing when the view is no surface of revolution or the scan or the
+/// view does not show its ends.
+std::optional<Eigen::Isometry3d> slidToWallEnds(const ModelPrep& prep, const SceneIndex& scene,
+                                                const Eigen::Isometry3d& T_scene_model) {
+  if (!(prep.axis || prep.near_axis) || !(prep.wall_ends.low_mm || prep.wall_ends.high_mm))
+    return std::nullopt;
+  const RevolutionAxis& axis = prep.axis ? *prep.axis : *prep.near_axis;
+  const Eigen::Vector3d point = T_scene_model * axis.point_mm;
+  const Eigen::Vector3d direction = T_scene_model.linear() * axis.direction;
+  const double far = std::numeric_limits<double>::infinity();
+  const double low = prep.wall_ends.low_mm ? *prep.wall_ends.low_mm - kMaxWallSlideMm : -far;
+  const double high = prep.wall_ends.high_mm ? *prep.wall_ends.high_mm + kMaxWallSlideMm : far;
+  const AxialEnds ends =
+      findAxialEnds(pointsNear(prep, scene, point), point, direction, prep.wall_radius_mm,
+                    scene.options().viewpoint_mm, low, high);
+  const std::optional<double> shift =
+      axialShift(prep.wall_ends, ends, kMaxWallSlideMm, kMaxWallEndsDisagreementMm);
+  if (!shift)
+    return std::nullopt;
+  return Eigen::Translation3d(*shift * direction) * T_scene_model;
+}
+
+/// A scene point counts as on the part when the view has a point this close at the pose (mm).
+constexpr double kOnPartMm = 1.5;
+/// Directions (of translation) whose point-to-plane curvature is below this share of the strongest
+/// are the ones ICP hardly pins.
+constexpr double kWeakRatio = 0.01;
+
+/// `T_scene_model` moved, along each direction ICP hardly pins, to where the scene's points end as
+/// the view's do (outlineShift); nothing when no such direction or no end tells.
+std::optional<Eigen::Isometry3d> slidToOutline(const ModelPrep& prep, const SceneIndex& scene,
+                                               const Eigen::Isometry3d& T_scene_model) {
+  if (!prep.refine)
+    return std::nullopt;
+  const RefineModel& model = *prep.refine;
+  const Eigen::Isometry3d T_model_scene = T_scene_model.inverse();
+  const Eigen::Vector3d camera_model = T_model_scene * scene.options().viewpoint_mm;
+  // The translation block of point-to-plane ICP's normal matrix, over the confirmed visible points.
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  const auto inlier_sq = static_cast<float>(kOnPartMm * kOnPartMm);
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    const Eigen::Vector3d p = model.points()[i].cast<double>();
+    const Eigen::Vector3d n = model.normals()[i].cast<double>();
+    if (n.dot(camera_model - p) <= 0 ||
+        scene.nearest((T_scene_model * p).cast<float>(), inlier_sq) < 0)
+      continue;
+    A += n * n.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(A);
+  const double strongest = eigen.eigenvalues()(2);
+  if (!(strongest > 0))
+    return std::nullopt;
+  // The scene's points on the part, in the model frame.
+  std::vector<Eigen::Vector3f> on_part;
+  for (const auto& p : pointsNear(prep, scene, T_scene_model * Eigen::Vector3d::Zero())) {
+    const Eigen::Vector3f q = (T_model_scene * p.cast<double>()).cast<float>();
+    if (model.surface().nearest(q, inlier_sq) >= 0)
+      on_part.push_back(q);
+  }
+  Eigen::Vector3d move_model = Eigen::Vector3d::Zero();
+  bool moved = false;
+  for (int k = 0; k < 2; ++k) {
+    if (eigen.eigenvalues()(k) >= kWeakRatio * strongest)
+      break;
+    const Eigen::Vector3d direction = eigen.eigenvectors().col(k).normalized();
+    if (const auto shift = outlineShift(prep.model->cloud_mm.points_mm, on_part, direction,
+                                        prep.other_views_points)) {
+      move_model += *shift * direction;
+      moved = true;
+    }
+  }
+  if (!moved)
+    return std::nullopt;
+  return T_scene_model * Eigen::Translation3d(move_model);
+}
+
+/// Puts `d` at the refined pose `T_scene_model`, with its `coverage` as its score when given;
+/// its alternatives T·S move with it to T'·S (the same move, taken in the scene frame).
+void moveTo(Detection& d, const Eigen::Isometry3d& T_scene_model, std::optional<double> coverage) {
+  const Eigen::Isometry3d move = T_scene_model * d.T_scene_model.inverse();
+  for (auto& T_alternative : d.alternative_poses)
+    T_alternative = move * T_alternative;
+  d.T_scene_model = T_scene_model;
+  d.refined = true;
+  if (coverage) {
+    d.coverage = *coverage;
+    d.score = *coverage;
+  }
+}
+
+/// Whether a refined pose verified at `coverage` (unset without verification) replaces `d`'s.
+bool keeps(const Detection& d, std::optional<double> coverage) {
+  return !coverage || keepsRefinedPose(d.coverage, *coverage);
+}
+
+} // namespace
+
 void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
                       const SceneIndex& scene_index, const RefineParams& params,
                       const PoseVerifier& verify) {
   tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
     Detection& d = detections[k];
-    if (d.refined)
-      return; // a surface-voting pose ICP has polished already
-    const RefinementResult r = refinePose(prep.joined_refine ? *prep.joined_refine : *prep.refine,
-                                          scene_index, d.T_scene_model, params);
-    if (!verify) {
-      d.T_scene_model = r.T_scene_model;
-      d.refined = true;
-      return;
+    if (!d.refined) { // else a surface-voting pose ICP has polished already
+      const RefinementResult r = refinePose(prep.joined_refine ? *prep.joined_refine : *prep.refine,
+                                            scene_index, d.T_scene_model, params);
+      const auto coverage = verify ? std::optional(verify(r.T_scene_model)) : std::nullopt;
+      logger()->trace("ICP of detection {}: coverage {:.3f} -> {:.3f}, moved {:.2f} mm, {} "
+                      "iterations, converged {}",
+                      k, d.coverage, coverage.value_or(d.coverage),
+                      (r.T_scene_model.translation() - d.T_scene_model.translation()).norm(),
+                      r.iterations, r.converged);
+      if (keeps(d, coverage))
+        moveTo(d, r.T_scene_model, coverage);
     }
-    const double coverage = verify(r.T_scene_model);
-    logger()->trace("ICP of detection {}: coverage {:.3f} -> {:.3f}, moved {:.2f} mm, {} "
-                    "iterations, converged {}",
-                    k, d.coverage, coverage,
-                    (r.T_scene_model.translation() - d.T_scene_model.translation()).norm(),
-                    r.iterations, r.converged);
-    if (keepsRefinedPose(d.coverage, coverage)) {
-      // An alternative T·S becomes T'·S: the same move, taken in the scene frame.
-      const Eigen::Isometry3d move = r.T_scene_model * d.T_scene_model.inverse();
-      for (auto& T_alternative : d.alternative_poses)
-        T_alternative = move * T_alternative;
-      d.T_scene_model = r.T_scene_model;
-      d.refined = true;
-      d.coverage = coverage;
-      d.score = coverage;
+    // The slide is checked by this view's verification at both poses (the detection's score may
+    // come from the views' merge), and the score stays: the slide is a fraction of a millimetre.
+    const bool revolution = prep.axis || prep.near_axis;
+    std::optional<Eigen::Isometry3d> slid;
+    if (revolution && params.axial_ends)
+      slid = slidToWallEnds(prep, scene_index, d.T_scene_model);
+    else if (!revolution && params.outline_ends)
+      slid = slidToOutline(prep, scene_index, d.T_scene_model);
+    if (slid) {
+      const double before = verify ? verify(d.T_scene_model) : 0.0;
+      const double after = verify ? verify(*slid) : 0.0;
+      logger()->trace("detection {} slid {:.3f} mm to where its surface ends: coverage "
+                      "{:.3f} -> {:.3f}",
+                      k, (slid->translation() - d.T_scene_model.translation()).norm(), before,
+                      after);
+      if (keepsRefinedPose(before, after))
+        moveTo(d, *slid, std::nullopt);
     }
   });
   sortBestFirst(detections);

@@ -168,6 +168,38 @@ joinedDetailAndBody(const VerifyModel& all, const VerifyModel& view, const Revol
                std::make_shared<const RevolvedBody>(all.points, axis, kBodyCellMm, detail))};
 }
 
+/// The outer radius of the surface `prep`'s view turns about its axis (its detail left out) and
+/// where its wall ends in the taught cloud, seen from the teach camera.
+void findWallEnds(ModelPrep& prep) {
+  const RevolutionAxis& axis = prep.axis ? *prep.axis : *prep.near_axis;
+  std::vector<bool> in_detail(prep.verify->points.size(), false);
+  for (const std::uint32_t i : prep.near_axis_detail)
+    in_detail[i] = true;
+  std::vector<Eigen::Vector3f> surface;
+  for (std::size_t i = 0; i < prep.verify->points.size(); ++i)
+    if (!in_detail[i])
+      surface.push_back(prep.verify->points[i]);
+  prep.wall_radius_mm = outerRadius(surface, axis.point_mm, axis.direction);
+  const TaughtModel& model = *prep.model;
+  prep.wall_ends = findAxialEnds(model.cloud_mm.points_mm, axis.point_mm, axis.direction,
+                                 prep.wall_radius_mm, model.T_teach_model.inverse().translation(),
+                                 -std::numeric_limits<double>::infinity(),
+                                 std::numeric_limits<double>::infinity());
+  const double unseen = std::numeric_limits<double>::quiet_NaN();
+  logger()->debug("model '{}': wall of radius {:.2f} mm about its axis, its ends at {:.2f} and "
+                  "{:.2f} mm (nan: not seen)",
+                  model.name, prep.wall_radius_mm, prep.wall_ends.low_mm.value_or(unseen),
+                  prep.wall_ends.high_mm.value_or(unseen));
+}
+
+/// Every point of the views joined to `model`, in its frame.
+std::vector<Eigen::Vector3f> otherViewsPoints(const TaughtModel& model) {
+  std::vector<Eigen::Vector3f> points;
+  for (const JoinedView& view : model.joined_views)
+    points.insert(points.end(), view.cloud_mm.points_mm.begin(), view.cloud_mm.points_mm.end());
+  return points;
+}
+
 /// The points of `body` that `S` (model frame → model frame) moves out of its body's cells.
 std::vector<std::uint32_t> movedOffBody(const VerifyModel& body, const Eigen::Isometry3d& S) {
   const Eigen::Isometry3f S_f = S.cast<float>();
@@ -309,6 +341,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
           verify->points, prep->axis ? *prep->axis : *prep->near_axis, kBodyCellMm,
           prep->near_axis_detail);
       prep->verify = std::move(verify);
+      findWallEnds(*prep);
     }
     if (prep->near_axis && !model->joined_views.empty()) {
       std::tie(prep->joined_detail, prep->joined_body) =
@@ -329,6 +362,8 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
                              Eigen::Vector3d(model->T_teach_model.inverse().translation()));
   if (joined_refine && !prep->joined_refine)
     prep->joined_refine = joinedRefineModel(joined(), kJoinedRefineViews * points);
+  if (params.refine.enabled && prep->other_views_points.empty())
+    prep->other_views_points = otherViewsPoints(*model);
   if (!model->joined_views.empty())
     joined(); // the whole part, for the views' merge (Recognizer::partScorer)
   if (sampling > 0 && (!prep->pairs || prep->surface_sampling_mm != sampling)) {

@@ -14,6 +14,7 @@
 #include "core/pipeline/NearSymmetry.h"
 #include "core/pipeline/PoseVerification.h"
 #include "core/refine/RefineModel.h"
+#include "core/refine/SurfaceEnds.h"
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -44,6 +45,10 @@ struct ModelPrep {
   /// and the detail's points (indices into verify->points).
   std::optional<RevolutionAxis> near_axis;
   std::vector<std::uint32_t> near_axis_detail;
+  /// With `axis` or `near_axis`: the outer radius of the surface they turn (its detail left out)
+  /// and where its wall ends along the axis in the taught cloud (AxialEnds).
+  double wall_radius_mm = 0;
+  AxialEnds wall_ends;
   /// With views joined (TaughtModel::joined_views), the detail as all of them saw it, in this
   /// view's frame, with this view's body (null otherwise): a cup's handle from every side, where
   /// this view alone saw it from one.
@@ -67,6 +72,9 @@ struct ModelPrep {
   /// With views joined, the points of all of them in this view's frame (each view's with normals
   /// facing its own teach camera); null without joined views.
   std::shared_ptr<const VerifyModel> joined_points;
+  /// With refinement on: every point of the views joined to this one, in its frame, at the density
+  /// they were scanned with (which of this view's ends they confirm, outlineShift).
+  std::vector<Eigen::Vector3f> other_views_points;
   double surface_sampling_mm = 0;              ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on
   /// Near symmetries, and what they were found with (unset when not searched).
