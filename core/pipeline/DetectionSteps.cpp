@@ -159,23 +159,32 @@ void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
       if (keeps(d, coverage))
         moveTo(d, r.T_scene_model, coverage);
     }
-    // The slide is checked by this view's verification at both poses (the detection's score may
-    // come from the views' merge), and the score stays: the slide is a fraction of a millimetre.
-    const bool revolution = prep.axis || prep.near_axis;
-    std::optional<Eigen::Isometry3d> slid;
-    if (revolution && params.axial_ends)
-      slid = slidToWallEnds(prep, scene_index, d.T_scene_model);
-    else if (!revolution && params.outline_ends)
-      slid = slidToOutline(prep, scene_index, d.T_scene_model);
-    if (slid) {
-      const double before = verify ? verify(d.T_scene_model) : 0.0;
-      const double after = verify ? verify(*slid) : 0.0;
-      logger()->trace("detection {} slid {:.3f} mm to where its surface ends: coverage "
-                      "{:.3f} -> {:.3f}",
-                      k, (slid->translation() - d.T_scene_model.translation()).norm(), before,
-                      after);
-      if (keepsRefinedPose(before, after))
-        moveTo(d, *slid, std::nullopt);
+    // The slides are checked by this view's verification at both poses (the detection's score
+    // may come from the views' merge), and the score stays: a slide is a fraction of a millimetre.
+    const auto slid = [&](const Eigen::Isometry3d& T) -> std::optional<Eigen::Isometry3d> {
+      const bool revolution = prep.axis || prep.near_axis;
+      std::optional<Eigen::Isometry3d> moved;
+      if (revolution && params.axial_ends)
+        moved = slidToWallEnds(prep, scene_index, T);
+      else if (!revolution && params.outline_ends)
+        moved = slidToOutline(prep, scene_index, T);
+      if (!moved || (verify && !keepsRefinedPose(verify(T), verify(*moved))))
+        return std::nullopt;
+      logger()->trace("detection {} slid {:.3f} mm to where its surface ends", k,
+                      (moved->translation() - T.translation()).norm());
+      return moved;
+    };
+    if (const auto T = slid(d.T_scene_model))
+      moveTo(d, *T, std::nullopt);
+    // Each alternative pose is refined as a pose of its own: the turn that made it fits the view
+    // onto itself only to a millimetre or two.
+    for (auto& T_alternative : d.alternative_poses) {
+      const RefinementResult r = refinePose(prep.joined_refine ? *prep.joined_refine : *prep.refine,
+                                            scene_index, T_alternative, params);
+      if (!verify || keepsRefinedPose(verify(T_alternative), verify(r.T_scene_model)))
+        T_alternative = r.T_scene_model;
+      if (const auto T = slid(T_alternative))
+        T_alternative = *T;
     }
   });
   sortBestFirst(detections);

@@ -161,7 +161,9 @@ TEST(NearSymmetry, CoatRackFromBelowCannotBeToldFromItsHalfTurnAndSaysSo) {
               d.alternative_poses.size(), best_deg);
   EXPECT_LT(best_deg, 5.0);
 
-  // With ICP on, the alternative moves with the refined pose: still the pose turned by S.
+  // With ICP on, the alternative is refined as a pose of its own: still the pose turned by S, to
+  // within the millimetre or two and the fraction of a degree by which S puts the view back on
+  // itself, and the nearest of the poses within half a degree of the truth (1.9° without ICP).
   RecognitionParams refined = params;
   refined.refine.enabled = true;
   Recognizer refining;
@@ -171,6 +173,16 @@ TEST(NearSymmetry, CoatRackFromBelowCannotBeToldFromItsHalfTurnAndSaysSo) {
   const Detection& r = again.detections.front();
   ASSERT_FALSE(r.alternative_poses.empty());
   const Eigen::Isometry3d S_reported = r.T_scene_model.inverse() * r.alternative_poses.front();
-  EXPECT_LT(angleDeg(S_reported.linear().transpose() * half_turn->S_model.linear()), 0.01);
-  EXPECT_LT((S_reported.translation() - half_turn->S_model.translation()).norm(), 1e-3);
+  EXPECT_LT(angleDeg(S_reported.linear().transpose() * half_turn->S_model.linear()), 2.0);
+  EXPECT_LT((S_reported.translation() - half_turn->S_model.translation()).norm(), 3.0);
+  double best_refined_deg = angleDeg(T_true.linear().transpose() * r.T_scene_model.linear());
+  for (const auto& T : r.alternative_poses)
+    best_refined_deg =
+        std::min(best_refined_deg, angleDeg(T_true.linear().transpose() * T.linear()));
+  std::printf("refined: the nearest of the poses is %.2f° from the truth, the alternative %.3f° "
+              "and %.3f mm from the turn by S\n",
+              best_refined_deg,
+              angleDeg(S_reported.linear().transpose() * half_turn->S_model.linear()),
+              (S_reported.translation() - half_turn->S_model.translation()).norm());
+  EXPECT_LT(best_refined_deg, 0.5);
 }
