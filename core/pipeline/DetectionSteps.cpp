@@ -26,15 +26,20 @@ bool keepsRefinedPose(double coverage_before, double coverage_after) {
 
 namespace {
 
-/// The scene's points within the view's diameter of where `T_scene_model` puts its origin.
+/// The scene's points within the view's diameter of `centre_mm` and, when `normals` is given,
+/// their normals into it.
 std::vector<Eigen::Vector3f> pointsNear(const ModelPrep& prep, const SceneIndex& scene,
-                                        const Eigen::Vector3d& centre_mm) {
+                                        const Eigen::Vector3d& centre_mm,
+                                        std::vector<Eigen::Vector3f>* normals = nullptr) {
   const auto reach_sq = static_cast<float>(prep.model->diameter_mm * prep.model->diameter_mm);
   const Eigen::Vector3f centre = centre_mm.cast<float>();
   std::vector<Eigen::Vector3f> near;
-  for (const auto& p : scene.points())
-    if ((p - centre).squaredNorm() <= reach_sq)
-      near.push_back(p);
+  for (std::size_t i = 0; i < scene.points().size(); ++i)
+    if ((scene.points()[i] - centre).squaredNorm() <= reach_sq) {
+      near.push_back(scene.points()[i]);
+      if (normals)
+        normals->push_back(scene.normals()[i]);
+    }
   return near;
 }
 
@@ -57,9 +62,10 @@ std::optional<Eigen::Isometry3d> slidToWallEnds(const ModelPrep& prep, const Sce
   const double far = std::numeric_limits<double>::infinity();
   const double low = prep.wall_ends.low_mm ? *prep.wall_ends.low_mm - kMaxWallSlideMm : -far;
   const double high = prep.wall_ends.high_mm ? *prep.wall_ends.high_mm + kMaxWallSlideMm : far;
-  const AxialEnds ends =
-      findAxialEnds(pointsNear(prep, scene, point), point, direction, prep.wall_radius_mm,
-                    scene.options().viewpoint_mm, low, high);
+  std::vector<Eigen::Vector3f> normals;
+  const std::vector<Eigen::Vector3f> near = pointsNear(prep, scene, point, &normals);
+  const AxialEnds ends = findAxialEnds(near, point, direction, prep.wall_radius_mm,
+                                       scene.options().viewpoint_mm, low, high, {}, normals);
   const std::optional<double> shift =
       axialShift(prep.wall_ends, ends, kMaxWallSlideMm, kMaxWallEndsDisagreementMm);
   if (!shift)

@@ -169,8 +169,9 @@ joinedDetailAndBody(const VerifyModel& all, const VerifyModel& view, const Revol
 }
 
 /// The outer radius of the surface `prep`'s view turns about its axis (its detail left out) and
-/// where its wall ends in the taught cloud, seen from the teach camera.
-void findWallEnds(ModelPrep& prep) {
+/// where its wall ends in the taught cloud (`surface`: its points with their normals), seen from
+/// the teach camera.
+void findWallEnds(ModelPrep& prep, const SceneIndex& surface_points) {
   const RevolutionAxis& axis = prep.axis ? *prep.axis : *prep.near_axis;
   std::vector<bool> in_detail(prep.verify->points.size(), false);
   for (const std::uint32_t i : prep.near_axis_detail)
@@ -181,10 +182,10 @@ void findWallEnds(ModelPrep& prep) {
       surface.push_back(prep.verify->points[i]);
   prep.wall_radius_mm = outerRadius(surface, axis.point_mm, axis.direction);
   const TaughtModel& model = *prep.model;
-  prep.wall_ends = findAxialEnds(model.cloud_mm.points_mm, axis.point_mm, axis.direction,
-                                 prep.wall_radius_mm, model.T_teach_model.inverse().translation(),
-                                 -std::numeric_limits<double>::infinity(),
-                                 std::numeric_limits<double>::infinity());
+  prep.wall_ends = findAxialEnds(
+      surface_points.points(), axis.point_mm, axis.direction, prep.wall_radius_mm,
+      model.T_teach_model.inverse().translation(), -std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity(), {}, surface_points.normals());
   const double unseen = std::numeric_limits<double>::quiet_NaN();
   logger()->debug("model '{}': wall of radius {:.2f} mm about its axis, its ends at {:.2f} and "
                   "{:.2f} mm (nan: not seen)",
@@ -341,7 +342,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
           verify->points, prep->axis ? *prep->axis : *prep->near_axis, kBodyCellMm,
           prep->near_axis_detail);
       prep->verify = std::move(verify);
-      findWallEnds(*prep);
+      findWallEnds(*prep, *surface);
     }
     if (prep->near_axis && !model->joined_views.empty()) {
       std::tie(prep->joined_detail, prep->joined_body) =

@@ -51,7 +51,8 @@ double outerRadius(const std::vector<Eigen::Vector3f>& points_mm,
 AxialEnds findAxialEnds(const std::vector<Eigen::Vector3f>& points_mm,
                         const Eigen::Vector3d& axis_point_mm, const Eigen::Vector3d& axis_direction,
                         double radius_mm, const Eigen::Vector3d& viewpoint_mm, double min_height_mm,
-                        double max_height_mm, const AxialEndsOptions& options) {
+                        double max_height_mm, const AxialEndsOptions& options,
+                        const std::vector<Eigen::Vector3f>& normals) {
   const Eigen::Vector3d sight = (axis_point_mm - viewpoint_mm).normalized();
   if (!(std::abs(sight.dot(axis_direction)) <= options.max_sight_cos) || !(radius_mm > 0))
     return {};
@@ -62,8 +63,9 @@ AxialEnds findAxialEnds(const std::vector<Eigen::Vector3f>& points_mm,
   std::vector<double> lowest(bins, kNone), highest(bins, kNone);
   const double r_min = radius_mm - options.band_inside_mm;
   const double r_max = radius_mm + options.band_outside_mm;
-  for (const auto& p : points_mm) {
-    const Eigen::Vector3d d = p.cast<double>() - axis_point_mm;
+  const bool with_normals = normals.size() == points_mm.size();
+  for (std::size_t i = 0; i < points_mm.size(); ++i) {
+    const Eigen::Vector3d d = points_mm[i].cast<double>() - axis_point_mm;
     const double h = d.dot(axis_direction);
     if (!(h >= min_height_mm && h <= max_height_mm))
       continue;
@@ -71,6 +73,11 @@ AxialEnds findAxialEnds(const std::vector<Eigen::Vector3f>& points_mm,
     const double r = std::hypot(x, y);
     if (r < r_min || r > r_max)
       continue;
+    if (with_normals) {
+      const Eigen::Vector3d n = normals[i].cast<double>();
+      if (!((n.dot(u) * x + n.dot(v) * y) / r >= options.min_radial_normal))
+        continue;
+    }
     const double turn = std::atan2(y, x) + std::numbers::pi; // [0, 2π]
     const int bin = std::min(bins - 1, static_cast<int>(turn / (2 * std::numbers::pi) * bins));
     if (!(lowest[bin] <= h)) // also when unset (NaN)

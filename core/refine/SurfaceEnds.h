@@ -41,6 +41,10 @@ struct AxialEndsOptions {
   /// The line of sight to the axis's point must be within asin(this) of square to the axis (44°):
   /// an end seen face-on shows its face, not where its wall ends.
   double max_sight_cos = 0.7;
+  /// With normals: a point counts only when its normal lies within acos(this) of pointing away
+  /// from the axis (60°), on the wall. An end face seen at an angle would otherwise end that side
+  /// with the face's noisy depths instead of the wall's last pixel.
+  double min_radial_normal = 0.5;
 };
 
 /// The two ends of a surface of revolution's outer wall along its axis, as heights (mm) along the
@@ -56,12 +60,14 @@ double outerRadius(const std::vector<Eigen::Vector3f>& points_mm,
 
 /// The ends of the wall at `radius_mm` about the axis among `points_mm` (the axis in their frame),
 /// seen from `viewpoint_mm`: of the points within the wall band at heights in [min_height_mm,
-/// max_height_mm], the lowest and the highest of each bin of turns, averaged over the bins that
-/// agree. Nothing when the line of sight is too close to the axis (AxialEndsOptions).
+/// max_height_mm] (and, given `normals` (one per point; NaN: none), facing away from the axis),
+/// the lowest and the highest of each bin of turns, averaged over the bins that agree. Nothing when
+/// the line of sight is too close to the axis (AxialEndsOptions).
 AxialEnds findAxialEnds(const std::vector<Eigen::Vector3f>& points_mm,
                         const Eigen::Vector3d& axis_point_mm, const Eigen::Vector3d& axis_direction,
                         double radius_mm, const Eigen::Vector3d& viewpoint_mm, double min_height_mm,
-                        double max_height_mm, const AxialEndsOptions& options = {});
+                        double max_height_mm, const AxialEndsOptions& options = {},
+                        const std::vector<Eigen::Vector3f>& normals = {});
 
 /// The shift along the axis (mm, towards its direction) that puts the scene's ends on the view's
 /// (combineEnds of both ends' differences, where both see an end).
