@@ -141,28 +141,23 @@ void moveTo(Detection& d, const Eigen::Isometry3d& T_scene_model, std::optional<
   }
 }
 
-/// Whether a refined pose verified at `coverage` (unset without verification) replaces `d`'s.
-bool keeps(const Detection& d, std::optional<double> coverage) {
-  return !coverage || keepsRefinedPose(d.coverage, *coverage);
-}
-
 } // namespace
 
 void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
                       const SceneIndex& scene_index, const RefineParams& params,
                       const PoseVerifier& verify) {
+  const RefineModel& icp_model = prep.joined_refine ? *prep.joined_refine : *prep.refine;
   tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
     Detection& d = detections[k];
     if (!d.refined) { // else a surface-voting pose ICP has polished already
-      const RefinementResult r = refinePose(prep.joined_refine ? *prep.joined_refine : *prep.refine,
-                                            scene_index, d.T_scene_model, params);
+      const RefinementResult r = refinePose(icp_model, scene_index, d.T_scene_model, params);
       const auto coverage = verify ? std::optional(verify(r.T_scene_model)) : std::nullopt;
       logger()->trace("ICP of detection {}: coverage {:.3f} -> {:.3f}, moved {:.2f} mm, {} "
                       "iterations, converged {}",
                       k, d.coverage, coverage.value_or(d.coverage),
                       (r.T_scene_model.translation() - d.T_scene_model.translation()).norm(),
                       r.iterations, r.converged);
-      if (keeps(d, coverage))
+      if (!coverage || keepsRefinedPose(d.coverage, *coverage))
         moveTo(d, r.T_scene_model, coverage);
     }
     // The slides are checked by this view's verification at both poses (the detection's score
@@ -185,8 +180,7 @@ void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
     // Each alternative pose is refined as a pose of its own: the turn that made it fits the view
     // onto itself only to a millimetre or two.
     for (auto& T_alternative : d.alternative_poses) {
-      const RefinementResult r = refinePose(prep.joined_refine ? *prep.joined_refine : *prep.refine,
-                                            scene_index, T_alternative, params);
+      const RefinementResult r = refinePose(icp_model, scene_index, T_alternative, params);
       if (!verify || keepsRefinedPose(verify(T_alternative), verify(r.T_scene_model)))
         T_alternative = r.T_scene_model;
       if (const auto T = slid(T_alternative))

@@ -30,7 +30,10 @@ bool keepsRefinedPose(double coverage_before, double coverage_after);
 
 /// Refines each detection that ICP has not polished yet, with the view's joined ICP model when it
 /// has one (ModelPrep::joined_refine), and keeps the refined pose when it verifies as well
-/// (keepsRefinedPose; always without `verify`). Best first again.
+/// (keepsRefinedPose; always without `verify`). Then slides each pose along the directions ICP
+/// hardly pins to where the scan's surface ends (params.axial_ends for a surface of revolution,
+/// params.outline_ends for other views; core/refine/SurfaceEnds.h), kept by the same rule, and
+/// refines each alternative pose as a pose of its own in the same way. Best first again.
 void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
                       const SceneIndex& scene_index, const RefineParams& params,
                       const PoseVerifier& verify);
