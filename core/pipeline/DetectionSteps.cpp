@@ -149,7 +149,8 @@ void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
   const RefineModel& icp_model = prep.joined_refine ? *prep.joined_refine : *prep.refine;
   tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
     Detection& d = detections[k];
-    if (!d.refined) { // else a surface-voting pose ICP has polished already
+    std::optional<double> icp_coverage; // the ICP pose's score, when it was kept
+    if (!d.refined) {                   // else a surface-voting pose ICP has polished already
       const RefinementResult r = refinePose(icp_model, scene_index, d.T_scene_model, params);
       const auto coverage = verify ? std::optional(verify(r.T_scene_model)) : std::nullopt;
       logger()->trace("ICP of detection {}: coverage {:.3f} -> {:.3f}, moved {:.2f} mm, {} "
@@ -157,33 +158,44 @@ void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
                       k, d.coverage, coverage.value_or(d.coverage),
                       (r.T_scene_model.translation() - d.T_scene_model.translation()).norm(),
                       r.iterations, r.converged);
-      if (!coverage || keepsRefinedPose(d.coverage, *coverage))
+      if (!coverage || keepsRefinedPose(d.coverage, *coverage)) {
         moveTo(d, r.T_scene_model, coverage);
+        icp_coverage = coverage;
+      }
     }
     // The slides are checked by this view's verification at both poses (the detection's score
     // may come from the views' merge), and the score stays: a slide is a fraction of a millimetre.
-    const auto slid = [&](const Eigen::Isometry3d& T) -> std::optional<Eigen::Isometry3d> {
+    // `verified`: T's score by this view's verification when it is known already.
+    const auto slid = [&](const Eigen::Isometry3d& T,
+                          std::optional<double> verified) -> std::optional<Eigen::Isometry3d> {
       const bool revolution = prep.axis || prep.near_axis;
       std::optional<Eigen::Isometry3d> moved;
       if (revolution && params.axial_ends)
         moved = slidToWallEnds(prep, scene_index, T);
       else if (!revolution && params.outline_ends)
         moved = slidToOutline(prep, scene_index, T);
-      if (!moved || (verify && !keepsRefinedPose(verify(T), verify(*moved))))
+      if (!moved || (verify && !keepsRefinedPose(verified ? *verified : verify(T), verify(*moved))))
         return std::nullopt;
       logger()->trace("detection {} slid {:.3f} mm to where its surface ends", k,
                       (moved->translation() - T.translation()).norm());
       return moved;
     };
-    if (const auto T = slid(d.T_scene_model))
+    if (const auto T = slid(d.T_scene_model, icp_coverage))
       moveTo(d, *T, std::nullopt);
     // Each alternative pose is refined as a pose of its own: the turn that made it fits the view
     // onto itself only to a millimetre or two.
     for (auto& T_alternative : d.alternative_poses) {
       const RefinementResult r = refinePose(icp_model, scene_index, T_alternative, params);
-      if (!verify || keepsRefinedPose(verify(T_alternative), verify(r.T_scene_model)))
+      std::optional<double> verified;
+      bool keep = true;
+      if (verify) {
+        const double before = verify(T_alternative), after = verify(r.T_scene_model);
+        keep = keepsRefinedPose(before, after);
+        verified = keep ? after : before;
+      }
+      if (keep)
         T_alternative = r.T_scene_model;
-      if (const auto T = slid(T_alternative))
+      if (const auto T = slid(T_alternative, verified))
         T_alternative = *T;
     }
   });

@@ -96,32 +96,21 @@ AxialEnds findAxialEnds(const std::vector<Eigen::Vector3f>& points_mm,
           agreeingMean(seen(highest), options.agreement_mm, options.min_bins)};
 }
 
-std::optional<double> combineEnds(const std::optional<double>& low,
-                                  const std::optional<double>& high, double max_shift_mm,
-                                  double max_disagreement_mm) {
-  const auto counts = [&](const std::optional<double>& d) {
-    return d && std::abs(*d) <= max_shift_mm;
-  };
-  if (counts(low) && counts(high))
-    return std::abs(*low - *high) <= max_disagreement_mm ? std::optional(0.5 * (*low + *high))
-                                                         : std::nullopt;
-  if (counts(low))
-    return low;
-  if (counts(high))
-    return high;
-  return std::nullopt;
-}
-
 std::optional<double> axialShift(const AxialEnds& view, const AxialEnds& scene, double max_shift_mm,
                                  double max_disagreement_mm) {
-  const auto difference = [](const std::optional<double>& in_view,
-                             const std::optional<double>& in_scene) -> std::optional<double> {
-    if (!in_view || !in_scene)
+  // The difference at one end, when both see it and it is near enough to count.
+  const auto difference = [&](const std::optional<double>& in_view,
+                              const std::optional<double>& in_scene) -> std::optional<double> {
+    if (!in_view || !in_scene || !(std::abs(*in_scene - *in_view) <= max_shift_mm))
       return std::nullopt;
     return *in_scene - *in_view;
   };
-  return combineEnds(difference(view.low_mm, scene.low_mm), difference(view.high_mm, scene.high_mm),
-                     max_shift_mm, max_disagreement_mm);
+  const std::optional<double> low = difference(view.low_mm, scene.low_mm);
+  const std::optional<double> high = difference(view.high_mm, scene.high_mm);
+  if (low && high)
+    return std::abs(*low - *high) <= max_disagreement_mm ? std::optional(0.5 * (*low + *high))
+                                                         : std::nullopt;
+  return low ? low : high;
 }
 
 std::optional<double> outlineShift(const std::vector<Eigen::Vector3f>& view_mm,

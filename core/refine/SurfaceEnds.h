@@ -20,15 +20,6 @@
 
 namespace scanpick::core {
 
-/// The shift from the differences (scene − view, mm) at the low and the high end: an end counts
-/// when it has a difference of at most `max_shift_mm` (else the scene's "end" is something else: a
-/// neighbour, or the other end where the surface is hidden); the mean of both when both count and
-/// they differ by at most `max_disagreement_mm`, else the one that counts; nothing when none does
-/// or the two disagree.
-std::optional<double> combineEnds(const std::optional<double>& low,
-                                  const std::optional<double>& high, double max_shift_mm,
-                                  double max_disagreement_mm);
-
 /// How findAxialEnds reads the ends from the points.
 struct AxialEndsOptions {
   double band_inside_mm = 1.5;  ///< the wall band reaches this far inside the outer radius
@@ -70,7 +61,10 @@ AxialEnds findAxialEnds(const std::vector<Eigen::Vector3f>& points_mm,
                         const std::vector<Eigen::Vector3f>& normals = {});
 
 /// The shift along the axis (mm, towards its direction) that puts the scene's ends on the view's
-/// (combineEnds of both ends' differences, where both see an end).
+/// An end counts when both see it and its difference is at most `max_shift_mm` (else the scene's
+/// "end" is something else: a neighbour, or the other end where the wall is hidden); the mean of
+/// both ends' differences when both count and they differ by at most `max_disagreement_mm`, else
+/// the one that counts; nothing when none does or the two disagree.
 std::optional<double> axialShift(const AxialEnds& view, const AxialEnds& scene, double max_shift_mm,
                                  double max_disagreement_mm);
 

@@ -11,6 +11,8 @@
 #include "core/refine/PoseRefinement.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -105,6 +107,16 @@ inline RefinementResult refineFrom(const PreparedViews& v, std::size_t view,
   const detail::ModelPrep& prep = *v.preps[view];
   return refinePose(prep.joined_refine ? *prep.joined_refine : *prep.refine, index,
                     T_scene_model_true, params.refine);
+}
+
+/// A study's main(): `run`, with an exception reported as "NAME: what it says" and exit code 1.
+inline int studyMain(const char* name, int (*run)(int, char**), int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", name, e.what());
+    return 1;
+  }
 }
 
 } // namespace scanpick::study

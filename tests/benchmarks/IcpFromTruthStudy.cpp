@@ -63,10 +63,5 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "study_icp_from_truth: %s\n", e.what());
-    return 1;
-  }
+  return scanpick::study::studyMain("study_icp_from_truth", run, argc, argv);
 }

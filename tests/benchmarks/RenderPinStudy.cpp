@@ -498,10 +498,5 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "study_render_pin: %s\n", e.what());
-    return 1;
-  }
+  return scanpick::study::studyMain("study_render_pin", run, argc, argv);
 }
