@@ -349,10 +349,11 @@ std::vector<ParamInfo> buildTable() {
       &RP::refine, &RefineParams::outline_ends,
       make("refine.outline_ends", "Slide to the outline", "", Stage::Refine, B, 0, 1, 1,
            "After ICP, a view that is no surface of revolution is moved along each direction ICP "
-           "hardly pins (a plate seen face-on, in its own plane) to where the scan's points end "
-           "as the view's do, both sides of the outline together; other views of the part tell "
-           "where this view's ends were hidden when it was taught. Helps plates; a view cut from "
-           "a cluttered scan can lose by it.")));
+           "hardly pins (a plate seen face-on, in its own plane), or pins loosely where both "
+           "sides agree within 0.1 mm (a plate seen edge-on, along its length), to where the "
+           "scan's points end as the view's do, both sides of the outline together; other views "
+           "of the part tell where this view's ends were hidden when it was taught. Helps "
+           "plates; a view cut from a cluttered scan can lose by it.")));
   // --- Seed ---
   ParamInfo seed = make("seed", "Random seed", "", Stage::Preprocess, I, 0, 2147483647, 1,
                         "Seed of every random choice; the same input and seed give the same "

@@ -78,9 +78,15 @@ constexpr double kOnPartMm = 1.5;
 /// Directions (of translation) whose point-to-plane curvature is below this share of the strongest
 /// are the ones ICP hardly pins.
 constexpr double kWeakRatio = 0.01;
+/// Directions up to this share ICP pins, but loosely (a plate seen edge-on, along its length):
+/// the outline moves a pose along them only when both of its sides agree within
+/// kFirmAgreementMm.
+constexpr double kLooseRatio = 0.1;
+constexpr double kFirmAgreementMm = 0.1;
 
-/// `T_scene_model` moved, along each direction ICP hardly pins, to where the scene's points end as
-/// the view's do (outlineShift); nothing when no such direction or no end tells.
+/// `T_scene_model` moved, along each direction ICP hardly pins (and each it pins loosely, where
+/// both sides of the outline agree within kFirmAgreementMm), to where the scene's points end as the
+/// view's do (outlineShift); nothing when no such direction or no end tells.
 std::optional<Eigen::Isometry3d> slidToOutline(const ModelPrep& prep, const SceneIndex& scene,
                                                const Eigen::Isometry3d& T_scene_model) {
   if (!prep.refine)
@@ -113,11 +119,15 @@ std::optional<Eigen::Isometry3d> slidToOutline(const ModelPrep& prep, const Scen
   Eigen::Vector3d move_model = Eigen::Vector3d::Zero();
   bool moved = false;
   for (int k = 0; k < 2; ++k) {
-    if (eigen.eigenvalues()(k) >= kWeakRatio * strongest)
+    const double ratio = eigen.eigenvalues()(k) / strongest;
+    if (ratio >= kLooseRatio)
       break;
+    OutlineShiftOptions options;
+    if (ratio >= kWeakRatio)
+      options.max_disagreement_mm = kFirmAgreementMm;
     const Eigen::Vector3d direction = eigen.eigenvectors().col(k).normalized();
     if (const auto shift = outlineShift(prep.model->cloud_mm.points_mm, on_part, direction,
-                                        prep.other_views_points)) {
+                                        prep.other_views_points, options)) {
       move_model += *shift * direction;
       moved = true;
     }
@@ -185,16 +195,34 @@ void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
     // Each alternative pose is refined as a pose of its own: the turn that made it fits the view
     // onto itself only to a millimetre or two.
     for (auto& T_alternative : d.alternative_poses) {
-      const RefinementResult r = refinePose(icp_model, scene_index, T_alternative, params);
       std::optional<double> verified;
       bool keep = true;
+      Eigen::Isometry3d refined =
+          refinePose(icp_model, scene_index, T_alternative, params).T_scene_model;
       if (verify) {
-        const double before = verify(T_alternative), after = verify(r.T_scene_model);
+        const double before = verify(T_alternative);
+        double after = verify(refined);
+        // From that far off, pairs as far apart as the ICP distance can hold a neighbour's surface
+        // and pull the pose away: ICP also starts with twice its final distance and with the final
+        // distance itself, and the best verified pose is taken.
+        for (const double distance_mm :
+             {2.0 * params.min_correspondence_mm, params.min_correspondence_mm}) {
+          if (!(distance_mm < params.max_correspondence_mm))
+            continue;
+          RefineParams narrow = params;
+          narrow.max_correspondence_mm = distance_mm;
+          const Eigen::Isometry3d T =
+              refinePose(icp_model, scene_index, T_alternative, narrow).T_scene_model;
+          if (const double score = verify(T); score > after) {
+            after = score;
+            refined = T;
+          }
+        }
         keep = keepsRefinedPose(before, after);
         verified = keep ? after : before;
       }
       if (keep)
-        T_alternative = r.T_scene_model;
+        T_alternative = refined;
       if (const auto T = slid(T_alternative, verified))
         T_alternative = *T;
     }

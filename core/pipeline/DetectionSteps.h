@@ -33,7 +33,9 @@ bool keepsRefinedPose(double coverage_before, double coverage_after);
 /// (keepsRefinedPose; always without `verify`). Then slides each pose along the directions ICP
 /// hardly pins to where the scan's surface ends (params.axial_ends for a surface of revolution,
 /// params.outline_ends for other views; core/refine/SurfaceEnds.h), kept by the same rule, and
-/// refines each alternative pose as a pose of its own in the same way. Best first again.
+/// refines each alternative pose as a pose of its own in the same way (ICP also with narrower
+/// pair distances, the best verified pose taken: an alternative starts a millimetre or two off).
+/// Best first again.
 void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
                       const SceneIndex& scene_index, const RefineParams& params,
                       const PoseVerifier& verify);

@@ -1,6 +1,7 @@
 // Views joined (beyond the thesis): refinement and the views' merge. Each view's ICP also fits the
 // surfaces the other views saw, which pin down what one view leaves loose; a surface of revolution
-// is then slid along its axis to where its wall ends. The support's view cut
+// is then slid along its axis to where its wall ends, and a plate in its own plane to where its
+// outline ends. The support's view cut
 // from a bin shows one leg face-on: alone, ICP slides it in the leg's own plane, held only by its
 // holes and its outline. The merge tells two parts lying close together from one part found
 // through two views by the surface they share.
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <gtest/gtest.h>
+#include <map>
 #include <vector>
 
 using namespace scanpick;
@@ -23,9 +25,9 @@ namespace {
 /// The views of `part` as docs/accuracy.md teaches them from the suite's teach scans `views` (a
 /// view cut from a bin, such as "support-bin", as synth-suite cuts it), each knowing its place in
 /// the part.
-std::vector<std::shared_ptr<const TaughtModel>> suiteViews(const std::string& part,
-                                                           const std::vector<std::string>& views,
-                                                           const RecognitionParams& params) {
+std::vector<std::shared_ptr<const TaughtModel>>
+suiteViews(const std::string& part, const std::vector<std::string>& views,
+           const RecognitionParams& params, const std::map<std::string, ViewParams>& own = {}) {
   std::vector<std::shared_ptr<const TaughtModel>> taught;
   std::vector<Eigen::Vector3d> taught_directions;
   for (const std::string& view : views)
@@ -39,6 +41,8 @@ std::vector<std::shared_ptr<const TaughtModel>> suiteViews(const std::string& pa
           scan = isolateNovelView(std::move(scan), taught_directions);
         const test::SynthTeach from_scan = test::teachFromScan(scan, part, params);
         from_scan.model->teach_scan = view + ".pcd";
+        if (const auto it = own.find(view); it != own.end())
+          from_scan.model->view_params = it->second;
         taught.push_back(from_scan.model);
       }
   return taught;
@@ -312,4 +316,56 @@ TEST(JoinedRefinement, APipeOnItsSideIsSlidToWhereItsWallEnds) {
   // Measured: 9 of them, 0.260 mm after ICP alone, 0.035 mm slid.
   EXPECT_LT(median(slid), 0.1);
   EXPECT_LT(median(slid), 0.5 * median(icp_alone));
+}
+
+TEST(JoinedRefinement, ACoatRackSeenFromBelowReportsARefinedHalfTurn) {
+  // The coat-rack's five views as docs/accuracy.md teaches them, in two of the suite's bins of
+  // coat-racks: plates lying flat, on their side, and on their lip (seen from below, where the
+  // scan cannot tell the half turn about the plate's normal and reports it as an alternative
+  // pose, which ICP then refines from the view's near symmetry, a millimetre or two off).
+  RecognitionParams params = test::bundledPreset("phoxi-bin-coat-rack");
+  params.refine.enabled = true;
+  const std::vector<std::shared_ptr<const TaughtModel>> views = joinViews(suiteViews(
+      "coat-rack",
+      {"coat-rack", "coat-rack-side1", "coat-rack-side2", "coat-rack-side3", "coat-rack-bin"},
+      params, {{"coat-rack-bin", {{"matching.min_coverage", 0.5}}}}));
+  ASSERT_EQ(views.size(), 5u);
+  const std::vector<SynthScene> bins = suiteBins("003 019");
+  ASSERT_EQ(bins.size(), 2u);
+  // Per detection, the origin error of the nearest of its poses (its own and its alternatives)
+  // that is turned less than 5° from an instance.
+  std::vector<double> errors;
+  std::size_t with_alternatives = 0;
+  for (const SynthScene& bin : bins) {
+    Recognizer recognizer;
+    for (const Detection& d :
+         recognizeViews(recognizer, views, bin.render.cloud, bin.sensor, params).detections) {
+      std::vector<Eigen::Isometry3d> poses = d.alternative_poses;
+      poses.push_back(d.T_scene_model);
+      with_alternatives += d.alternative_poses.empty() ? 0 : 1;
+      const Eigen::Isometry3d T_model_part =
+          views[std::size_t(d.model_index)]->T_part_model->inverse();
+      double nearest_mm = 1e9;
+      for (const Eigen::Isometry3d& T_scene_model : poses)
+        for (const PartInstance& instance : bin.scene.instances) {
+          const Eigen::Isometry3d T_true = bin.scene.T_scene_part(instance);
+          const Eigen::Isometry3d T = T_scene_model * T_model_part;
+          if (Eigen::AngleAxisd(T_true.linear().transpose() * T.linear()).angle() <
+              5.0 * M_PI / 180)
+            nearest_mm = std::min(nearest_mm, (T.translation() - T_true.translation()).norm());
+        }
+      errors.push_back(nearest_mm);
+    }
+  }
+  ASSERT_GE(errors.size(), 15u);
+  ASSERT_GE(with_alternatives, 4u);
+  std::printf("coat-racks: %zu detections (%zu with an alternative pose), origin error %.3f mm "
+              "median, %.3f mm the largest\n",
+              errors.size(), with_alternatives, median(errors),
+              *std::max_element(errors.begin(), errors.end()));
+  // Measured: 22 detections, 0.133 mm median and 1.05 mm the largest (0.192 and 2.19 mm before
+  // ICP also started alternatives with narrower pair distances and plates moved along the
+  // directions ICP pins loosely).
+  EXPECT_LT(median(errors), 0.16);
+  EXPECT_LT(*std::max_element(errors.begin(), errors.end()), 1.5);
 }
