@@ -28,10 +28,26 @@ double axisAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 }
 
 namespace {
-double armOf(const Feature& f) {
-  const double arm = f.type == FeatureType::Circle ? f.size_mm : 0.5 * f.size_mm;
-  return std::max(1.0, arm);
+
+/// A model feature and its scene partner as three point pairs each side: the centre and the two
+/// ends of an arm along the direction (a circle's radius, half a line's length, at least 1 mm; the
+/// same arm on both sides, as the scene feature's size may differ by up to Δl). The scene's
+/// direction is flipped to agree with the model's turned by `R_scene_model`.
+struct FeaturePair {
+  Eigen::Vector3d model_centre, scene_centre, model_arm, scene_arm;
+  Eigen::Vector3d scene_direction; ///< unit
+};
+
+FeaturePair featurePair(const Feature& m, const Feature& t, const Eigen::Matrix3d& R_scene_model) {
+  const Eigen::Vector3d md = m.direction.cast<double>().normalized();
+  Eigen::Vector3d td = t.direction.cast<double>().normalized();
+  if ((R_scene_model * md).dot(td) < 0.0)
+    td = -td;
+  const double arm =
+      std::max(1.0, m.type == FeatureType::Circle ? double(m.size_mm) : 0.5 * m.size_mm);
+  return {m.centre_mm.cast<double>(), t.centre_mm.cast<double>(), arm * md, arm * td, td};
 }
+
 } // namespace
 
 Eigen::Isometry3d fitFeaturePairs(const FeatureList& model, const FeatureList& scene,
@@ -42,21 +58,12 @@ Eigen::Isometry3d fitFeaturePairs(const FeatureList& model, const FeatureList& s
   Eigen::Matrix3Xd src(3, 3 * pairs.size()), dst(3, 3 * pairs.size());
   Eigen::Index col = 0;
   for (const auto& [mi, si] : pairs) {
-    const Feature& m = model[static_cast<std::size_t>(mi)];
-    const Feature& t = scene[static_cast<std::size_t>(si)];
-    const Eigen::Vector3d mc = m.centre_mm.cast<double>(), tc = t.centre_mm.cast<double>();
-    const Eigen::Vector3d md = m.direction.cast<double>().normalized();
-    Eigen::Vector3d td = t.direction.cast<double>().normalized();
-    if ((T_guess.linear() * md).dot(td) < 0.0)
-      td = -td;
-    // The same arm on both sides: the scene feature's size may differ by up to Δl.
-    const double arm = armOf(m);
-    src.col(col) = mc;
-    dst.col(col++) = tc;
-    src.col(col) = mc + arm * md;
-    dst.col(col++) = tc + arm * td;
-    src.col(col) = mc - arm * md;
-    dst.col(col++) = tc - arm * td;
+    const FeaturePair f = featurePair(model[static_cast<std::size_t>(mi)],
+                                      scene[static_cast<std::size_t>(si)], T_guess.linear());
+    for (const double side : {0.0, 1.0, -1.0}) {
+      src.col(col) = f.model_centre + side * f.model_arm;
+      dst.col(col++) = f.scene_centre + side * f.scene_arm;
+    }
   }
   const Eigen::Matrix4d T = Eigen::umeyama(src, dst, false);
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
@@ -64,10 +71,6 @@ Eigen::Isometry3d fitFeaturePairs(const FeatureList& model, const FeatureList& s
   out.translation() = T.topRightCorner<3, 1>();
   return out;
 }
-
-} // namespace scanpick::core
-
-namespace scanpick::core {
 
 Eigen::Isometry3d refineOnFeatureGeometry(const FeatureList& model, const FeatureList& scene,
                                           const std::vector<std::pair<int, int>>& pairs,
@@ -97,25 +100,14 @@ Eigen::Isometry3d refineOnFeatureGeometry(const FeatureList& model, const Featur
     };
     for (const auto& [mi, si] : pairs) {
       const Feature& m = model[static_cast<std::size_t>(mi)];
-      const Feature& t = scene[static_cast<std::size_t>(si)];
-      const Eigen::Vector3d mc = m.centre_mm.cast<double>(), tc = t.centre_mm.cast<double>();
-      const Eigen::Vector3d md = m.direction.cast<double>().normalized();
-      Eigen::Vector3d td = t.direction.cast<double>().normalized();
-      if ((T.linear() * md).dot(td) < 0.0)
-        td = -td;
-      const double arm = armOf(m);
-      if (m.type == FeatureType::Line) {
-        const Eigen::Matrix3d W =
-            Eigen::Matrix3d::Identity() - (1.0 - kAlongWeight) * td * td.transpose();
-        add(mc, tc, W);
-        add(mc + arm * md, tc + arm * td, W);
-        add(mc - arm * md, tc - arm * td, W);
-      } else {
-        const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
-        add(mc, tc, I);
-        add(mc + arm * md, tc + arm * td, I);
-        add(mc - arm * md, tc - arm * td, I);
-      }
+      const FeaturePair f = featurePair(m, scene[static_cast<std::size_t>(si)], T.linear());
+      const Eigen::Vector3d& td = f.scene_direction;
+      const Eigen::Matrix3d W = m.type == FeatureType::Line
+                                    ? Eigen::Matrix3d(Eigen::Matrix3d::Identity() -
+                                                      (1.0 - kAlongWeight) * td * td.transpose())
+                                    : Eigen::Matrix3d::Identity();
+      for (const double side : {0.0, 1.0, -1.0})
+        add(f.model_centre + side * f.model_arm, f.scene_centre + side * f.scene_arm, W);
     }
     const Eigen::Matrix<double, 6, 1> delta = H.ldlt().solve(-g);
     if (!delta.allFinite())
