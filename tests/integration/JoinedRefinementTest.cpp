@@ -1,10 +1,10 @@
 // Views joined (beyond the thesis): refinement and the views' merge. Each view's ICP also fits the
 // surfaces the other views saw, which pin down what one view leaves loose; a surface of revolution
 // is then slid along its axis to where its wall ends, and a plate in its own plane to where its
-// outline ends. The support's view cut
-// from a bin shows one leg face-on: alone, ICP slides it in the leg's own plane, held only by its
-// holes and its outline. The merge tells two parts lying close together from one part found
-// through two views by the surface they share.
+// outline ends. The support's view cut from a bin shows one leg face-on: alone, ICP slides it in
+// the leg's own plane, held only by its holes and its outline. The merge tells two parts lying
+// close together from one part found through two views by the surface they share; a coat-rack
+// seen from below reports its half turn, refined.
 #include "core/common/Error.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/sim/Suite.h"
