@@ -1,6 +1,7 @@
 #include "core/sim/Renderer.h"
 
 #include "core/common/Error.h"
+#include "core/sim/EmbreeMesh.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,22 +34,7 @@ public:
   void add(const TriangleMesh& mesh_camera_mm, std::int32_t label) {
     if (mesh_camera_mm.empty())
       return;
-    RTCGeometry g = rtcNewGeometry(m_device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                          mesh_camera_mm.vertices_mm.size()));
-    for (std::size_t i = 0; i < mesh_camera_mm.vertices_mm.size(); ++i)
-      for (int k = 0; k < 3; ++k)
-        v[3 * i + k] = static_cast<float>(mesh_camera_mm.vertices_mm[i][k]);
-    auto* idx = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                mesh_camera_mm.triangles.size()));
-    for (std::size_t i = 0; i < mesh_camera_mm.triangles.size(); ++i)
-      for (int k = 0; k < 3; ++k)
-        idx[3 * i + k] = static_cast<unsigned>(mesh_camera_mm.triangles[i][k]);
-    rtcCommitGeometry(g);
-    const unsigned id = rtcAttachGeometry(m_scene, g);
-    rtcReleaseGeometry(g);
+    const unsigned id = attachTriangleMesh(m_device, m_scene, mesh_camera_mm);
     if (m_labels.size() <= id)
       m_labels.resize(id + 1, kLabelNothing);
     m_labels[id] = label;

@@ -24,6 +24,7 @@
 #include "core/cloud/CloudIo.h"
 #include "core/cloud/PointKdTree.h"
 #include "core/eval/RenderCheck.h"
+#include "core/sim/EmbreeMesh.h"
 #include "core/sim/PartCatalog.h"
 #include "core/sim/Renderer.h"
 
@@ -109,22 +110,7 @@ public:
   explicit SplatModel(const TriangleMesh& mesh_model_mm)
       : m_device(rtcNewDevice(nullptr)), m_scene(rtcNewScene(m_device)) {
     rtcSetSceneFlags(m_scene, RTC_SCENE_FLAG_ROBUST);
-    RTCGeometry g = rtcNewGeometry(m_device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                          mesh_model_mm.vertices_mm.size()));
-    for (std::size_t i = 0; i < mesh_model_mm.vertices_mm.size(); ++i)
-      for (int k = 0; k < 3; ++k)
-        v[3 * i + k] = static_cast<float>(mesh_model_mm.vertices_mm[i][k]);
-    auto* idx = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                mesh_model_mm.triangles.size()));
-    for (std::size_t i = 0; i < mesh_model_mm.triangles.size(); ++i)
-      for (int k = 0; k < 3; ++k)
-        idx[3 * i + k] = static_cast<unsigned>(mesh_model_mm.triangles[i][k]);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(m_scene, g);
-    rtcReleaseGeometry(g);
+    attachTriangleMesh(m_device, m_scene, mesh_model_mm);
     rtcCommitScene(m_scene);
     for (const auto& t : mesh_model_mm.triangles) {
       const Eigen::Vector3d a = mesh_model_mm.vertices_mm[static_cast<std::size_t>(t[0])];
