@@ -116,6 +116,9 @@ std::optional<Eigen::Isometry3d> slidToOutline(const ModelPrep& prep, const Scen
     if (model.surface().nearest(q, inlier_sq) >= 0)
       on_part.push_back(q);
   }
+  std::vector<const std::vector<Eigen::Vector3f>*> other_views;
+  for (const JoinedView& view : prep.model->joined_views)
+    other_views.push_back(&view.cloud_mm.points_mm);
   Eigen::Vector3d move_model = Eigen::Vector3d::Zero();
   bool moved = false;
   for (int k = 0; k < 2; ++k) {
@@ -127,7 +130,7 @@ std::optional<Eigen::Isometry3d> slidToOutline(const ModelPrep& prep, const Scen
       options.max_disagreement_mm = kFirmAgreementMm;
     const Eigen::Vector3d direction = eigen.eigenvectors().col(k).normalized();
     if (const auto shift = outlineShift(prep.model->cloud_mm.points_mm, on_part, direction,
-                                        prep.other_views_points, options)) {
+                                        other_views, options)) {
       move_model += *shift * direction;
       moved = true;
     }

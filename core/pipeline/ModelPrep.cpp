@@ -193,14 +193,6 @@ void findWallEnds(ModelPrep& prep, const SceneIndex& surface_points) {
                   prep.wall_ends.high_mm.value_or(unseen));
 }
 
-/// Every point of the views joined to `model`, in its frame.
-std::vector<Eigen::Vector3f> otherViewsPoints(const TaughtModel& model) {
-  std::vector<Eigen::Vector3f> points;
-  for (const JoinedView& view : model.joined_views)
-    points.insert(points.end(), view.cloud_mm.points_mm.begin(), view.cloud_mm.points_mm.end());
-  return points;
-}
-
 /// The points of `body` that `S` (model frame → model frame) moves out of its body's cells.
 std::vector<std::uint32_t> movedOffBody(const VerifyModel& body, const Eigen::Isometry3d& S) {
   const Eigen::Isometry3f S_f = S.cast<float>();
@@ -363,8 +355,6 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
                              Eigen::Vector3d(model->T_teach_model.inverse().translation()));
   if (joined_refine && !prep->joined_refine)
     prep->joined_refine = joinedRefineModel(joined(), kJoinedRefineViews * points);
-  if (params.refine.enabled && prep->other_views_points.empty())
-    prep->other_views_points = otherViewsPoints(*model);
   if (!model->joined_views.empty())
     joined(); // the whole part, for the views' merge (Recognizer::partScorer)
   if (sampling > 0 && (!prep->pairs || prep->surface_sampling_mm != sampling)) {

@@ -72,9 +72,6 @@ struct ModelPrep {
   /// With views joined, the points of all of them in this view's frame (each view's with normals
   /// facing its own teach camera); null without joined views.
   std::shared_ptr<const VerifyModel> joined_points;
-  /// With refinement on: every point of the views joined to this one, in its frame, at the density
-  /// they were scanned with (which of this view's ends they confirm, outlineShift).
-  std::vector<Eigen::Vector3f> other_views_points;
   double surface_sampling_mm = 0;              ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on
   /// Near symmetries, and what they were found with (unset when not searched).

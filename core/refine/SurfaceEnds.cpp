@@ -113,11 +113,11 @@ std::optional<double> axialShift(const AxialEnds& view, const AxialEnds& scene, 
   return low ? low : high;
 }
 
-std::optional<double> outlineShift(const std::vector<Eigen::Vector3f>& view_mm,
-                                   const std::vector<Eigen::Vector3f>& scene_mm,
-                                   const Eigen::Vector3d& direction,
-                                   const std::vector<Eigen::Vector3f>& other_views_mm,
-                                   const OutlineShiftOptions& options) {
+std::optional<double>
+outlineShift(const std::vector<Eigen::Vector3f>& view_mm,
+             const std::vector<Eigen::Vector3f>& scene_mm, const Eigen::Vector3d& direction,
+             const std::vector<const std::vector<Eigen::Vector3f>*>& other_views_mm,
+             const OutlineShiftOptions& options) {
   const Eigen::Vector3d u = direction.unitOrthogonal();
   const Eigen::Vector3d v = direction.cross(u);
   struct Extent {
@@ -125,23 +125,24 @@ std::optional<double> outlineShift(const std::vector<Eigen::Vector3f>& view_mm,
     double high = -std::numeric_limits<double>::infinity();
   };
   // Each point's cell across the direction and its height along it.
-  const auto extents = [&](const std::vector<Eigen::Vector3f>& points) {
+  const auto extents = [&](const std::vector<const std::vector<Eigen::Vector3f>*>& clouds) {
     std::unordered_map<std::int64_t, Extent> cells;
-    for (const auto& p : points) {
-      const Eigen::Vector3d q = p.cast<double>();
-      if (!q.allFinite())
-        continue;
-      const auto cu = static_cast<std::int64_t>(std::floor(q.dot(u) / options.cell_mm));
-      const auto cv = static_cast<std::int64_t>(std::floor(q.dot(v) / options.cell_mm));
-      Extent& e = cells[(cu << 32) ^ (cv & 0xffffffff)];
-      const double h = q.dot(direction);
-      e.low = std::min(e.low, h);
-      e.high = std::max(e.high, h);
-    }
+    for (const auto* points : clouds)
+      for (const auto& p : *points) {
+        const Eigen::Vector3d q = p.cast<double>();
+        if (!q.allFinite())
+          continue;
+        const auto cu = static_cast<std::int64_t>(std::floor(q.dot(u) / options.cell_mm));
+        const auto cv = static_cast<std::int64_t>(std::floor(q.dot(v) / options.cell_mm));
+        Extent& e = cells[(cu << 32) ^ (cv & 0xffffffff)];
+        const double h = q.dot(direction);
+        e.low = std::min(e.low, h);
+        e.high = std::max(e.high, h);
+      }
     return cells;
   };
-  const auto in_view = extents(view_mm);
-  const auto in_scene = extents(scene_mm);
+  const auto in_view = extents({&view_mm});
+  const auto in_scene = extents({&scene_mm});
   const auto in_others = extents(other_views_mm);
   std::vector<double> low, high;
   for (const auto& [cell, scene] : in_scene) {

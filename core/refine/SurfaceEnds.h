@@ -60,7 +60,7 @@ AxialEnds findAxialEnds(const std::vector<Eigen::Vector3f>& points_mm,
                         double max_height_mm, const AxialEndsOptions& options = {},
                         const std::vector<Eigen::Vector3f>& normals = {});
 
-/// The shift along the axis (mm, towards its direction) that puts the scene's ends on the view's
+/// The shift along the axis (mm, towards its direction) that puts the scene's ends on the view's.
 /// An end counts when both see it and its difference is at most `max_shift_mm` (else the scene's
 /// "end" is something else: a neighbour, or the other end where the wall is hidden); the mean of
 /// both ends' differences when both count and they differ by at most `max_disagreement_mm`, else
@@ -83,14 +83,14 @@ struct OutlineShiftOptions {
 /// across the direction, the lowest and the highest point of each; the mean of both sides' median-
 /// agreeing cells when both shifts are within max_shift_mm and agree within max_disagreement_mm,
 /// nothing otherwise: one side alone would keep the difference between the two scans' pixel
-/// shortfalls, which a flat face seen at another angle changes. With `other_views_mm` (the part's
-/// other views, in the same frame), a view's end counts only where they reach no farther than
-/// options.confirm_mm beyond it: a view cut from a cluttered scan ends where a neighbour hid it,
-/// and the other views see past that.
-std::optional<double> outlineShift(const std::vector<Eigen::Vector3f>& view_mm,
-                                   const std::vector<Eigen::Vector3f>& scene_mm,
-                                   const Eigen::Vector3d& direction,
-                                   const std::vector<Eigen::Vector3f>& other_views_mm = {},
-                                   const OutlineShiftOptions& options = {});
+/// shortfalls, which a flat face seen at another angle changes. With `other_views_mm` (the points
+/// of the part's other views, in the same frame), a view's end counts only where they reach no
+/// farther than options.confirm_mm beyond it: a view cut from a cluttered scan ends where a
+/// neighbour hid it, and the other views see past that.
+std::optional<double>
+outlineShift(const std::vector<Eigen::Vector3f>& view_mm,
+             const std::vector<Eigen::Vector3f>& scene_mm, const Eigen::Vector3d& direction,
+             const std::vector<const std::vector<Eigen::Vector3f>*>& other_views_mm = {},
+             const OutlineShiftOptions& options = {});
 
 } // namespace scanpick::core

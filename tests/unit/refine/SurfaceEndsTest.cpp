@@ -257,7 +257,7 @@ TEST(OutlineShift, OtherViewsTellWhereAViewsEndWasHiddenWhenItWasTaught) {
   const auto others = scanPlate(650, pitch, Eigen::Vector2d::Zero(), none);
   const auto scene = scanPlate(800, pitch, Eigen::Vector2d(0.0, 0.3), none);
   const std::optional<double> confirmed =
-      outlineShift(view, scene, Eigen::Vector3d::UnitY(), others);
+      outlineShift(view, scene, Eigen::Vector3d::UnitY(), {&others});
   ASSERT_TRUE(confirmed);
   EXPECT_NEAR(*confirmed, 0.3, 0.08);
   // Without them, most cells of the top edge end where the neighbour hid it: that side says
