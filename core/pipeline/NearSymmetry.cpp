@@ -4,7 +4,10 @@
 #include "core/matching/PointPairVoting.h"
 #include "core/refine/PoseRefinement.h"
 #include "core/refine/SceneIndex.h"
+#include "core/refine/SurfaceEnds.h"
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -156,6 +159,72 @@ NearSymmetry describe(const VerifyModel& view, const SceneIndex& surface,
   return s;
 }
 
+/// A turn this close to a half turn is one (rad, 5°): parts are made with exact symmetries, and a
+/// view fitted onto itself leaves its turn about a plate's normal a degree or two off.
+constexpr double kHalfTurnSnapRad = 5.0 * M_PI / 180.0;
+/// How far an exact half turn may be moved across its axis to where the part's outline maps onto
+/// itself (mm): the fitted turn's axis lies up to a couple of millimetres off.
+constexpr double kMaxHalfTurnMoveMm = 5.0;
+
+/// With views joined (TaughtModel::joined_views: the part seen from every side, in this view's
+/// frame), a turn `S_model` within kHalfTurnSnapRad of a half turn made an exact half turn about
+/// its own axis, then moved across that axis, along the two main directions of the part's spread
+/// there, to where the outline of all the views' points maps onto itself (outlineShift, twice);
+/// nothing for other turns or without joined views. The view alone cannot place the axis: its own
+/// outline, turned, shows the sides its teach camera saw edge-on where it saw faces.
+std::optional<Eigen::Isometry3d> exactHalfTurn(const TaughtModel& model,
+                                               const Eigen::Isometry3d& S_model) {
+  const Eigen::AngleAxisd turn(S_model.linear());
+  if (model.joined_views.empty() || !(std::abs(turn.angle() - M_PI) < kHalfTurnSnapRad))
+    return std::nullopt;
+  std::vector<Eigen::Vector3f> part_mm;
+  for (const JoinedView& view : model.joined_views)
+    for (const auto& p : view.cloud_mm.points_mm)
+      if (p.allFinite())
+        part_mm.push_back(p);
+  if (part_mm.empty())
+    return std::nullopt;
+  // The half turn about the fitted turn's axis (the point of it nearest to what S fixes), with
+  // S's slide along the axis.
+  const Eigen::Vector3d axis = turn.axis().normalized();
+  const Eigen::Vector3d t = S_model.translation();
+  const Eigen::Vector3d on_axis = (Eigen::Matrix3d::Identity() - S_model.linear())
+                                      .completeOrthogonalDecomposition()
+                                      .solve(t - t.dot(axis) * axis);
+  const Eigen::Matrix3d R = 2.0 * axis * axis.transpose() - Eigen::Matrix3d::Identity();
+  Eigen::Isometry3d S = Eigen::Isometry3d::Identity();
+  S.linear() = R;
+  S.translation() = on_axis - R * on_axis + t.dot(axis) * axis;
+  // The part's main directions across the axis.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : part_mm)
+    mean += p.cast<double>();
+  mean /= static_cast<double>(part_mm.size());
+  const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - axis * axis.transpose();
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  for (const auto& p : part_mm) {
+    const Eigen::Vector3d d = across * (p.cast<double>() - mean);
+    spread += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> main_directions(spread);
+  OutlineShiftOptions options;
+  options.max_shift_mm = kMaxHalfTurnMoveMm;
+  std::vector<Eigen::Vector3f> turned_mm(part_mm.size());
+  for (int round = 0; round < 2; ++round)
+    for (int k = 1; k < 3; ++k) { // the two largest: across the axis
+      const Eigen::Vector3d direction = main_directions.eigenvectors().col(k).normalized();
+      for (std::size_t i = 0; i < part_mm.size(); ++i)
+        turned_mm[i] = (S * part_mm[i].cast<double>()).cast<float>();
+      if (const auto shift = outlineShift(turned_mm, part_mm, direction, {}, options))
+        S = Eigen::Translation3d(*shift * direction) * S;
+    }
+  logger()->debug("view '{}': turn by {:.1f}° made a half turn; it moves the view's origin by "
+                  "{:.2f} mm",
+                  model.name, turn.angle() * 180.0 / M_PI,
+                  (S.translation() - S_model.translation()).norm());
+  return S;
+}
+
 } // namespace
 
 std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const VerifyModel& view,
@@ -197,6 +266,8 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
       if (t.overlap > s.overlap)
         s = std::move(t);
     }
+    if (const auto half_turn = exactHalfTurn(model, s.S_model))
+      s = describe(view, surface, *half_turn, camera, depth, tolerance_mm);
     described[c] = std::move(s);
   });
   for (std::size_t c = 0; c < candidates.size(); ++c) {
