@@ -160,11 +160,18 @@ void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
                       const SceneIndex& scene_index, const RefineParams& params,
                       const PoseVerifier& verify) {
   const RefineModel& icp_model = prep.joined_refine ? *prep.joined_refine : *prep.refine;
+  const bool revolution = prep.axis || prep.near_axis;
+  // Where the outline places the directions ICP hardly pins, ICP leaves them as they came: on
+  // them it drifts on the few points of edges and walls (a plate seen from below, started at its
+  // true pose, ends up to 2 mm off along its length). Not for the alternative poses below: they
+  // start a millimetre or two off, and ICP brings them nearer first.
+  const double stable_share = !revolution && params.outline_ends ? kWeakRatio : kIcpStableShare;
   tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
     Detection& d = detections[k];
     std::optional<double> icp_coverage; // the ICP pose's score, when it was kept
     if (!d.refined) {                   // else a surface-voting pose ICP has polished already
-      const RefinementResult r = refinePose(icp_model, scene_index, d.T_scene_model, params);
+      const RefinementResult r =
+          refinePose(icp_model, scene_index, d.T_scene_model, params, {}, stable_share);
       const auto coverage = verify ? std::optional(verify(r.T_scene_model)) : std::nullopt;
       logger()->trace("ICP of detection {}: coverage {:.3f} -> {:.3f}, moved {:.2f} mm, {} "
                       "iterations, converged {}",
@@ -181,7 +188,6 @@ void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
     // `verified`: T's score by this view's verification when it is known already.
     const auto slid = [&](const Eigen::Isometry3d& T,
                           std::optional<double> verified) -> std::optional<Eigen::Isometry3d> {
-      const bool revolution = prep.axis || prep.near_axis;
       std::optional<Eigen::Isometry3d> moved;
       if (revolution && params.axial_ends)
         moved = slidToWallEnds(prep, scene_index, T);

@@ -122,9 +122,6 @@ void findPairs(const RefineModel& model, const SceneIndex& scene, const Eigen::I
                     });
 }
 
-/// Point-to-plane ICP leaves directions whose curvature is below this share of the strongest.
-constexpr double kStableRatio = 0.001;
-
 /// Exponential of a small twist (rotation vector omega, translation): the rigid increment.
 Eigen::Isometry3d increment(const Eigen::Matrix<double, 6, 1>& x) {
   Eigen::Isometry3d dT = Eigen::Isometry3d::Identity();
@@ -140,7 +137,8 @@ Eigen::Isometry3d increment(const Eigen::Matrix<double, 6, 1>& x) {
 
 RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
                             const Eigen::Isometry3d& T_scene_model_initial,
-                            const RefineParams& params, const ProgressFn& progress) {
+                            const RefineParams& params, const ProgressFn& progress,
+                            double stable_share) {
   checkParams(params);
   if (model.size() == 0 || scene.size() == 0)
     throw Error("Refinement needs model and scene points: both are empty.");
@@ -223,12 +221,12 @@ RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
       // sampling for the ICP algorithm", 2003): a plate seen face-on constrains its tilt and
       // depth but hardly its slide and turn within its plane, where point-to-plane ICP would
       // drift on sensor noise, and a pipe does not constrain its turn about its axis. Directions
-      // weaker than kStableRatio of the strongest keep the pose they came with.
+      // weaker than stable_share of the strongest keep the pose they came with.
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(A);
       const double strongest = eigen.eigenvalues()(5);
       x.setZero();
       for (int k = 0; k < 6; ++k)
-        if (eigen.eigenvalues()(k) > kStableRatio * strongest)
+        if (eigen.eigenvalues()(k) > stable_share * strongest)
           x += eigen.eigenvectors().col(k) *
                (eigen.eigenvectors().col(k).dot(-b) / eigen.eigenvalues()(k));
       x.head<3>() /= radius_mm;

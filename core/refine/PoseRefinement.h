@@ -35,6 +35,11 @@ struct RefinementResult {
   std::size_t visible_points = 0; ///< visible model points at the final pose
 };
 
+/// Point-to-plane ICP leaves directions (of its six: turns and slides) whose curvature is below
+/// this share of the strongest as they came, unless told otherwise: on them it would drift on
+/// sensor noise.
+inline constexpr double kIcpStableShare = 0.001;
+
 /// Refines `T_scene_model_initial` so the model fits the scene (both mm, scene in the frame of
 /// `scene`'s viewpoint, usually the camera frame): robust point-to-plane ICP (Tukey weights) on
 /// the model points facing the camera, pairs whose normals disagree by more than ~26° or whose
@@ -45,9 +50,12 @@ struct RefinementResult {
 /// Deterministic: the same inputs give bitwise the same result, whatever the thread scheduling.
 /// Throws Error when params are out of range; Cancelled when `progress` asks to stop (checked every
 /// iteration). Thread-safe: many detections may be refined at once against one SceneIndex.
+/// Point-to-plane moves only along directions pinned above `stable_share` of the strongest
+/// (kIcpStableShare); a caller that places the others itself may hold more of them.
 RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
                             const Eigen::Isometry3d& T_scene_model_initial,
-                            const RefineParams& params, const ProgressFn& progress = {});
+                            const RefineParams& params, const ProgressFn& progress = {},
+                            double stable_share = kIcpStableShare);
 
 /// Convenience overload: prepares the model (RefineModel with params.model_points) and indexes
 /// the scene (default SceneIndexOptions) for this one call. Throws Error for an empty or
