@@ -352,7 +352,8 @@ std::vector<ParamInfo> buildTable() {
            "hardly pins (a plate seen face-on, in its own plane), or pins loosely where both "
            "sides agree within 0.1 mm (a plate seen edge-on, along its length), to where the "
            "scan's points end as the view's do, both sides of the outline together; other views "
-           "of the part tell where this view's ends were hidden when it was taught. Helps "
+           "of the part tell where this view's ends were hidden when it was taught. ICP then "
+           "leaves the directions it hardly pins as they came, for the outline to place. Helps "
            "plates; a view cut from a cluttered scan can lose by it.")));
   // --- Seed ---
   ParamInfo seed = make("seed", "Random seed", "", Stage::Preprocess, I, 0, 2147483647, 1,

@@ -148,7 +148,8 @@ struct RefineParams {
   /// its side.
   bool axial_ends = true;
   /// After ICP, other views are moved, along each direction ICP hardly pins (a plate seen face-on
-  /// in its own plane), to where the scan's points end as the view's do (outlineShift). Off by
+  /// in its own plane), to where the scan's points end as the view's do (outlineShift); ICP then
+  /// leaves those directions as they came instead of drifting along them. Off by
   /// default: it helps plates (coat-rack) and hurts a view cut from a cluttered scan
   /// (docs/accuracy.md).
   bool outline_ends = false;
