@@ -76,7 +76,8 @@ std::optional<Eigen::Isometry3d> slidToWallEnds(const ModelPrep& prep, const Sce
 /// A scene point counts as on the part when the view has a point this close at the pose (mm).
 constexpr double kOnPartMm = 1.5;
 /// Directions (of translation) whose point-to-plane curvature is below this share of the strongest
-/// are the ones ICP hardly pins.
+/// are the ones ICP hardly pins. With the outline slide on, ICP itself holds its directions (of
+/// its six) below this share as they came.
 constexpr double kWeakRatio = 0.01;
 /// Directions up to this share ICP pins, but loosely (a plate seen edge-on, along its length):
 /// the outline moves a pose along them only when both of its sides agree within

@@ -40,8 +40,11 @@ struct NearSymmetry {
 /// by ICP (`icp`) onto the view itself, whichever overlaps more, when it puts at least
 /// `min_overlap` of the view's points back on its surface (within `tolerance_mm`). `view` are the
 /// verification points of `model`; `refine_model` is built from `model` with its teach camera as
-/// the viewpoint, and its surface() is the surface the turns are fitted to. Deterministic. Empty
-/// when min_overlap <= 0.
+/// the viewpoint, and its surface() is the surface the turns are fitted to. With views joined
+/// (TaughtModel::joined_views), a turn within 5° of a half turn is made an exact half turn and its
+/// axis placed where the outline of all the views' points maps onto itself: fitted onto itself, a
+/// view leaves a plate's half turn a degree or two and a millimetre or two off. Deterministic.
+/// Empty when min_overlap <= 0.
 std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const VerifyModel& view,
                                              const RefineModel& refine_model,
                                              const RefineParams& icp, double tolerance_mm,

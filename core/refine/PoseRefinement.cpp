@@ -140,6 +140,9 @@ RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
                             const RefineParams& params, const ProgressFn& progress,
                             double stable_share) {
   checkParams(params);
+  if (!(stable_share >= 0.0 && stable_share < 1.0))
+    throw Error("ICP's share of the strongest curvature below which it holds a direction must lie "
+                "in [0, 1).");
   if (model.size() == 0 || scene.size() == 0)
     throw Error("Refinement needs model and scene points: both are empty.");
   RefinementResult result;
