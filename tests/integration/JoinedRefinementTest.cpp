@@ -6,9 +6,7 @@
 // close together from one part found through two views by the surface they share; a coat-rack
 // seen from below reports its half turn, refined.
 #include "core/common/Error.h"
-#include "core/pipeline/NearSymmetry.h"
 #include "core/pipeline/Recognizer.h"
-#include "core/refine/RefineModel.h"
 #include "core/sim/Suite.h"
 #include "tests/integration/SynthTeach.h"
 
@@ -17,6 +15,7 @@
 #include <cstdio>
 #include <gtest/gtest.h>
 #include <map>
+#include <optional>
 #include <vector>
 
 using namespace scanpick;
@@ -56,6 +55,19 @@ std::vector<std::shared_ptr<const TaughtModel>> supportViews(const RecognitionPa
   return suiteViews("support",
                     {"support", "support-side1", "support-side2", "support-side3", "support-bin"},
                     params);
+}
+
+/// The coat-rack's five views, its view cut from a bin with its own minimum coverage `bin_coverage`
+/// when given (as docs/accuracy.md teaches it).
+std::vector<std::shared_ptr<const TaughtModel>>
+coatRackViews(const RecognitionParams& params, std::optional<double> bin_coverage = {}) {
+  std::map<std::string, ViewParams> own;
+  if (bin_coverage)
+    own["coat-rack-bin"] = {{"matching.min_coverage", *bin_coverage}};
+  return suiteViews(
+      "coat-rack",
+      {"coat-rack", "coat-rack-side1", "coat-rack-side2", "coat-rack-side3", "coat-rack-bin"},
+      params, own);
 }
 
 /// The suite's bins of `part` alone (scene-NNN, NNN in `numbers`).
@@ -327,22 +339,13 @@ TEST(JoinedRefinement, TheOtherViewsPlaceTheHalfTurnOfACoatRackSeenFromBelow) {
   // With the other views joined, the turn is made an exact half turn and its axis placed where
   // the part's whole outline maps onto itself.
   const RecognitionParams params = test::bundledPreset("phoxi-bin-coat-rack");
-  const std::vector<std::shared_ptr<const TaughtModel>> views = suiteViews(
-      "coat-rack",
-      {"coat-rack", "coat-rack-side1", "coat-rack-side2", "coat-rack-side3", "coat-rack-bin"},
-      params);
+  const std::vector<std::shared_ptr<const TaughtModel>> views = coatRackViews(params);
   ASSERT_EQ(views.size(), 5u);
   // The half turn about the plate's normal that the view from below (side 3) finds: how far it
   // turns from the part's own half turn (°) and how far it moves the part's origin (mm).
   const auto halfTurnError = [&](const TaughtModel& below) -> std::pair<double, double> {
-    const auto view =
-        makeVerifyModel(below, params.refine.model_points, params.keypoints.normal_radius_mm);
-    const RefineModel refine(below.cloud_mm, params.refine.model_points,
-                             Eigen::Vector3d(below.T_teach_model.inverse().translation()));
     const Eigen::Isometry3d T_part_model = *below.T_part_model;
-    for (const NearSymmetry& s : findNearSymmetries(below, *view, refine, params.refine,
-                                                    params.matching.verify_tolerance_mm,
-                                                    params.matching.symmetry_overlap)) {
+    for (const NearSymmetry& s : test::symmetriesOf(below, params).found) {
       const Eigen::Isometry3d S_part = T_part_model * s.S_model * T_part_model.inverse();
       const Eigen::AngleAxisd turn(S_part.linear());
       if (std::abs(turn.angle() - M_PI) < 5.0 * M_PI / 180 && std::abs(turn.axis().z()) > 0.99) {
@@ -372,10 +375,8 @@ TEST(JoinedRefinement, ACoatRackSeenFromBelowReportsARefinedHalfTurn) {
   // pose, which ICP then refines from the view's near symmetry, placed by the other views).
   RecognitionParams params = test::bundledPreset("phoxi-bin-coat-rack");
   params.refine.enabled = true;
-  const std::vector<std::shared_ptr<const TaughtModel>> views = joinViews(suiteViews(
-      "coat-rack",
-      {"coat-rack", "coat-rack-side1", "coat-rack-side2", "coat-rack-side3", "coat-rack-bin"},
-      params, {{"coat-rack-bin", {{"matching.min_coverage", 0.5}}}}));
+  const std::vector<std::shared_ptr<const TaughtModel>> views =
+      joinViews(coatRackViews(params, 0.5));
   ASSERT_EQ(views.size(), 5u);
   const std::vector<SynthScene> bins = suiteBins("003 019");
   ASSERT_EQ(bins.size(), 2u);

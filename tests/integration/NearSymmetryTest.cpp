@@ -28,30 +28,13 @@ double angleDeg(const Eigen::Matrix3d& R) {
   return Eigen::AngleAxisd(R).angle() * 180.0 / kPi;
 }
 
-/// A taught view's verification points and its near symmetries, as the recognizer finds them.
-struct ViewSymmetries {
-  std::shared_ptr<const VerifyModel> view;
-  std::vector<NearSymmetry> found;
-};
-
-ViewSymmetries symmetriesOf(const TaughtModel& model, const RecognitionParams& params) {
-  ViewSymmetries out;
-  out.view = makeVerifyModel(model, params.refine.model_points, params.keypoints.normal_radius_mm);
-  const RefineModel refine(model.cloud_mm, params.refine.model_points,
-                           Eigen::Vector3d(model.T_teach_model.inverse().translation()));
-  out.found =
-      findNearSymmetries(model, *out.view, refine, params.refine,
-                         params.matching.verify_tolerance_mm, params.matching.symmetry_overlap);
-  return out;
-}
-
 } // namespace
 
 TEST(NearSymmetry, CoatRackFromAboveTurnsHalfwayAboutItsPlateNormal) {
   const RecognitionParams params = phoxiBin();
   ASSERT_GT(params.matching.symmetry_overlap, 0.0) << "phoxi-bin checks near symmetries";
   const test::SynthTeach top = test::teachFromSynth("coat-rack", 5, params, 0);
-  const auto [view, found] = symmetriesOf(*top.model, params);
+  const auto [view, found] = test::symmetriesOf(*top.model, params);
   ASSERT_EQ(found.size(), 1u);
   const NearSymmetry& s = found.front();
   // In the part frame: a half turn about the plate normal (z).
@@ -85,7 +68,7 @@ TEST(NearSymmetry, CoatRackFromAboveTurnsHalfwayAboutItsPlateNormal) {
 TEST(NearSymmetry, DifferingPointsTellTheTrueTurnAndRecognitionReportsIt) {
   const RecognitionParams params = phoxiBin();
   const test::SynthTeach top = test::teachFromSynth("coat-rack", 5, params, 0);
-  const auto [view, found] = symmetriesOf(*top.model, params);
+  const auto [view, found] = test::symmetriesOf(*top.model, params);
   ASSERT_EQ(found.size(), 1u);
   const NearSymmetry& s = found.front();
 
@@ -131,7 +114,7 @@ TEST(NearSymmetry, CoatRackFromBelowCannotBeToldFromItsHalfTurnAndSaysSo) {
   // alternative, and one of the two is the truth.
   const RecognitionParams params = phoxiBin();
   const test::SynthTeach below = test::teachFromSynth("coat-rack", 5, params, 3);
-  const auto [view, found] = symmetriesOf(*below.model, params);
+  const auto [view, found] = test::symmetriesOf(*below.model, params);
   const Eigen::Isometry3d T_part_model = below.T_part_model();
   const auto half_turn = std::find_if(found.begin(), found.end(), [&](const NearSymmetry& s) {
     const Eigen::AngleAxisd turn((T_part_model * s.S_model * T_part_model.inverse()).linear());

@@ -1,17 +1,21 @@
 #pragma once
 // Helpers of the integration tests: load a bundled preset, teach a built-in part from a virtual
-// teach scan, and tell which simulated instance a detection lies on.
+// teach scan, find a taught view's near symmetries, and tell which simulated instance a detection
+// lies on.
 #include "core/model/TaughtModel.h"
 #include "core/params/ParamsJson.h"
 #include "core/pipeline/Detection.h"
+#include "core/pipeline/NearSymmetry.h"
 #include "core/pipeline/PoseVerification.h"
 #include "core/preprocess/FloorRemoval.h"
+#include "core/refine/RefineModel.h"
 #include "core/sim/Synth.h"
 
 #include <filesystem>
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace scanpick::test {
 
@@ -109,6 +113,25 @@ inline NearestInstance nearestInstance(const core::Detection& d, const SynthTeac
     if (dist < out.distance_mm)
       out = {instance.id, scene.parts.at(instance.part).name, dist};
   }
+  return out;
+}
+
+/// A taught view's verification points and its near symmetries, as the recognizer finds them.
+struct ViewSymmetries {
+  std::shared_ptr<const core::VerifyModel> view;
+  std::vector<core::NearSymmetry> found;
+};
+
+inline ViewSymmetries symmetriesOf(const core::TaughtModel& model,
+                                   const core::RecognitionParams& params) {
+  ViewSymmetries out;
+  out.view =
+      core::makeVerifyModel(model, params.refine.model_points, params.keypoints.normal_radius_mm);
+  const core::RefineModel refine(model.cloud_mm, params.refine.model_points,
+                                 Eigen::Vector3d(model.T_teach_model.inverse().translation()));
+  out.found = core::findNearSymmetries(model, *out.view, refine, params.refine,
+                                       params.matching.verify_tolerance_mm,
+                                       params.matching.symmetry_overlap);
   return out;
 }
 
