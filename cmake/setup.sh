@@ -2,6 +2,8 @@
 # scanpick set-up on Debian 12: installs what is missing, builds (Release) and then
 #   demo  runs the main job on the bundled demo (default)
 #   test  runs every test (ctest; GUI tests in a real X server under xvfb-run)
+#   fuzz  builds the fuzz targets with clang and the sanitizers (build-fuzz/) and fuzzes each
+#         reader for FUZZ_SECONDS (default 20); `test` ends with it
 #   deps  only installs the packages
 # Environment: BUILD_DIR (default: build), JOBS (default: number of cores), CI=true adds -Werror.
 set -euo pipefail
@@ -33,6 +35,17 @@ build() {
   cmake --build "$build_dir" --parallel "$jobs"
 }
 
+# The libFuzzer targets (tests/fuzz), built with clang and the sanitizers in their own folder,
+# each fuzzed for FUZZ_SECONDS (default 20) from its seeds.
+fuzz() {
+  local fuzz_dir="${FUZZ_BUILD_DIR:-$here/build-fuzz}"
+  CC=clang CXX=clang++ cmake -S "$here" -B "$fuzz_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSCANPICK_FUZZ=ON -DSCANPICK_FUZZ_SECONDS="${FUZZ_SECONDS:-20}" -DSCANPICK_BUILD_GUI=OFF \
+    -DSCANPICK_BUILD_DEVICES=OFF -DSCANPICK_BUILD_BENCHMARKS=OFF >/dev/null
+  cmake --build "$fuzz_dir" --parallel "$jobs" --target fuzz_cloud fuzz_mesh fuzz_model fuzz_json
+  (cd "$fuzz_dir" && ctest --output-on-failure -L fuzz)
+}
+
 case "$mode" in
   deps) install_packages ;;
   demo)
@@ -54,6 +67,10 @@ case "$mode" in
     cd "$build_dir"
     # Everything but the GUI in parallel; the GUI tests one at a time in a real X server.
     ctest --output-on-failure --timeout 900 -j "$jobs" -LE gui
-    xvfb-run -a -s "-screen 0 1600x1200x24" ctest --output-on-failure --timeout 900 -L gui ;;
-  *) echo "usage: cmake/setup.sh [demo|test|deps]" >&2; exit 2 ;;
+    xvfb-run -a -s "-screen 0 1600x1200x24" ctest --output-on-failure --timeout 900 -L gui
+    fuzz ;;
+  fuzz)
+    install_packages
+    fuzz ;;
+  *) echo "usage: cmake/setup.sh [demo|test|fuzz|deps]" >&2; exit 2 ;;
 esac

@@ -2,6 +2,7 @@
 
 #include "core/cloud/CloudIo.h"
 #include "core/common/AtomicFile.h"
+#include "core/common/JsonText.h"
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -29,7 +30,7 @@ std::string frameMetadataJson(const Frame& frame) {
   } else {
     j["intrinsics"] = nullptr;
   }
-  return j.dump(2) + "\n";
+  return core::dumpJsonText(j, 2) + "\n";
 }
 
 void saveFrame(const std::filesystem::path& pcd_path, const Frame& frame) {

@@ -4,6 +4,7 @@
 #include "app/cli/ModelViews.h"
 #include "app/cli/RecipeOptions.h"
 #include "core/common/AtomicFile.h"
+#include "core/common/JsonText.h"
 #include "core/model/ModelFile.h"
 #include "core/pipeline/OverlayPicture.h"
 #include "core/pipeline/Recognizer.h"
@@ -28,9 +29,12 @@ std::pair<std::string, std::string> truthInfo(const fs::path& scene_path) {
   const fs::path gt = scene_path.parent_path() / (scene_path.stem().string() + ".gt.json");
   if (!fs::exists(gt))
     return {};
-  const auto doc = nlohmann::json::parse(core::readFile(gt), nullptr, false);
-  if (doc.is_discarded())
-    return {};
+  nlohmann::json doc;
+  try {
+    doc = core::parseJsonText(core::readFile(gt), gt.string(), "");
+  } catch (const core::Error&) {
+    return {}; // the scene is recognized without its ground truth's sensor and kind
+  }
   std::string preset, kind;
   if (doc.contains("sensor") && doc["sensor"].is_object())
     preset = doc["sensor"].value("preset", std::string());
@@ -54,6 +58,12 @@ void printSummary(const std::string& scene, const core::RecognitionResult& r) {
 }
 
 int run(const Options& o) {
+  if (o.suite.empty()) {
+    // Both outputs are checked before the work, so that neither is written when one cannot be.
+    core::checkWritable(o.out);
+    if (!o.picture.empty())
+      core::checkWritable(o.picture);
+  }
   const ModelViews loaded = loadModelViews(o.models);
   const core::TaughtModel& first = *loaded.models.front();
   // Without --preset/--params the (first) model's own parameters are used.

@@ -47,6 +47,7 @@ void registerTeachCommand(CLI::App& app) {
       addCommand(app, "teach", "Teach a part from a scan: crop, features, .spmodel", [o] {
         core::TeachOptions options;
         options.name = o->name;
+        core::checkWritable(o->out);
         options.remove_floor = o->remove_floor;
         options.source_units = core::parseLengthUnit(o->recipe.units);
         options.sensor =

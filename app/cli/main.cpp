@@ -6,41 +6,29 @@
 #include <CLI/CLI.hpp>
 
 int main(int argc, char** argv) {
+  using namespace scanpick::cli;
   scanpick::core::keepFreedMemoryForReuse(); // a suite or a bench recognizes scene after scene
   CLI::App app{"scanpick-cli: 3D object recognition for bin picking, taught from a scan.\n"
                "Units are millimetres unless a command says otherwise."};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("scanpick ") + SCANPICK_VERSION);
-#ifdef SCANPICK_HAS_SYNTHCOMMAND
   scanpick::cli::registerSynthCommands(app);
-#endif
-#ifdef SCANPICK_HAS_EVALCOMMAND
   scanpick::cli::registerEvalCommand(app);
-#endif
-#ifdef SCANPICK_HAS_TEACHCOMMAND
   scanpick::cli::registerTeachCommand(app);
-#endif
-#ifdef SCANPICK_HAS_RECOGNIZECOMMAND
   scanpick::cli::registerRecognizeCommand(app);
-#endif
-#ifdef SCANPICK_HAS_DEVICECOMMANDS
   scanpick::cli::registerDeviceCommands(app);
-#endif
-#ifdef SCANPICK_HAS_DEMOCOMMAND
   scanpick::cli::registerDemoCommand(app);
-#endif
-#ifdef SCANPICK_HAS_PARAMSCOMMAND
   scanpick::cli::registerParamsCommand(app);
-#endif
-#ifdef SCANPICK_HAS_BENCHCOMMAND
   scanpick::cli::registerBenchCommand(app);
-#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {
     return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; every other parse error is a usage error (exit 2), whatever
+    // CLI11's own code for it.
+    const int code = app.exit(e);
+    return code == 0 ? kOk : kUsage;
   }
   return 0;
 }

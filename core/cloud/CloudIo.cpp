@@ -1,15 +1,12 @@
 #include "core/cloud/CloudIo.h"
 
+#include "core/cloud/PcdFile.h"
+#include "core/cloud/PlyFile.h"
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 
 #include <algorithm>
-#include <fstream>
-#include <pcl/PCLPointCloud2.h>
-#include <pcl/conversions.h>
-#include <pcl/io/pcd_io.h>
-#include <pcl/io/ply_io.h>
-#include <pcl/point_types.h>
+#include <cstring>
 
 namespace scanpick::core {
 namespace fs = std::filesystem;
@@ -23,116 +20,87 @@ std::string lowerExtension(const fs::path& path) {
   return ext;
 }
 
-bool hasField(const pcl::PCLPointCloud2& blob, const std::string& name) {
-  return std::any_of(blob.fields.begin(), blob.fields.end(),
-                     [&](const pcl::PCLPointField& f) { return f.name == name; });
+/// The column of property `a`, or else of `b` (PLY files name normals nx or normal_x).
+const std::vector<double>* eitherColumn(const PlyElement& e, const char* a, const char* b) {
+  const auto* c = e.column(a);
+  return c ? c : e.column(b);
 }
 
-PointCloud fromBlob(const pcl::PCLPointCloud2& blob, float scale_to_mm) {
-  PointCloud out;
-  out.width = blob.width;
-  out.height = std::max<std::uint32_t>(blob.height, 1);
-  pcl::PointCloud<pcl::PointXYZ> xyz;
-  pcl::fromPCLPointCloud2(blob, xyz);
-  out.points_mm.reserve(xyz.size());
-  for (const auto& p : xyz.points)
-    out.points_mm.push_back(p.getVector3fMap() * scale_to_mm);
-  if (hasField(blob, "normal_x")) {
-    pcl::PointCloud<pcl::Normal> normals;
-    pcl::fromPCLPointCloud2(blob, normals);
-    for (const auto& n : normals.points)
-      out.normals.push_back(n.getNormalVector3fMap());
+PointCloud fromPly(const PlyData& ply, const std::string& source, std::size_t& implausible) {
+  const PlyElement* vertex = ply.element("vertex");
+  const std::vector<double>* xyz[3] = {vertex ? vertex->column("x") : nullptr,
+                                       vertex ? vertex->column("y") : nullptr,
+                                       vertex ? vertex->column("z") : nullptr};
+  if (!xyz[0] || !xyz[1] || !xyz[2])
+    throw Error("cannot read '" + source + "': it has no vertex x, y, z properties");
+  const std::size_t n = vertex->count;
+  if (n > kMaxPcdPoints)
+    throw Error("cannot read '" + source + "': more than " + std::to_string(kMaxPcdPoints) +
+                " points");
+  PointCloud out = PointCloud::fromPoints(std::vector<Eigen::Vector3f>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d p((*xyz[0])[i], (*xyz[1])[i], (*xyz[2])[i]);
+    const bool plausible = p.allFinite() && p.cwiseAbs().maxCoeff() <= kMaxPcdCoordinate;
+    implausible += !plausible && !p.hasNaN();
+    out.points_mm[i] = plausible ? Eigen::Vector3f(p.cast<float>()) : invalidPoint();
   }
-  if (hasField(blob, "rgb") || hasField(blob, "rgba")) {
-    pcl::PointCloud<pcl::PointXYZRGBA> rgba;
-    pcl::fromPCLPointCloud2(blob, rgba);
-    for (const auto& p : rgba.points)
-      out.colors.push_back({p.r, p.g, p.b});
-  }
-  if (static_cast<std::size_t>(out.width) * out.height != out.points_mm.size()) {
-    out.width = static_cast<std::uint32_t>(out.points_mm.size());
-    out.height = 1;
+  const std::vector<double>* normal[3] = {eitherColumn(*vertex, "nx", "normal_x"),
+                                          eitherColumn(*vertex, "ny", "normal_y"),
+                                          eitherColumn(*vertex, "nz", "normal_z")};
+  if (normal[0] && normal[1] && normal[2])
+    for (std::size_t i = 0; i < n; ++i)
+      out.normals.emplace_back(
+          Eigen::Vector3d((*normal[0])[i], (*normal[1])[i], (*normal[2])[i]).cast<float>());
+  const std::vector<double>* rgb[3] = {eitherColumn(*vertex, "red", "r"),
+                                       eitherColumn(*vertex, "green", "g"),
+                                       eitherColumn(*vertex, "blue", "b")};
+  if (rgb[0] && rgb[1] && rgb[2])
+    for (std::size_t i = 0; i < n; ++i) {
+      std::array<std::uint8_t, 3> c{};
+      for (int k = 0; k < 3; ++k)
+        c[k] = static_cast<std::uint8_t>(std::clamp((*rgb[k])[i], 0.0, 255.0));
+      out.colors.push_back(c);
+    }
+  return out;
+}
+
+std::string encodePlyBinary(const PointCloud& cloud) {
+  cloud.validate();
+  const bool normals = !cloud.normals.empty(), colors = !cloud.colors.empty();
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment scanpick point cloud, "
+                    "millimetres\nelement vertex " +
+                    std::to_string(cloud.size()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\n";
+  if (normals)
+    out += "property float nx\nproperty float ny\nproperty float nz\n";
+  if (colors)
+    out += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  out += "end_header\n";
+  const std::size_t step = 12 + (normals ? 12 : 0) + (colors ? 3 : 0);
+  const std::size_t start = out.size();
+  out.resize(start + step * cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    char* p = out.data() + start + i * step;
+    std::memcpy(p, cloud.points_mm[i].data(), 12);
+    if (normals)
+      std::memcpy(p + 12, cloud.normals[i].data(), 12);
+    if (colors)
+      std::memcpy(p + step - 3, cloud.colors[i].data(), 3);
   }
   return out;
 }
 
-pcl::PCLPointCloud2 toBlob(const PointCloud& cloud) {
-  cloud.validate();
-  pcl::PCLPointCloud2 blob;
-  const bool with_normals = !cloud.normals.empty();
-  const bool with_colors = !cloud.colors.empty();
-  const auto fill = [&](auto& pc) {
-    pc.width = cloud.width;
-    pc.height = cloud.height;
-    pc.is_dense = cloud.validCount() == cloud.size();
-    pc.points.resize(cloud.size());
-  };
-  if (with_normals && with_colors) {
-    pcl::PointCloud<pcl::PointXYZRGBNormal> pc;
-    fill(pc);
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      pc[i].getVector3fMap() = cloud.points_mm[i];
-      pc[i].getNormalVector3fMap() = cloud.normals[i];
-      pc[i].r = cloud.colors[i][0], pc[i].g = cloud.colors[i][1], pc[i].b = cloud.colors[i][2];
-    }
-    pcl::toPCLPointCloud2(pc, blob);
-  } else if (with_normals) {
-    pcl::PointCloud<pcl::PointNormal> pc;
-    fill(pc);
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      pc[i].getVector3fMap() = cloud.points_mm[i];
-      pc[i].getNormalVector3fMap() = cloud.normals[i];
-    }
-    pcl::toPCLPointCloud2(pc, blob);
-  } else if (with_colors) {
-    pcl::PointCloud<pcl::PointXYZRGB> pc;
-    fill(pc);
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      pc[i].getVector3fMap() = cloud.points_mm[i];
-      pc[i].r = cloud.colors[i][0], pc[i].g = cloud.colors[i][1], pc[i].b = cloud.colors[i][2];
-    }
-    pcl::toPCLPointCloud2(pc, blob);
-  } else {
-    pcl::PointCloud<pcl::PointXYZ> pc;
-    fill(pc);
-    for (std::size_t i = 0; i < cloud.size(); ++i)
-      pc[i].getVector3fMap() = cloud.points_mm[i];
-    pcl::toPCLPointCloud2(pc, blob);
-  }
-  return blob;
-}
-
-/// PCL's binary PCD reader accepts files shorter than their header promises, so the data size is
-/// checked here against the header (binary: width x height x point_step; compressed: its size
-/// word).
-void checkPcdNotTruncated(const fs::path& path) {
-  pcl::PCDReader reader;
-  pcl::PCLPointCloud2 header;
-  Eigen::Vector4f origin;
-  Eigen::Quaternionf orientation;
-  int pcd_version = 0, data_type = 0;
-  unsigned int data_idx = 0;
-  if (reader.readHeader(path.string(), header, origin, orientation, pcd_version, data_type,
-                        data_idx) < 0)
-    throw Error("cannot read '" + path.string() + "': not a valid PCD header");
-  const auto file_size = fs::file_size(path);
-  std::uint64_t needed = data_idx;
-  if (data_type == 1) {
-    needed += static_cast<std::uint64_t>(header.width) * header.height * header.point_step;
-  } else if (data_type == 2) {
-    std::uint32_t compressed_size = 0;
-    std::ifstream in(path, std::ios::binary);
-    in.seekg(data_idx);
-    in.read(reinterpret_cast<char*>(&compressed_size), sizeof compressed_size);
-    needed += 8 + static_cast<std::uint64_t>(compressed_size);
-  }
-  if (file_size < needed)
-    throw Error("cannot read '" + path.string() + "': the file is truncated (" +
-                std::to_string(file_size) + " bytes, the header announces " +
-                std::to_string(needed) + "); copy or capture it again");
-}
-
 } // namespace
+
+PointCloud decodeCloud(std::string_view bytes, const std::string& extension,
+                       const std::string& source, std::size_t& implausible) {
+  if (extension == ".pcd")
+    return decodePcd(bytes, source, &implausible);
+  if (extension == ".ply")
+    return fromPly(decodePly(bytes, source), source, implausible);
+  throw Error("cannot read '" + source + "': unknown extension '" + extension +
+              "', expected .pcd or .ply");
+}
 
 LoadedCloud loadCloud(const fs::path& path, LengthUnit units) {
   if (!fs::exists(path))
@@ -143,41 +111,21 @@ LoadedCloud loadCloud(const fs::path& path, LengthUnit units) {
   if (fs::file_size(path) == 0)
     throw Error("cannot read '" + path.string() + "': the file is empty");
   const std::string ext = lowerExtension(path);
-  pcl::PCLPointCloud2 blob;
-  int status = -1;
-  // PCL reports errors on stderr and by status; some truncated files make it throw.
-  try {
-    if (ext == ".pcd") {
-      checkPcdNotTruncated(path);
-      pcl::PCDReader reader;
-      status = reader.read(path.string(), blob);
-    } else if (ext == ".ply") {
-      pcl::PLYReader reader;
-      status = reader.read(path.string(), blob);
-    } else {
-      throw Error("cannot read '" + path.string() + "': unknown extension '" + ext +
-                  "', expected .pcd or .ply");
-    }
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw Error("cannot read '" + path.string() + "': " + e.what());
-  }
-  if (status < 0)
-    throw Error("cannot read '" + path.string() +
-                "': not a valid or complete point cloud file (truncated or corrupt?)");
-  if (static_cast<std::size_t>(blob.width) * blob.height * blob.point_step > blob.data.size())
-    throw Error("cannot read '" + path.string() + "': the file is truncated");
-  if (!hasField(blob, "x") || !hasField(blob, "y") || !hasField(blob, "z"))
-    throw Error("cannot read '" + path.string() + "': it has no x, y, z fields");
-
+  if (ext != ".pcd" && ext != ".ply")
+    throw Error("cannot read '" + path.string() + "': unknown extension '" + ext +
+                "', expected .pcd or .ply");
+  std::size_t implausible = 0;
   LoadedCloud loaded;
-  PointCloud in_file_units = fromBlob(blob, 1.0f);
+  PointCloud in_file_units = decodeCloud(readFile(path), ext, path.string(), implausible);
   if (!in_file_units.hasValidPoint())
     throw Error("'" + path.string() +
                 "' has no valid point (empty or all NaN): capture again or "
                 "pick another file");
-  loaded.units_warning = unitsSanityWarning(in_file_units, units);
+  if (implausible > 0)
+    loaded.units_warning = std::to_string(implausible) +
+                           " point(s) lie farther than 1e7 units from the origin (not "
+                           "measurements): read as invalid points. ";
+  loaded.units_warning += unitsSanityWarning(in_file_units, units);
   loaded.cloud = std::move(in_file_units);
   const float scale = millimetresPer(units);
   if (scale != 1.0f) {
@@ -188,22 +136,11 @@ LoadedCloud loadCloud(const fs::path& path, LengthUnit units) {
 }
 
 void saveCloudPcd(const fs::path& path, const PointCloud& cloud) {
-  const pcl::PCLPointCloud2 blob = toBlob(cloud);
-  writeFileAtomicWith(path, [&](const fs::path& tmp) {
-    pcl::PCDWriter writer;
-    if (writer.writeBinary(tmp.string(), blob) < 0)
-      throw Error("cannot write '" + path.string() + "'");
-  });
+  writeFileAtomic(path, encodePcdBinary(cloud));
 }
 
 void saveCloudPly(const fs::path& path, const PointCloud& cloud) {
-  const pcl::PCLPointCloud2 blob = toBlob(cloud);
-  writeFileAtomicWith(path, [&](const fs::path& tmp) {
-    pcl::PLYWriter writer;
-    if (writer.writeBinary(tmp.string(), blob, Eigen::Vector4f::Zero(),
-                           Eigen::Quaternionf::Identity(), false) < 0)
-      throw Error("cannot write '" + path.string() + "'");
-  });
+  writeFileAtomic(path, encodePlyBinary(cloud));
 }
 
 void saveCloud(const fs::path& path, const PointCloud& cloud) {

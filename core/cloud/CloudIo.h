@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace scanpick::core {
 
@@ -21,6 +22,12 @@ struct LoadedCloud {
 /// Throws Error for a missing, unreadable, truncated or empty file, an unknown extension, or a
 /// cloud with no valid point.
 LoadedCloud loadCloud(const std::filesystem::path& path, LengthUnit units);
+
+/// Decodes the bytes of a .pcd or .ply file (`extension` ".pcd" or ".ply") in the file's own
+/// units. Non-finite or implausible coordinates (core/cloud/PcdFile.h) become invalid points,
+/// counted in `implausible`. Throws Error naming `source` for anything malformed.
+PointCloud decodeCloud(std::string_view bytes, const std::string& extension,
+                       const std::string& source, std::size_t& implausible);
 
 /// Writes a binary PCD in millimetres, keeping the organization (width x height) and NaNs.
 /// Writes normals and colours when present. Atomic: the destination is replaced only when

@@ -45,10 +45,22 @@ void writeFileAtomic(const fs::path& path, std::string_view contents) {
     if (!out)
       throw Error("cannot write '" + path.string() + "': " + std::strerror(errno));
     out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-    out.flush();
-    if (!out)
+    out.close();
+    if (out.fail())
       throw Error("cannot write '" + path.string() + "': write failed (disk full?)");
   });
+}
+
+void checkWritable(const fs::path& path) {
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  if (!fs::is_directory(folder))
+    throw Error("cannot write '" + path.string() + "': folder '" + folder.string() +
+                "' does not exist");
+  if (fs::is_directory(path))
+    throw Error("cannot write '" + path.string() + "': it is a folder, give a file name");
+  if (::access(folder.c_str(), W_OK) != 0)
+    throw Error("cannot write '" + path.string() + "': folder '" + folder.string() +
+                "' is not writable (" + std::strerror(errno) + ")");
 }
 
 std::string readFile(const fs::path& path) {

@@ -18,6 +18,10 @@ void writeFileAtomic(const std::filesystem::path& path, std::string_view content
 void writeFileAtomicWith(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& tmp_path)>& write);
 
+/// Checks, before any work is done, that `path` can be written: its folder exists and is writable
+/// and `path` is not a folder. Throws Error saying which.
+void checkWritable(const std::filesystem::path& path);
+
 /// Reads a whole file; throws Error if it is missing or unreadable.
 std::string readFile(const std::filesystem::path& path);
 

@@ -1,6 +1,7 @@
 #include "core/eval/GroundTruth.h"
 
 #include "core/common/Error.h"
+#include "core/common/JsonText.h"
 #include "core/eval/JsonFields.h"
 
 namespace scanpick::core::eval {
@@ -54,7 +55,8 @@ PartSymmetry readSymmetry(const nlohmann::json& object, const std::string& where
 GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& source) {
   checkFormatAndVersion(doc, "scanpick-ground-truth", kGroundTruthVersion, source);
   if (doc.contains("units") && doc["units"] != "mm")
-    throw Error(source + ": units " + doc["units"].dump() + " are not supported (expected \"mm\")");
+    throw Error(source + ": units " + jsonExcerpt(doc["units"]) +
+                " are not supported (expected \"mm\")");
   GroundTruth truth;
   truth.source = source;
   if (doc.contains("scene") && doc["scene"].is_object()) {

@@ -2,6 +2,7 @@
 
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
+#include "core/common/JsonText.h"
 
 #include <Eigen/SVD>
 #include <cmath>
@@ -20,13 +21,7 @@ nlohmann::json readVersionedJson(const std::filesystem::path& path, std::string_
   if (!std::filesystem::exists(path))
     throw Error(quoted(path) + " does not exist: check the path");
   const std::string text = readFile(path);
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(quoted(path) + " is not valid JSON (" + e.what() +
-                "): regenerate it or fix the syntax");
-  }
+  const nlohmann::json doc = parseJsonText(text, quoted(path), ": regenerate it or fix the syntax");
   checkFormatAndVersion(doc, format, max_version, quoted(path));
   return doc;
 }
@@ -55,7 +50,7 @@ void checkFormatAndVersion(const nlohmann::json& doc, std::string_view format, i
 const nlohmann::json& requireField(const nlohmann::json& object, std::string_view key,
                                    const std::string& where) {
   if (!object.is_object())
-    throw Error(where + ": expected a JSON object, got " + object.dump());
+    throw Error(where + ": expected a JSON object, got " + jsonExcerpt(object));
   const auto it = object.find(key);
   if (it == object.end())
     throw Error(where + ": missing field '" + std::string(key) + "' (see docs/file-formats.md)");
@@ -64,23 +59,23 @@ const nlohmann::json& requireField(const nlohmann::json& object, std::string_vie
 
 double readNumber(const nlohmann::json& value, const std::string& where) {
   if (!value.is_number())
-    throw Error(where + ": expected a finite number, got " + value.dump() +
+    throw Error(where + ": expected a finite number, got " + jsonExcerpt(value) +
                 (value.is_null() ? " (NaN or missing value)" : ""));
   const double v = value.get<double>();
   if (!std::isfinite(v))
-    throw Error(where + ": expected a finite number, got " + value.dump());
+    throw Error(where + ": expected a finite number, got " + jsonExcerpt(value));
   return v;
 }
 
 std::string readString(const nlohmann::json& value, const std::string& where) {
   if (!value.is_string())
-    throw Error(where + ": expected a string, got " + value.dump());
+    throw Error(where + ": expected a string, got " + jsonExcerpt(value));
   return value.get<std::string>();
 }
 
 Eigen::Vector3d readVector3(const nlohmann::json& value, const std::string& where) {
   if (!value.is_array() || value.size() != 3)
-    throw Error(where + ": expected an array of 3 numbers, got " + value.dump());
+    throw Error(where + ": expected an array of 3 numbers, got " + jsonExcerpt(value));
   Eigen::Vector3d v;
   for (int i = 0; i < 3; ++i)
     v[i] = readNumber(value[static_cast<std::size_t>(i)], where + "[" + std::to_string(i) + "]");

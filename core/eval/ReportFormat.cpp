@@ -1,6 +1,7 @@
 #include "core/eval/ReportFormat.h"
 
 #include "core/common/AtomicFile.h"
+#include "core/common/JsonText.h"
 
 #include <cstdio>
 #include <sstream>
@@ -183,7 +184,7 @@ std::string reportToTable(const EvalReport& report, bool details) {
 }
 
 void saveReportJson(const std::filesystem::path& path, const EvalReport& report) {
-  writeFileAtomic(path, reportToJson(report).dump(2) + "\n");
+  writeFileAtomic(path, dumpJsonText(reportToJson(report), 2) + "\n");
 }
 
 } // namespace scanpick::core::eval

@@ -1,6 +1,7 @@
 #include "core/eval/ResultsFile.h"
 
 #include "core/common/Error.h"
+#include "core/common/JsonText.h"
 #include "core/eval/JsonFields.h"
 
 #include <cmath>
@@ -23,7 +24,8 @@ ContinuousAxis readAxis(const nlohmann::json& axis, const std::string& at) {
 ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
   checkFormatAndVersion(doc, "scanpick-results", kResultsVersion, source);
   if (doc.contains("units") && doc["units"] != "mm")
-    throw Error(source + ": units " + doc["units"].dump() + " are not supported (expected \"mm\")");
+    throw Error(source + ": units " + jsonExcerpt(doc["units"]) +
+                " are not supported (expected \"mm\")");
   ResultsFile results;
   results.source = source;
   if (doc.contains("scene") && doc["scene"].is_string())
@@ -68,7 +70,7 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
     if (value.contains("model")) {
       const double m = readNumber(value["model"], at + ".model");
       if (m < 0 || m >= double(results.models.size()) || m != std::floor(m))
-        throw Error(at + ".model = " + value["model"].dump() + " names no entry of 'models'");
+        throw Error(at + ".model = " + jsonExcerpt(value["model"]) + " names no entry of 'models'");
       d.model = static_cast<std::size_t>(m);
     }
     if (value.contains("grip_points") && value["grip_points"].is_array()) {

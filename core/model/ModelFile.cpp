@@ -2,12 +2,14 @@
 
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
+#include "core/common/JsonText.h"
 #include "core/params/ParameterTable.h"
 #include "core/params/ParamsJson.h"
 
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <nlohmann/json.hpp>
 
@@ -60,9 +62,25 @@ struct Reader {
     return obj.at(key);
   }
   double number(const json& v, const std::string& what) const {
-    if (!v.is_number())
-      fail("'" + what + "' must be a number");
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+      fail("'" + what + "' must be a finite number");
     return v.get<double>();
+  }
+  /// A whole number in [0, 2^31), such as a point count.
+  std::size_t count(const json& v, const std::string& what) const {
+    const double x = number(v, what);
+    if (x < 0 || x >= 2147483648.0 || x != std::floor(x))
+      fail("'" + what + "' must be a whole number below 2^31");
+    return static_cast<std::size_t>(x);
+  }
+  /// A 4x4 rigid transform: a rotation (orthonormal, determinant +1) and a translation.
+  Eigen::Isometry3d rigid(const json& v, const std::string& what) const {
+    const Eigen::Isometry3d T = isometry(v, what);
+    const Eigen::Matrix3d R = T.linear();
+    if ((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-4 ||
+        R.determinant() < 0 || !T.matrix().row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1)))
+      fail("'" + what + "' is not a rigid transform (rotation and translation)");
+    return T;
   }
   Eigen::Vector3d vector(const json& v, const std::string& what) const {
     if (!v.is_array() || v.size() != 3)
@@ -134,6 +152,33 @@ std::vector<Eigen::Vector3f> readPoints(const std::string& block, std::size_t& o
   return points;
 }
 
+/// The header's own checksum: the CRC-32 of the header line written with `header_crc32` set to
+/// the placeholder, so that it covers every other byte of the line.
+constexpr const char* kHeaderCrcPlaceholder = "00000000";
+
+std::string headerCrcField(const std::string& value) {
+  return "\"header_crc32\":\"" + value + "\"";
+}
+
+std::string hex(std::uint32_t v) {
+  char text[9];
+  std::snprintf(text, sizeof text, "%08x", v);
+  return text;
+}
+
+void checkHeaderCrc(std::string_view line, const json& header, const Reader& r) {
+  if (!header.contains("header_crc32") || !header["header_crc32"].is_string())
+    r.fail("missing field 'header_crc32'");
+  const std::string stored = header["header_crc32"].get<std::string>();
+  std::string copy(line);
+  const std::size_t at = copy.find(headerCrcField(stored));
+  if (stored.size() != 8 || at == std::string::npos)
+    r.fail("malformed 'header_crc32'");
+  copy.replace(at, headerCrcField(stored).size(), headerCrcField(kHeaderCrcPlaceholder));
+  if (hex(crc32(copy.data(), copy.size())) != stored)
+    r.fail("the header's checksum does not match (CRC-32)");
+}
+
 } // namespace
 
 std::string encodeModel(const TaughtModel& model) {
@@ -183,7 +228,12 @@ std::string encodeModel(const TaughtModel& model) {
                                      ? json(static_cast<long long>(std::llround(value)))
                                      : json(value);
   }
-  return header.dump() + "\n" + block;
+  header["header_crc32"] = kHeaderCrcPlaceholder;
+  std::string line = dumpJsonText(header);
+  const std::size_t at = line.find(headerCrcField(kHeaderCrcPlaceholder));
+  line.replace(at, headerCrcField(kHeaderCrcPlaceholder).size(),
+               headerCrcField(hex(crc32(line.data(), line.size()))));
+  return line + "\n" + block;
 }
 
 namespace {
@@ -193,13 +243,8 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   if (bytes.empty() || bytes[0] != '{' || eol == std::string::npos)
     throw Error(source + " is not a scanpick model (.spmodel): it does not start with the JSON "
                          "header line");
-  json header;
-  try {
-    header = json::parse(bytes.substr(0, eol));
-  } catch (const json::exception& e) {
-    throw Error(source + " is not a scanpick model (.spmodel): unreadable header (" +
-                std::string(e.what()) + ")");
-  }
+  const json header = parseJsonText(std::string_view(bytes).substr(0, eol), source,
+                                    ": it is not a readable scanpick model (.spmodel)");
   if (header.value("format", std::string()) != "scanpick-model")
     throw Error(source + " is not a scanpick model: its format is '" +
                 header.value("format", std::string("?")) + "'");
@@ -212,12 +257,14 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
     r.fail("invalid version " + std::to_string(version));
 
   const json& info = r.at(header, "block");
-  const auto cloud_points =
-      static_cast<std::size_t>(r.number(r.at(info, "cloud_points"), "cloud_points"));
+  const std::size_t cloud_points = r.count(r.at(info, "cloud_points"), "cloud_points");
   const bool normals = info.value("cloud_normals", false);
-  const auto n_keypoints = static_cast<std::size_t>(r.number(r.at(info, "keypoints"), "keypoints"));
-  const auto n_bytes = static_cast<std::size_t>(r.number(r.at(info, "bytes"), "bytes"));
-  const auto crc = static_cast<std::uint32_t>(r.number(r.at(info, "crc32"), "crc32"));
+  const std::size_t n_keypoints = r.count(r.at(info, "keypoints"), "keypoints");
+  const std::size_t n_bytes = r.count(r.at(info, "bytes"), "bytes");
+  const double crc_value = r.number(r.at(info, "crc32"), "crc32");
+  if (crc_value < 0 || crc_value > 4294967295.0)
+    r.fail("'crc32' is out of range");
+  const auto crc = static_cast<std::uint32_t>(crc_value);
   if (n_bytes != 12 * (cloud_points * (normals ? 2 : 1) + n_keypoints))
     r.fail("the point block's byte count does not match its point counts");
   const std::size_t have = bytes.size() - eol - 1;
@@ -234,10 +281,12 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   model.name = header.value("name", std::string("part"));
   model.teach_scan = header.value("teach_scan", std::string());
   model.source_units = parseLengthUnit(header.value("source_units", std::string("mm")));
-  model.diameter_mm = header.value("diameter_mm", 0.0);
-  model.T_teach_model = r.isometry(r.at(header, "T_teach_model"), "T_teach_model");
+  model.diameter_mm = r.number(r.at(header, "diameter_mm"), "diameter_mm");
+  if (model.diameter_mm <= 0)
+    r.fail("'diameter_mm' must be positive");
+  model.T_teach_model = r.rigid(r.at(header, "T_teach_model"), "T_teach_model");
   if (header.contains("T_part_model"))
-    model.T_part_model = r.isometry(header["T_part_model"], "T_part_model");
+    model.T_part_model = r.rigid(header["T_part_model"], "T_part_model");
   if (header.contains("view_params")) {
     const json& view = header["view_params"];
     if (!view.is_object())
@@ -268,6 +317,8 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
     feature.centre_mm = r.vector(r.at(f, "centre_mm"), "centre_mm").cast<float>();
     feature.direction = r.vector(r.at(f, "direction"), "direction").cast<float>();
     feature.size_mm = static_cast<float>(r.number(r.at(f, "size_mm"), "size_mm"));
+    if (std::abs(feature.direction.norm() - 1.0f) > 1e-3f || !(feature.size_mm >= 0))
+      r.fail("a feature's direction is not a unit vector or its size is negative");
     feature.inlier_count = f.value("inlier_count", 0);
     model.features.push_back(feature);
   }
@@ -279,6 +330,12 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   if (normals)
     model.cloud_mm.normals = readPoints(block, offset, cloud_points);
   model.keypoints_mm = readPoints(block, offset, n_keypoints);
+  if (cloud_points == 0 || !model.cloud_mm.hasValidPoint())
+    r.fail("the model holds no points");
+  // Last, so that a header whose values are wrong says which; one edited to values that read
+  // well is still refused.
+  if (version >= 2)
+    checkHeaderCrc(std::string_view(bytes).substr(0, eol), header, r);
   return model;
 }
 } // namespace

@@ -2,6 +2,7 @@
 
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
+#include "core/common/JsonText.h"
 #include "core/params/ParameterTable.h"
 
 #include <algorithm>
@@ -56,7 +57,7 @@ RecognitionParams paramsFromJson(const nlohmann::json& object, RecognitionParams
     } else if (value.is_number()) {
       v = value.get<double>();
     } else {
-      throw Error("parameter '" + key + "': expected a number, got " + value.dump());
+      throw Error("parameter '" + key + "': expected a number, got " + jsonExcerpt(value));
     }
     checkParamValue(*info, v);
     info->set(params, v);
@@ -67,12 +68,7 @@ RecognitionParams paramsFromJson(const nlohmann::json& object, RecognitionParams
 namespace {
 Preset loadPresetAt(const std::filesystem::path& path, int depth) {
   const std::string text = readFile(path);
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error("preset '" + path.string() + "' is not valid JSON: " + e.what());
-  }
+  const nlohmann::json doc = parseJsonText(text, "preset '" + path.string() + "'", "");
   if (!doc.is_object() || doc.value("format", "") != "scanpick-preset")
     throw Error("'" + path.string() +
                 "' is not a scanpick preset (missing \"format\": "
@@ -116,7 +112,7 @@ void savePreset(const std::filesystem::path& path, const Preset& preset) {
                      {"name", preset.name},
                      {"description", preset.description},
                      {"params", paramsToJson(preset.params)}};
-  writeFileAtomic(path, doc.dump(2) + "\n");
+  writeFileAtomic(path, dumpJsonText(doc, 2) + "\n");
 }
 
 } // namespace scanpick::core

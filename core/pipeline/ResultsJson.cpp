@@ -2,6 +2,7 @@
 
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
+#include "core/common/JsonText.h"
 
 namespace scanpick::core {
 namespace {
@@ -95,7 +96,7 @@ json resultsToJson(const RecognitionResult& result, const TaughtModel& model,
 
 void saveResults(const std::filesystem::path& path, const RecognitionResult& result,
                  const std::vector<ModelSource>& models, const std::string& scene_path) {
-  writeFileAtomic(path, resultsToJson(result, models, scene_path).dump(2) + "\n");
+  writeFileAtomic(path, dumpJsonText(resultsToJson(result, models, scene_path), 2) + "\n");
 }
 
 void saveResults(const std::filesystem::path& path, const RecognitionResult& result,

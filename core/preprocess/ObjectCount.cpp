@@ -88,8 +88,16 @@ ObjectCount countObjects(const PointCloud& scene_mm, const SensorModel& sensor,
     lo = lo.cwiseMin(q.head<2>().cast<double>());
     hi = hi.cwiseMax(q.head<2>().cast<double>());
   }
-  const auto nx = static_cast<std::uint64_t>((hi.x() - lo.x()) / cell) + 1;
-  const auto ny = static_cast<std::uint64_t>((hi.y() - lo.y()) / cell) + 1;
+  // Cell keys are x * ny + y in 64 bits: a scene whose projection spans more than 2^30 cells
+  // along an axis (kilometres; a corrupt coordinate) cannot be keyed and is refused.
+  const Eigen::Vector2d span_cells = (hi - lo) / cell;
+  if (!span_cells.allFinite() || span_cells.maxCoeff() > 1073741824.0)
+    throw Error("the scene's points span " +
+                std::to_string(static_cast<long long>((hi - lo).maxCoeff() / 1000.0)) +
+                " m across: some coordinates are not measurements (check the scan's units, or "
+                "capture it again)");
+  const auto nx = static_cast<std::uint64_t>(span_cells.x()) + 1;
+  const auto ny = static_cast<std::uint64_t>(span_cells.y()) + 1;
   const auto cellX = [&](const Eigen::Vector3f& q) {
     return static_cast<std::int64_t>((q.x() - lo.x()) / cell);
   };

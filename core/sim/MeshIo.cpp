@@ -1,5 +1,6 @@
 #include "core/sim/MeshIo.h"
 
+#include "core/cloud/PlyFile.h"
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 
@@ -35,132 +36,26 @@ void addPolygon(TriangleMesh& mesh, const std::vector<int>& poly,
 }
 
 // ---- PLY ----
-struct PlyProperty {
-  std::string name, type, count_type; // count_type non-empty for a list
-};
-struct PlyElement {
-  std::string name;
-  std::size_t count = 0;
-  std::vector<PlyProperty> properties;
-};
-
-std::size_t plyTypeSize(const std::string& t, const std::filesystem::path& path) {
-  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8")
-    return 1;
-  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16")
-    return 2;
-  if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32")
-    return 4;
-  if (t == "double" || t == "float64")
-    return 8;
-  malformed(path, "unknown PLY type '" + t + "'");
-}
-
-double readBinary(const char*& p, const char* end, const std::string& t, bool big_endian,
-                  const std::filesystem::path& path) {
-  const std::size_t size = plyTypeSize(t, path);
-  if (static_cast<std::size_t>(end - p) < size)
-    malformed(path, "the binary data is truncated");
-  unsigned char b[8];
-  std::memcpy(b, p, size);
-  p += size;
-  if (big_endian != (std::endian::native == std::endian::big))
-    std::reverse(b, b + size);
-  auto as = [&]<typename V>(V) {
-    V v;
-    std::memcpy(&v, b, sizeof(V));
-    return static_cast<double>(v);
-  };
-  if (t == "char" || t == "int8")
-    return as(std::int8_t{});
-  if (t == "uchar" || t == "uint8")
-    return as(std::uint8_t{});
-  if (t == "short" || t == "int16")
-    return as(std::int16_t{});
-  if (t == "ushort" || t == "uint16")
-    return as(std::uint16_t{});
-  if (t == "int" || t == "int32")
-    return as(std::int32_t{});
-  if (t == "uint" || t == "uint32")
-    return as(std::uint32_t{});
-  if (t == "float" || t == "float32")
-    return as(float{});
-  return as(double{});
-}
-
 TriangleMesh loadPly(const std::filesystem::path& path, const std::string& data) {
-  std::size_t header_end = data.find("end_header");
-  if (data.rfind("ply", 0) != 0 || header_end == std::string::npos)
-    malformed(path, "no PLY header");
-  std::istringstream header(data.substr(0, header_end));
-  std::string line, format;
-  std::vector<PlyElement> elements;
-  while (std::getline(header, line)) {
-    std::istringstream ls(line);
-    std::string word;
-    ls >> word;
-    if (word == "format") {
-      ls >> format;
-    } else if (word == "element") {
-      PlyElement e;
-      ls >> e.name >> e.count;
-      elements.push_back(e);
-    } else if (word == "property") {
-      if (elements.empty())
-        malformed(path, "a property before any element");
-      PlyProperty p;
-      ls >> p.type;
-      if (p.type == "list")
-        ls >> p.count_type >> p.type;
-      ls >> p.name;
-      elements.back().properties.push_back(p);
-    }
-  }
-  std::size_t body = data.find('\n', header_end);
-  if (body == std::string::npos)
-    malformed(path, "nothing after the header");
-  ++body;
-  const bool ascii = format == "ascii";
-  if (!ascii && format != "binary_little_endian" && format != "binary_big_endian")
-    malformed(path, "unknown PLY format '" + format + "'");
-  const bool big = format == "binary_big_endian";
-  std::istringstream text(ascii ? data.substr(body) : std::string());
-  const char* p = data.data() + body;
-  const char* end = data.data() + data.size();
-  auto value = [&](const std::string& type) {
-    if (!ascii)
-      return readBinary(p, end, type, big, path);
-    double v;
-    if (!(text >> v))
-      malformed(path, "the ASCII data is truncated");
-    return v;
-  };
+  const PlyData ply = decodePly(data, path.string());
+  const PlyElement* vertex = ply.element("vertex");
+  const PlyElement* face = ply.element("face");
+  if (!vertex || !vertex->column("x") || !vertex->column("y") || !vertex->column("z"))
+    malformed(path, "no vertex element with x, y, z");
   TriangleMesh mesh;
-  for (const auto& e : elements) {
-    for (std::size_t i = 0; i < e.count; ++i) {
-      Eigen::Vector3d v = Eigen::Vector3d::Zero();
-      std::vector<int> poly;
-      for (const auto& prop : e.properties) {
-        if (!prop.count_type.empty()) {
-          const auto n = static_cast<std::size_t>(value(prop.count_type));
-          for (std::size_t k = 0; k < n; ++k) {
-            const double idx = value(prop.type);
-            if (prop.name == "vertex_indices" || prop.name == "vertex_index")
-              poly.push_back(static_cast<int>(idx));
-          }
-        } else {
-          const double x = value(prop.type);
-          if (e.name == "vertex" && prop.name.size() == 1 && prop.name[0] >= 'x' &&
-              prop.name[0] <= 'z')
-            v[prop.name[0] - 'x'] = x;
-        }
-      }
-      if (e.name == "vertex")
-        mesh.vertices_mm.push_back(v);
-      else if (e.name == "face")
-        addPolygon(mesh, poly, path);
-    }
-  }
+  mesh.vertices_mm.reserve(vertex->count);
+  for (std::size_t i = 0; i < vertex->count; ++i)
+    mesh.vertices_mm.emplace_back((*vertex->column("x"))[i], (*vertex->column("y"))[i],
+                                  (*vertex->column("z"))[i]);
+  if (!face)
+    return mesh;
+  auto lists = face->lists.find("vertex_indices");
+  if (lists == face->lists.end())
+    lists = face->lists.find("vertex_index");
+  if (lists == face->lists.end())
+    malformed(path, "the face element has no vertex_indices list");
+  for (const auto& list : lists->second)
+    addPolygon(mesh, std::vector<int>(list.begin(), list.end()), path);
   return mesh;
 }
 
@@ -267,11 +162,12 @@ TriangleMesh loadVtk(const std::filesystem::path& path, const std::string& data)
       in >> n >> total;
       for (std::size_t i = 0; i < n; ++i) {
         std::size_t k;
-        if (!(in >> k))
+        if (!(in >> k) || k > data.size())
           malformed(path, word + " is truncated");
         std::vector<int> poly(k);
         for (auto& idx : poly)
-          in >> idx;
+          if (!(in >> idx))
+            malformed(path, word + " is truncated");
         if (word == "POLYGONS") {
           addPolygon(mesh, poly, path);
         } else {
@@ -294,8 +190,11 @@ TriangleMesh loadVtk(const std::filesystem::path& path, const std::string& data)
 TriangleMesh loadMesh(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path))
     throw Error("mesh file '" + path.string() + "' does not exist: check the path");
-  const std::string ext = lower(path.extension().string());
-  const std::string data = readFile(path);
+  return decodeMesh(readFile(path), lower(path.extension().string()), path);
+}
+
+TriangleMesh decodeMesh(const std::string& data, const std::string& ext,
+                        const std::filesystem::path& path) {
   TriangleMesh mesh;
   try {
     if (ext == ".ply")
@@ -315,8 +214,8 @@ TriangleMesh loadMesh(const std::filesystem::path& path) {
     malformed(path, "a number is out of range");
   }
   for (const auto& v : mesh.vertices_mm)
-    if (!v.allFinite())
-      malformed(path, "a vertex has a non-finite coordinate");
+    if (!v.allFinite() || v.cwiseAbs().maxCoeff() > 1e7)
+      malformed(path, "a vertex has a non-finite or implausible coordinate (beyond 10 km)");
   mesh = welded(mesh, 1e-6);
   if (mesh.empty())
     throw Error("mesh '" + path.string() +

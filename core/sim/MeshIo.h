@@ -5,6 +5,7 @@
 #include "core/sim/Mesh.h"
 
 #include <filesystem>
+#include <string>
 
 namespace scanpick::core {
 
@@ -14,6 +15,11 @@ namespace scanpick::core {
 /// (STL stores each triangle's corners separately). Throws Error for a missing or unreadable
 /// file, an unknown extension, a malformed file, or a mesh without triangles.
 TriangleMesh loadMesh(const std::filesystem::path& path);
+
+/// Decodes the bytes of a mesh file as loadMesh does; `extension` (".ply", ".stl", ".obj" or
+/// ".vtk", lower case) chooses the format, `path` names the file in error messages.
+TriangleMesh decodeMesh(const std::string& bytes, const std::string& extension,
+                        const std::filesystem::path& path);
 
 /// Writes a binary little-endian PLY (float vertices, int32 face indices), atomically.
 /// Throws Error on failure.

@@ -3,6 +3,7 @@
 #include "core/cloud/CloudIo.h"
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
+#include "core/common/JsonText.h"
 #include "core/sim/DepthPng.h"
 #include "core/sim/PartCatalog.h"
 #include "core/sim/PartDeformation.h"
@@ -166,7 +167,7 @@ std::string groundTruthJson(const SynthScene& s, const std::string& cloud_file,
                      {"min_mm", vectorJson(scene.crop_box_world->min())},
                      {"max_mm", vectorJson(scene.crop_box_world->max())}};
   }
-  return j.dump(2) + "\n";
+  return dumpJsonText(j, 2) + "\n";
 }
 
 std::vector<std::filesystem::path> writeSynthScene(const std::filesystem::path& prefix,

@@ -4,6 +4,7 @@
 #include "core/model/ModelFile.h"
 #include "core/sim/MeshBuilder.h"
 #include "core/sim/MeshIo.h"
+#include "tests/support/RunCli.h"
 #include "tests/support/TempDir.h"
 
 #include <cmath>
@@ -20,35 +21,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kCli = fs::path(SCANPICK_BINARY_DIR) / "bin" / "scanpick-cli";
-
-/// `path` in double quotes, for the shell. (Built with append: GCC 12 warns wrongly about
-/// `"literal" + std::string` under -O3.)
-std::string quoted(const fs::path& path) {
-  std::string out(1, '"');
-  out.append(path.string());
-  out.push_back('"');
-  return out;
-}
-
-/// Runs scanpick-cli with `args` (already quoted), its output written to `output` (discarded
-/// when empty); returns the exit status.
-int runCli(const std::vector<std::string>& args, const fs::path& output = {}) {
-  std::string command = quoted(kCli);
-  for (const auto& a : args) {
-    command.push_back(' ');
-    command.append(a);
-  }
-  command.append(" > ");
-  command.append(output.empty() ? std::string("/dev/null") : quoted(output));
-  command.append(" 2>&1");
-  return std::system(command.c_str());
-}
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using scanpick::test::kCli;
+using scanpick::test::quoted;
+using scanpick::test::readText;
+using scanpick::test::runCli;
 
 nlohmann::json withoutTimings(const fs::path& path) {
   std::ifstream in(path);

@@ -213,11 +213,54 @@ TEST(ModelFile, DamagedFilesAreRejectedClearly) {
   corrupt[corrupt.size() - 5] ^= 0x40;
   EXPECT_THAT(messageOf([&] { decodeModel(corrupt, "p.spmodel"); }), HasSubstr("checksum"));
   std::string future = bytes;
-  const auto at = future.find("\"version\":1");
+  const auto at = future.find("\"version\":2");
   ASSERT_NE(at, std::string::npos);
   future.replace(at, 11, "\"version\":9");
   EXPECT_THAT(messageOf([&] { decodeModel(future, "p.spmodel"); }), HasSubstr("newer scanpick"));
   EXPECT_THAT(messageOf([&] { decodeModel("hello\n", "p.spmodel"); }),
               HasSubstr("not a scanpick model"));
   EXPECT_THAT(messageOf([&] { loadModel("/nonexistent/p.spmodel"); }), HasSubstr("p.spmodel"));
+}
+
+namespace {
+/// `bytes` with the first `from` in its header replaced by `to`.
+std::string editedHeader(std::string bytes, const std::string& from, const std::string& to) {
+  const auto at = bytes.find(from);
+  EXPECT_LT(at, bytes.find('\n')) << from;
+  return at == std::string::npos ? bytes : bytes.replace(at, from.size(), to);
+}
+} // namespace
+
+TEST(ModelFile, AHeaderWithImpossibleValuesIsRefused) {
+  TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
+  m.diameter_mm = 0.0;
+  EXPECT_THAT(messageOf([&] { decodeModel(encodeModel(m), "p.spmodel"); }),
+              HasSubstr("'diameter_mm' must be positive"));
+  m.diameter_mm = 100.0;
+  m.T_teach_model.matrix().setZero();
+  EXPECT_THAT(messageOf([&] { decodeModel(encodeModel(m), "p.spmodel"); }),
+              HasSubstr("'T_teach_model' is not a rigid transform"));
+}
+
+TEST(ModelFile, TheHeaderIsCoveredByItsChecksum) {
+  const TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
+  const std::string bytes = encodeModel(m);
+  // A change that reads well (another name) is still caught.
+  EXPECT_THAT(messageOf([&] {
+                decodeModel(editedHeader(bytes, "\"name\":\"ideal\"", "\"name\":\"idead\""),
+                            "p.spmodel");
+              }),
+              HasSubstr("header's checksum does not match"));
+  // Files of version 1 had no header checksum and are still read.
+  std::string v1 = editedHeader(bytes, "\"version\":2", "\"version\":1");
+  const auto crc_at = v1.find(",\"header_crc32\":\"");
+  ASSERT_NE(crc_at, std::string::npos);
+  v1.erase(crc_at, std::string(",\"header_crc32\":\"12345678\"").size());
+  EXPECT_EQ(decodeModel(v1, "p.spmodel").name, "ideal");
+}
+
+TEST(ModelFile, AHeaderNestedTooDeeplyIsRefusedWithoutExhaustingTheStack) {
+  const std::string deep = std::string(60000, '[') + std::string(60000, ']');
+  EXPECT_THAT(messageOf([&] { decodeModel("{\"a\":" + deep + "}\n", "p.spmodel"); }),
+              HasSubstr("nested deeper than"));
 }

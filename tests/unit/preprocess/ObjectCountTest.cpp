@@ -84,3 +84,16 @@ TEST(ObjectCount, EmptyAndBadInput) {
       core::countObjects(core::PointCloud::fromPoints({{0, 0, 1}}), testSensor(kProjector), params),
       core::Error);
 }
+
+TEST(ObjectCount, ACoordinateFarBeyondAnySceneIsRefusedNotIndexed) {
+  // One flipped bit in a float (x = 1.67e20 mm) used to overflow the cell keys and write outside
+  // the cell table.
+  const auto scene =
+      core::PointCloud::fromPoints({{0, 0, 1000}, {1, 0, 1000}, {1.67e20f, 0, 1000}});
+  try {
+    core::countObjects(scene, testSensor(kProjector), {});
+    FAIL() << "expected an Error";
+  } catch (const core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not measurements"), std::string::npos) << e.what();
+  }
+}

@@ -149,3 +149,27 @@ TEST(MeshIo, ExportedBuiltInPartsLoadBackAsTheSameSolids) {
     EXPECT_NEAR(loaded.diameter_mm(), original.diameter_mm(), 1e-3);
   }
 }
+
+TEST(MeshIo, CountsLargerThanTheFileAreRefusedAtOnce) {
+  // A 247-byte PLY declaring 2^64 - 1 elements, and a VTK polygon of 10^18 corners: refused by
+  // their sizes instead of being looped over or allocated.
+  const auto message = [](const std::string& bytes, const std::string& ext) -> std::string {
+    try {
+      decodeMesh(bytes, ext, "m" + ext);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  EXPECT_NE(message("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float "
+                    "y\nproperty float z\nelement face 18446744073709551615\nproperty list uchar "
+                    "int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                    ".ply")
+                .find("more than the file's"),
+            std::string::npos);
+  EXPECT_NE(message("# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 "
+                    "0 1 0 0 0 1 0\nPOLYGONS 1 4\n1000000000000000000 0 1 2\n",
+                    ".vtk")
+                .find("truncated"),
+            std::string::npos);
+}

@@ -1,0 +1,100 @@
+// Bad input at the command line: every file that is not what it claims to be, every output that
+// cannot be written and every usage error ends with a one-line message and a documented exit
+// code (1 for a failure, 2 for usage), and leaves no file behind.
+#include "core/cloud/CloudIo.h"
+#include "core/common/AtomicFile.h"
+#include "core/model/ModelFile.h"
+#include "tests/support/RunCli.h"
+#include "tests/support/TempDir.h"
+#include "tests/unit/pipeline/IdealScene.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+using namespace scanpick;
+using test::exitCode;
+using test::quoted;
+using test::readText;
+using test::runCli;
+
+namespace {
+
+/// A model of the ideal part and a scene with two copies of it, in `dir`.
+void writeModelAndScene(const fs::path& dir) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(0, 0, 700);
+  core::TeachOptions o;
+  o.name = "ideal";
+  o.crop_box_mm = Eigen::AlignedBox3f(Eigen::Vector3f(-60, -60, 650), Eigen::Vector3f(90, 90, 750));
+  const auto params = test::idealParams(0.001);
+  core::saveModel(dir / "ideal.spmodel",
+                  core::teach(test::idealScene(test::idealPartPoints(), {T}, 0.0, 1), o, params));
+  core::saveCloudPcd(dir / "scene.pcd",
+                     test::idealScene(test::idealPartPoints(), test::idealCopyPoses(), 0.0, 2));
+}
+
+class CliBadInput : public ::testing::Test {
+protected:
+  void SetUp() override {
+    if (!fs::exists(test::kCli))
+      GTEST_SKIP() << test::kCli << " is not built (build the scanpick-cli target first)";
+    writeModelAndScene(m_dir.path());
+  }
+  /// Runs `recognize` on `scene` with the ideal model; returns the exit code, output in `log`.
+  int recognize(const fs::path& scene, const fs::path& out, std::vector<std::string> extra = {}) {
+    std::vector<std::string> args{"recognize", "--model",     quoted(m_dir / "ideal.spmodel"),
+                                  "--scene",   quoted(scene), "--out",
+                                  quoted(out)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return exitCode(runCli(args, m_dir / "log.txt"));
+  }
+  std::string log() const { return readText(m_dir / "log.txt"); }
+  test::TempDir m_dir;
+};
+
+} // namespace
+
+TEST_F(CliBadInput, FilesThatAreNotPointCloudsFailCleanly) {
+  const std::vector<std::pair<std::string, std::string>> files{
+      {"text.pcd", "just some notes\n"},
+      {"png.pcd", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16)},
+      {"byte.pcd", "x"},
+      {"fields.pcd", "VERSION 0.7\nFIELSD x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nHEIGHT "
+                     "1\nPOINTS 1\nDATA ascii\n1 2 3\n"},
+      {"wide.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH "
+                   "2147483648\nHEIGHT 2147483648\nDATA binary\n"},
+      {"count.pcd", "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 2147483647 "
+                    "1\nWIDTH 1\nHEIGHT 1\nDATA binary\n"}};
+  for (const auto& [name, bytes] : files) {
+    SCOPED_TRACE(name);
+    core::writeFileAtomic(m_dir / name, bytes);
+    EXPECT_EQ(recognize(m_dir / name, m_dir / "r.json"), 1);
+    EXPECT_NE(log().find("error: cannot read '" + (m_dir / name).string() + "'"), std::string::npos)
+        << log();
+    EXPECT_FALSE(fs::exists(m_dir / "r.json"));
+  }
+}
+
+TEST_F(CliBadInput, AnUnwritablePictureWritesNoResults) {
+  EXPECT_EQ(recognize(m_dir / "scene.pcd", m_dir / "r.json",
+                      {"--picture", quoted(m_dir / "no-such-folder" / "p.png")}),
+            1);
+  EXPECT_NE(log().find("no-such-folder"), std::string::npos) << log();
+  EXPECT_FALSE(fs::exists(m_dir / "r.json"));
+}
+
+TEST_F(CliBadInput, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(exitCode(runCli({"recognize", "--scene", "x.pcd"}, m_dir / "log.txt")), 2) << log();
+  EXPECT_EQ(exitCode(runCli({"recognize", "--no-such-flag"}, m_dir / "log.txt")), 2);
+  EXPECT_EQ(exitCode(runCli({"no-such-command"}, m_dir / "log.txt")), 2);
+  EXPECT_EQ(exitCode(runCli({"--help"}, m_dir / "log.txt")), 0);
+}
+
+TEST_F(CliBadInput, AFileNameThatIsNotUtf8IsRecognizedAndReported) {
+  const fs::path odd = m_dir / "scene-\xff.pcd";
+  fs::copy_file(m_dir / "scene.pcd", odd);
+  ASSERT_EQ(recognize(odd, m_dir / "r.json"), 0) << log();
+  const auto results = nlohmann::json::parse(readText(m_dir / "r.json"));
+  EXPECT_FALSE(results.dump().empty());
+}
