@@ -52,7 +52,7 @@ struct TaughtModel {
   std::string teach_scan;
   /// Matching parameters this view sets for itself, in place of the recognition parameters'
   /// (empty: none). E.g. a lower matching.min_coverage for a thin plate seen edge-on, whose edge
-  /// normals agree with a scan's only in part (docs/accuracy.md).
+  /// normals agree with a scan's only in part (docs/design-notes.md, "A view's own parameters").
   ViewParams view_params;
 };
 

@@ -151,7 +151,7 @@ struct RefineParams {
   /// in its own plane), to where the scan's points end as the view's do (outlineShift); ICP then
   /// leaves those directions as they came instead of drifting along them. Off by
   /// default: it helps plates (coat-rack) and hurts a view cut from a cluttered scan
-  /// (docs/accuracy.md).
+  /// (docs/design-notes-refinement.md).
   bool outline_ends = false;
   bool operator==(const RefineParams&) const = default;
 };

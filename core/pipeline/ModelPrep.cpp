@@ -95,9 +95,8 @@ constexpr std::size_t kJoinedDetailPoints = 250;
 /// over end, about a quarter of them, are tallied at 25 places along the axis per detection).
 constexpr std::size_t kJoinedBodyPoints = 2000;
 /// The joined views' ICP model keeps as many points as this many views (refine.model_points each):
-/// it covers the whole part. With one view's count the support's refined detections lie 0.10 mm
-/// (median) from their true poses on the phoxi-bin suite, with three views' 0.05 mm
-/// (docs/accuracy.md, "ICP").
+/// it covers the whole part, where one view's count leaves the others' surfaces sparse
+/// (docs/design-notes-refinement.md).
 constexpr int kJoinedRefineViews = 3;
 
 /// The points of a view and of the views joined to it (TaughtModel::joined_views), in the view's

@@ -4,7 +4,7 @@
 /// part's surface ends along it. Point-to-plane ICP lets a cup or a pipe lying on its side slide
 /// along its axis, a plate seen face-on in its own plane, a bar seen from the side along its
 /// length: only the few points on end faces and outline walls, seen edge-on, hold them there, and
-/// a pose stays a few tenths of a millimetre off (docs/accuracy.md, "Where the surface ends").
+/// a pose stays a few tenths of a millimetre off (docs/design-notes-refinement.md).
 ///
 /// Where the surface ends, the scan does not say to within a pixel: the last point lies up to a
 /// pixel short of the edge. But it does so at both ends alike, so the middle between the two ends

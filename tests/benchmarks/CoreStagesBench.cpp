@@ -1,7 +1,7 @@
 // Timings of the scene stages on a PhoXi M (1032 x 772) sized synthetic scan: a floor at 800 mm
 // with 10 boxes and cylinders, projector shadows, 0.1 mm noise. Run:
 //   bench_core_stages --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-// and copy the medians to docs/benchmarks.md ("Preprocessing, keypoints, features").
+// (tools/results.sh puts the medians in docs/results.md).
 #include "core/features/FeatureExtraction.h"
 #include "core/keypoints/Keypoints.h"
 #include "core/params/ParamsJson.h"

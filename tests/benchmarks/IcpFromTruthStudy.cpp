@@ -1,5 +1,5 @@
 // Where ICP settles when it starts at the true pose: the floor the scans and the part's shape set
-// for refinement, whatever pose the matching hands it (docs/accuracy.md, "ICP").
+// for refinement, whatever pose the matching hands it (docs/design-notes-refinement.md).
 //
 //   study_icp_from_truth SUITE_DIR PART PRESET.json MODEL.spmodel [MODEL.spmodel ...]
 //

@@ -4,7 +4,7 @@
 // the tests' teach view of the bracket (0.5 mm sampling), subsampled to 2000 points. Each
 // detection starts 3 mm / 5° off its true pose. Run:
 //   bench_refine --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-// and copy the medians to docs/benchmarks.md ("Pose refinement"). Time is wall time, CPU is the
+// (tools/results.sh puts the medians in docs/results.md). Time is wall time, CPU is the
 // whole process's CPU time (all threads).
 #include "core/refine/PoseRefinement.h"
 #include "tests/unit/refine/BracketScene.h"

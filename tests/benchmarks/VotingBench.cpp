@@ -4,7 +4,7 @@
 // for floor removal), normals as the recognizer estimates them, sampled at 6 mm as in the preset
 // phoxi-bin-cup. Run:
 //   bench_voting --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-// and copy the medians to docs/benchmarks.md ("Cheaper point pair voting").
+// (tools/results.sh puts the medians in docs/results.md).
 #include "core/matching/PointPairVoting.h"
 #include "core/refine/SceneIndex.h"
 #include "core/sim/Synth.h"

@@ -124,7 +124,7 @@ TEST(NearRevolution, ACupWhoseHandleIsNotConfirmedReportsItsTurnAsFree) {
         EXPECT_LT((offset - offset.dot(axis_direction) * axis_direction).norm(), 3.0);
         // Turning the found pose about it reaches the truth, or turning one of the poses the scan
         // cannot tell from it does (with the handle unseen, the cup's two ends can look alike),
-        // or the cup was found end over end (a failure docs/accuracy.md counts, "Cups").
+        // or the cup was found end over end (a failure docs/results.md counts).
         double tilt_deg = 180.0;
         std::vector<Eigen::Isometry3d> poses{d.T_scene_model};
         poses.insert(poses.end(), d.alternative_poses.begin(), d.alternative_poses.end());

@@ -127,7 +127,7 @@ TEST(NearSymmetry, CoatRackFromBelowCannotBeToldFromItsHalfTurnAndSaysSo) {
               view->points.size());
   EXPECT_LT(half_turn->differing.size(), view->points.size() / 50);
 
-  // A scan in which the view finds it (how often it does: docs/accuracy.md).
+  // A scan in which the view finds it (how often it does: docs/results.md).
   const SynthScene scan = test::teachScan("coat-rack", 14, 3);
   const Eigen::Isometry3d T_true =
       scan.scene.T_scene_part(scan.scene.instances.at(0)) * T_part_model;
