@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <pcl/console/print.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 namespace scanpick::core {
@@ -17,6 +18,10 @@ std::shared_ptr<spdlog::logger> logger() {
     const char* level = std::getenv("SCANPICK_LOG_LEVEL");
     log->set_level(level ? spdlog::level::from_str(level) : spdlog::level::info);
     log->set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
+    // PCL prints to the terminal itself (every degenerate RANSAC sample, every field a conversion
+    // does not find): silent unless scanpick's own log asks for debug output.
+    pcl::console::setVerbosityLevel(log->level() <= spdlog::level::debug ? pcl::console::L_DEBUG
+                                                                         : pcl::console::L_ALWAYS);
     return log;
   }();
   return instance;

@@ -8,7 +8,8 @@
 namespace scanpick::core {
 
 /// The shared "scanpick" logger (created on first use, stderr sink, level info or the one named
-/// by the environment variable SCANPICK_LOG_LEVEL: trace, debug, info, warn, error, off).
+/// by the environment variable SCANPICK_LOG_LEVEL: trace, debug, info, warn, error, off). Creating
+/// it also silences PCL's own console output below debug level.
 std::shared_ptr<spdlog::logger> logger();
 
 } // namespace scanpick::core

@@ -2,6 +2,7 @@
 
 #include "core/cloud/PointCloud.h"
 #include "core/common/Error.h"
+#include "core/common/Log.h"
 #include "core/features/GridRadiusSearch.h"
 #include "core/features/Ransac.h"
 
@@ -11,7 +12,6 @@
 #include <limits>
 #include <numeric>
 #include <optional>
-#include <pcl/console/print.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
@@ -436,8 +436,7 @@ FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_
   if (params.min_circle_radius_mm > params.max_circle_radius_mm)
     throw Error("the minimum circle radius is larger than the maximum: check "
                 "features.min_circle_radius_mm and features.max_circle_radius_mm");
-  // PCL reports every degenerate RANSAC sample on stderr; those are expected here.
-  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  logger(); // PCL's console verbosity follows scanpick's log level (core/common/Log.h)
   FeatureExtraction result;
   auto cloud = std::make_shared<Cloud>();
   Remaining remaining;

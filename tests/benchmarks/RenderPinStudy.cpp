@@ -1,10 +1,10 @@
 // Whether a scan's depth image pins a pose that point-to-plane ICP leaves loose, and how near a
 // render-and-compare step with the taught model comes to that (docs/design-notes-refinement.md,
-// "Render and compare: studied, not built"). Every instance of PART at least 50 % visible is refined from its true pose as
-// study_icp_from_truth does; the pose ICP settles at is then moved, translation only, along three
-// directions (coordinate descent, two rounds; the oracle takes the least cost by 0.1 mm then by
-// 0.02 mm, the others the middle of the run of least costs by 0.05 mm within ±0.8 mm) to where a
-// rendering differs least from the scan:
+// "Render and compare: studied, not built"). Every instance of PART at least 50 % visible is
+// refined from its true pose as study_icp_from_truth does; the pose ICP settles at is then moved,
+// translation only, along three directions (coordinate descent, two rounds; the oracle takes the
+// least cost by 0.1 mm then by 0.02 mm, the others the middle of the run of least costs by 0.05 mm
+// within ±0.8 mm) to where a rendering differs least from the scan:
 //
 //   study_render_pin SUITE_DIR PART PRESET.json TOLERANCE_MM MODE MODEL.spmodel [MODEL ...]
 //

@@ -153,7 +153,17 @@ def regressions():
           b"0 1 0\nPOLYGONS 1 4\n1000000000000000000 0 1 2\n")
 
 
+def multipart_seeds():
+    # One Range part of 4 x 4 Coord3D_ABC32f points (kind 1, format choice 5), then the same
+    # with a Confidence8 part (kind 3, format choice 9); see tests/fuzz/FuzzMultipart.cpp.
+    range_ = b"".join(struct.pack("<3f", x, y, 700.0 + x) for y in range(4) for x in range(4))
+    write("corpus/multipart", "range.bin", bytes([0, 0, 1, 5, 3, 0, 3, 0]) + range_)
+    write("corpus/multipart", "range-confidence.bin",
+          bytes([1, 0, 1, 5, 3, 0, 3, 0, 3, 9, 3, 0, 3, 0]) + range_ + b"\x01" * 16 + b"\0" * 176)
+
+
 cloud_seeds()
+multipart_seeds()
 mesh_seeds()
 model_seeds()
 json_seeds()
