@@ -73,7 +73,8 @@ double median(const std::vector<double>& sorted) {
 
 TEST(DeformedParts, SupportsVaryingByFivePercentAreStillFound) {
   // A table, not a bin: phoxi-bin-surface without the bin-floor search, which would take the top
-  // faces of supports lying flat for a bin's floor (docs/design-notes.md, "Floor removal and the bin's floor").
+  // faces of supports lying flat for a bin's floor (docs/design-notes.md, "Floor removal and the
+  // bin's floor").
   const RecognitionParams params = test::bundledPreset("phoxi-table-surface");
   ASSERT_EQ(params.floor.bin_floor_fraction, 0.0);
   ASSERT_GT(params.matching.surface_sampling_mm, 0.0);

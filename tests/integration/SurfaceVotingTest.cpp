@@ -116,7 +116,8 @@ TEST(SurfaceVoting, PumpConnectorsSeenFromTheSideReportTheirPipeAxisAsFreeTurn) 
   RecognitionParams params = test::bundledPreset("phoxi-bin-surface");
   // The bin's floor stays: with it removed, this bin gives one false detection, an upright view's
   // top flange matched on the lower flange of a leaning pump-connector (the view does not hold the
-  // rest of the part; docs/design-notes.md, "Floor removal and the bin's floor"). This test is about the free turn axis.
+  // rest of the part; docs/design-notes.md, "Floor removal and the bin's floor"). This test is
+  // about the free turn axis.
   params.floor.bin_floor_fraction = 0.0;
   std::vector<test::SynthTeach> views;
   std::vector<std::shared_ptr<const TaughtModel>> models;
