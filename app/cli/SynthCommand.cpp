@@ -4,6 +4,7 @@
 #include "core/common/Error.h"
 #include "core/sim/MeshIo.h"
 #include "core/sim/PartCatalog.h"
+#include "core/sim/RandomPart.h"
 #include "core/sim/Suite.h"
 #include "core/sim/Synth.h"
 
@@ -154,15 +155,16 @@ void registerSynthCommands(CLI::App& app) {
   auto suite_out = std::make_shared<std::string>();
   auto suites = std::make_shared<std::vector<std::string>>();
   auto suite_seed = std::make_shared<std::uint64_t>(core::kDefaultSuiteSeed);
+  auto random_parts = std::make_shared<int>(core::kDefaultRandomParts);
   CLI::App* suite = addCommand(
       app, "synth-suite",
-      "Write the fixed, seeded evaluation suites: phoxi-bin, kinect-bin, teach.",
-      [suite_out, suites, suite_seed] {
+      "Write the fixed, seeded evaluation suites: phoxi-bin, kinect-bin, teach; random-parts.",
+      [suite_out, suites, suite_seed, random_parts] {
         if (suite_out->empty())
           throw core::Error("--out DIR is required");
         std::vector<core::SuiteScene> scenes;
         for (const auto& name : suites->empty() ? core::suiteNames() : *suites) {
-          auto s = core::suiteScenes(name, *suite_seed);
+          auto s = core::suiteScenes(name, *suite_seed, *random_parts);
           scenes.insert(scenes.end(), s.begin(), s.end());
         }
         const auto t0 = std::chrono::steady_clock::now();
@@ -172,13 +174,26 @@ void registerSynthCommands(CLI::App& app) {
               std::cout << "[" << ++done << "/" << scenes.size() << "] " << prefix.string() << "\n"
                         << std::flush;
             });
-        std::printf("wrote %zu files (%zu scenes) in %.1f s\n", files.size(), scenes.size(),
+        // Each generated part's mesh beside its scans, for other tools and for the peers.
+        std::size_t meshes = 0;
+        for (const auto& scene : scenes)
+          if (scene.relative_prefix.filename() == "teach" &&
+              core::randomPartSeed(scene.request.parts.front())) {
+            core::saveMeshPly(std::filesystem::path(*suite_out) /
+                                  scene.relative_prefix.parent_path() / "part.ply",
+                              core::builtInPart(scene.request.parts.front()).mesh());
+            ++meshes;
+          }
+        std::printf("wrote %zu files (%zu scenes) in %.1f s\n", files.size() + meshes,
+                    scenes.size(),
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
         return kOk;
       });
   suite->add_option("--out", *suite_out, "output folder");
   suite->add_option("--suite", *suites,
-                    "suite(s) to write (default: all): phoxi-bin, kinect-bin, teach");
+                    "suite(s) to write (default: phoxi-bin, kinect-bin, teach), or random-parts");
+  suite->add_option("--parts", *random_parts, "parts of the random-parts suite")
+      ->capture_default_str();
   suite->add_option("--seed", *suite_seed, "suite seed (keep the default to share results)")
       ->capture_default_str();
 }

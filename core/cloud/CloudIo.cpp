@@ -6,6 +6,7 @@
 #include "core/common/Error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace scanpick::core {
@@ -49,8 +50,8 @@ PointCloud fromPly(const PlyData& ply, const std::string& source, std::size_t& i
                                           eitherColumn(*vertex, "nz", "normal_z")};
   if (normal[0] && normal[1] && normal[2])
     for (std::size_t i = 0; i < n; ++i)
-      out.normals.emplace_back(
-          Eigen::Vector3d((*normal[0])[i], (*normal[1])[i], (*normal[2])[i]).cast<float>());
+      out.normals.push_back(
+          normalOrNaN(Eigen::Vector3d((*normal[0])[i], (*normal[1])[i], (*normal[2])[i])));
   const std::vector<double>* rgb[3] = {eitherColumn(*vertex, "red", "r"),
                                        eitherColumn(*vertex, "green", "g"),
                                        eitherColumn(*vertex, "blue", "b")};
@@ -58,7 +59,9 @@ PointCloud fromPly(const PlyData& ply, const std::string& source, std::size_t& i
     for (std::size_t i = 0; i < n; ++i) {
       std::array<std::uint8_t, 3> c{};
       for (int k = 0; k < 3; ++k)
-        c[k] = static_cast<std::uint8_t>(std::clamp((*rgb[k])[i], 0.0, 255.0));
+        c[k] = std::isnan((*rgb[k])[i])
+                   ? 0
+                   : static_cast<std::uint8_t>(std::clamp((*rgb[k])[i], 0.0, 255.0));
       out.colors.push_back(c);
     }
   return out;

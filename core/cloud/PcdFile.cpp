@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <pcl/io/lzf.h>
 #include <sstream>
@@ -139,6 +140,10 @@ std::uint32_t gridSide(std::string_view word, const std::string& key, const std:
 
 } // namespace
 
+Eigen::Vector3f normalOrNaN(const Eigen::Vector3d& n) {
+  return n.allFinite() && n.norm() <= 2.0 ? Eigen::Vector3f(n.cast<float>()) : invalidPoint();
+}
+
 PcdHeader parsePcdHeader(std::string_view bytes, const std::string& source) {
   PcdHeader h;
   std::optional<std::uint64_t> points;
@@ -232,8 +237,12 @@ public:
   [[nodiscard]] std::uint32_t packed(const PcdField& f, std::size_t i) const {
     if (!m_ascii.empty()) {
       const double v = value(f, i, 0);
-      return f.type == 'F' ? std::bit_cast<std::uint32_t>(static_cast<float>(v))
-                           : static_cast<std::uint32_t>(v);
+      if (f.type == 'F' && std::abs(v) <= std::numeric_limits<float>::max())
+        return std::bit_cast<std::uint32_t>(static_cast<float>(v));
+      if (f.type != 'F' && v >= 0 && v <= 4294967295.0)
+        return static_cast<std::uint32_t>(v);
+      throw Error("field '" + f.name + "' holds " + std::to_string(v) +
+                  ", which is not a packed colour");
     }
     const std::size_t at = m_field_major ? m_h.points() * f.offset + i * f.size * f.count
                                          : i * m_h.point_step + f.offset;
@@ -362,9 +371,8 @@ PointCloud extract(const PcdHeader& h, const FieldReader& in, const std::string&
       requireFloat(*f, source);
     out.normals.resize(n);
     for (std::size_t i = 0; i < n; ++i)
-      out.normals[i] = Eigen::Vector3d(in.value(*normal[0], i, 0), in.value(*normal[1], i, 0),
-                                       in.value(*normal[2], i, 0))
-                           .cast<float>();
+      out.normals[i] = normalOrNaN(Eigen::Vector3d(
+          in.value(*normal[0], i, 0), in.value(*normal[1], i, 0), in.value(*normal[2], i, 0)));
   }
   const PcdField* rgb = findField(h, "rgb");
   if (!rgb)

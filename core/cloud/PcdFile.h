@@ -42,6 +42,10 @@ inline constexpr std::uint64_t kMaxPcdPoints = 0x7FFFFFFF;
 /// (a flipped bit in a float gives 1e20): they are read as invalid points.
 inline constexpr double kMaxPcdCoordinate = 1e7;
 
+/// `n` as a float normal, or NaN when it is not one (not finite, or longer than 2: a corrupt value
+/// that a float cannot even hold must not reach a cast).
+Eigen::Vector3f normalOrNaN(const Eigen::Vector3d& n);
+
 /// Parses and validates the header of `bytes`. Throws Error naming `source` and what is wrong.
 PcdHeader parsePcdHeader(std::string_view bytes, const std::string& source);
 

@@ -50,6 +50,11 @@ std::string dumpJsonText(const nlohmann::json& doc, int indent) {
   return doc.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
+Error jsonFieldError(const std::string& source, const nlohmann::json::exception& e) {
+  return Error(source + ": a field is missing or of the wrong type (" + e.what() +
+               "): regenerate the file or fix it");
+}
+
 std::string jsonExcerpt(const nlohmann::json& value) {
   const std::string text = dumpJsonText(value);
   return text.size() <= 60 ? text : text.substr(0, 57) + "...";

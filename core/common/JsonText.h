@@ -5,6 +5,8 @@
 /// otherwise exhaust the stack), and writing replaces bytes that are not UTF-8 (a file name in
 /// another encoding) instead of failing after the work is done.
 
+#include "core/common/Error.h"
+
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -21,6 +23,19 @@ nlohmann::json parseJsonText(std::string_view text, const std::string& source,
 
 /// `doc.dump(indent)` with invalid UTF-8 replaced by U+FFFD.
 std::string dumpJsonText(const nlohmann::json& doc, int indent = -1);
+
+/// The Error withJsonErrors throws.
+Error jsonFieldError(const std::string& source, const nlohmann::json::exception& e);
+
+/// Calls `read` (a reader of a parsed JSON document), turning nlohmann's exceptions (a field of
+/// the wrong type, a missing key read with at()) into an Error that names `source`.
+template <typename Read> auto withJsonErrors(const std::string& source, Read&& read) {
+  try {
+    return read();
+  } catch (const nlohmann::json::exception& e) {
+    throw jsonFieldError(source, e);
+  }
+}
 
 /// `value` as JSON text cut to at most 60 characters, for error messages.
 std::string jsonExcerpt(const nlohmann::json& value);

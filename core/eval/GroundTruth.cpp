@@ -52,7 +52,8 @@ PartSymmetry readSymmetry(const nlohmann::json& object, const std::string& where
 
 } // namespace
 
-GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& source) {
+namespace {
+GroundTruth parseGroundTruthFields(const nlohmann::json& doc, const std::string& source) {
   checkFormatAndVersion(doc, "scanpick-ground-truth", kGroundTruthVersion, source);
   if (doc.contains("units") && doc["units"] != "mm")
     throw Error(source + ": units " + jsonExcerpt(doc["units"]) +
@@ -142,6 +143,11 @@ GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& sourc
     truth.crop_box = box;
   }
   return truth;
+}
+} // namespace
+
+GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& source) {
+  return withJsonErrors(source, [&] { return parseGroundTruthFields(doc, source); });
 }
 
 GroundTruth loadGroundTruth(const std::filesystem::path& path) {

@@ -21,7 +21,8 @@ ContinuousAxis readAxis(const nlohmann::json& axis, const std::string& at) {
 
 } // namespace
 
-ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
+namespace {
+ResultsFile parseResultsFields(const nlohmann::json& doc, const std::string& source) {
   checkFormatAndVersion(doc, "scanpick-results", kResultsVersion, source);
   if (doc.contains("units") && doc["units"] != "mm")
     throw Error(source + ": units " + jsonExcerpt(doc["units"]) +
@@ -113,6 +114,11 @@ ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
       doc["timings_ms"].contains("total"))
     results.total_ms = readNumber(doc["timings_ms"]["total"], source + ": timings_ms.total");
   return results;
+}
+} // namespace
+
+ResultsFile parseResults(const nlohmann::json& doc, const std::string& source) {
+  return withJsonErrors(source, [&] { return parseResultsFields(doc, source); });
 }
 
 ResultsFile loadResults(const std::filesystem::path& path) {

@@ -82,10 +82,17 @@ struct Reader {
       fail("'" + what + "' is not a rigid transform (rotation and translation)");
     return T;
   }
+  /// A length or coordinate: finite and within ±1e7 (mm), so that it also fits a float.
+  double length(const json& v, const std::string& what) const {
+    const double x = number(v, what);
+    if (std::abs(x) > 1e7)
+      fail("'" + what + "' is beyond 10 km");
+    return x;
+  }
   Eigen::Vector3d vector(const json& v, const std::string& what) const {
     if (!v.is_array() || v.size() != 3)
       fail("'" + what + "' must be an array of 3 numbers");
-    return {number(v[0], what), number(v[1], what), number(v[2], what)};
+    return {length(v[0], what), length(v[1], what), length(v[2], what)};
   }
   Eigen::Isometry3d isometry(const json& v, const std::string& what) const {
     if (!v.is_array() || v.size() != 4)
@@ -121,8 +128,8 @@ json sensorToJson(const SensorModel& s) {
 SensorModel sensorFromJson(const json& j, const Reader& r) {
   SensorModel s;
   s.preset = j.value("preset", std::string("custom"));
-  s.width = j.value("width", 0);
-  s.height = j.value("height", 0);
+  s.width = j.contains("width") ? static_cast<int>(r.count(j["width"], "sensor.width")) : 0;
+  s.height = j.contains("height") ? static_cast<int>(r.count(j["height"], "sensor.height")) : 0;
   s.fx = j.value("fx", 0.0);
   s.fy = j.value("fy", 0.0);
   s.cx = j.value("cx", 0.0);
@@ -248,7 +255,8 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   if (header.value("format", std::string()) != "scanpick-model")
     throw Error(source + " is not a scanpick model: its format is '" +
                 header.value("format", std::string("?")) + "'");
-  const int version = static_cast<int>(r.number(r.at(header, "version"), "version"));
+  const int version =
+      static_cast<int>(std::min<std::size_t>(r.count(r.at(header, "version"), "version"), 1000));
   if (version > kModelFormatVersion)
     throw Error(source + " was written by a newer scanpick (model format version " +
                 std::to_string(version) + ", this build reads up to " +
@@ -281,7 +289,7 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   model.name = header.value("name", std::string("part"));
   model.teach_scan = header.value("teach_scan", std::string());
   model.source_units = parseLengthUnit(header.value("source_units", std::string("mm")));
-  model.diameter_mm = r.number(r.at(header, "diameter_mm"), "diameter_mm");
+  model.diameter_mm = r.length(r.at(header, "diameter_mm"), "diameter_mm");
   if (model.diameter_mm <= 0)
     r.fail("'diameter_mm' must be positive");
   model.T_teach_model = r.rigid(r.at(header, "T_teach_model"), "T_teach_model");
@@ -316,10 +324,12 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
     feature.type = type == "line" ? FeatureType::Line : FeatureType::Circle;
     feature.centre_mm = r.vector(r.at(f, "centre_mm"), "centre_mm").cast<float>();
     feature.direction = r.vector(r.at(f, "direction"), "direction").cast<float>();
-    feature.size_mm = static_cast<float>(r.number(r.at(f, "size_mm"), "size_mm"));
+    feature.size_mm = static_cast<float>(r.length(r.at(f, "size_mm"), "size_mm"));
     if (std::abs(feature.direction.norm() - 1.0f) > 1e-3f || !(feature.size_mm >= 0))
       r.fail("a feature's direction is not a unit vector or its size is negative");
-    feature.inlier_count = f.value("inlier_count", 0);
+    feature.inlier_count = f.contains("inlier_count")
+                               ? static_cast<int>(r.count(f["inlier_count"], "inlier_count"))
+                               : 0;
     model.features.push_back(feature);
   }
   for (const auto& g : header.value("grip_points", json::array()))

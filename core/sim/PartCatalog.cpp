@@ -5,6 +5,7 @@
 #include "core/sim/MeshBuilder.h"
 #include "core/sim/MeshIo.h"
 #include "core/sim/MeshRepair.h"
+#include "core/sim/RandomPart.h"
 
 #include <cmath>
 #include <numbers>
@@ -139,10 +140,13 @@ Part builtInPart(const std::string& name) {
     return pumpConnector();
   if (name == "coat-rack")
     return coatRack();
+  if (const auto seed = randomPartSeed(name))
+    return randomPart(*seed);
   std::string known;
   for (const auto& n : builtInPartNames())
     known += (known.empty() ? "" : ", ") + n;
-  throw Error("unknown part '" + name + "': the built-in parts are " + known);
+  throw Error("unknown part '" + name + "': the built-in parts are " + known +
+              ", and random-<seed> for a generated one");
 }
 
 Part partFromMeshFile(const std::filesystem::path& path, bool close_holes) {

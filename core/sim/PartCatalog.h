@@ -21,6 +21,7 @@ std::vector<std::string> builtInPartNames();
 ///   with four Ø10 mm bolt holes; 90° symmetry about its axis and the end-to-end flip (7
 ///   transforms).
 /// - `coat-rack`: a 60 × 30 × 4 mm plate with two Ø10 mm holes, an L hook and a suction cup.
+/// - `random-<seed>`: the generated part of that seed (randomPart, core/sim/RandomPart.h).
 /// Throws Error listing the names for an unknown one.
 Part builtInPart(const std::string& name);
 

@@ -41,13 +41,48 @@ std::vector<SuiteScene> binSuite(const std::string& dir, const std::string& sens
   return out;
 }
 
+/// Per generated part (random-parts/part-KKK/): its table scans on kTeachSides sides and three
+/// PhoXi bins of ten.
+std::vector<SuiteScene> randomPartsSuite(std::uint64_t seed, int parts) {
+  if (parts < 1 || parts > 10000)
+    throw Error("the random-parts suite takes 1 to 10000 parts, not " + std::to_string(parts));
+  std::vector<SuiteScene> out;
+  for (int k = 0; k < parts; ++k) {
+    char dir[32];
+    std::snprintf(dir, sizeof dir, "part-%03d", k);
+    const std::uint64_t part_seed = hashMix(seed, static_cast<std::uint64_t>(k), 6) % 1000000000ull;
+    const std::filesystem::path prefix = std::filesystem::path("random-parts") / dir;
+    for (int side = 0; side < kTeachSides; ++side) {
+      SuiteScene t;
+      t.relative_prefix =
+          prefix / (side == 0 ? std::string("teach") : "teach-side" + std::to_string(side));
+      t.request.layout = LayoutKind::Teach;
+      t.request.parts = {"random-" + std::to_string(part_seed)};
+      t.request.count = 1;
+      t.request.teach_side = side;
+      t.request.seed = hashMix(part_seed, static_cast<std::uint64_t>(side), 7);
+      out.push_back(t);
+    }
+    for (int bin = 0; bin < 3; ++bin) {
+      SuiteScene b;
+      b.relative_prefix = prefix / sceneName(static_cast<std::size_t>(bin));
+      b.request.layout = LayoutKind::Bin;
+      b.request.parts = {"random-" + std::to_string(part_seed)};
+      b.request.count = 10;
+      b.request.seed = hashMix(part_seed, static_cast<std::uint64_t>(bin), 8);
+      out.push_back(b);
+    }
+  }
+  return out;
+}
+
 } // namespace
 
 std::vector<std::string> suiteNames() {
   return {"phoxi-bin", "kinect-bin", "teach"};
 }
 
-std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed) {
+std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed, int random_parts) {
   if (name == "phoxi-bin")
     return binSuite("phoxi-bin", "phoxi-m-1032", 5, 4, 6, 15, seed);
   if (name == "kinect-bin")
@@ -88,10 +123,12 @@ std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed)
       }
     return out;
   }
+  if (name == "random-parts")
+    return randomPartsSuite(seed, random_parts);
   std::string known;
   for (const auto& n : suiteNames())
     known += (known.empty() ? "" : ", ") + n;
-  throw Error("unknown suite '" + name + "': use one of " + known);
+  throw Error("unknown suite '" + name + "': use one of " + known + " or random-parts");
 }
 
 Eigen::Vector3d viewDirectionInPart(const Scene& scene, const PartInstance& instance) {

@@ -33,6 +33,11 @@ Eigen::Vector3d viewDirectionInPart(const Scene& scene, const PartInstance& inst
 /// with its bounding box as the crop box. Throws Error when the bin has no instance in view.
 SynthScene isolateNovelView(SynthScene bin, const std::vector<Eigen::Vector3d>& taught_views_part);
 
+/// The seed `scanpick-cli synth-suite` uses, so everyone gets the same files.
+inline constexpr std::uint64_t kDefaultSuiteSeed = 20160401;
+/// Parts of the random-parts suite unless told otherwise.
+inline constexpr int kDefaultRandomParts = 50;
+
 /// The suites: "phoxi-bin" (20 one-part bins, 5 per built-in part, 6-15 instances, plus 4 mixed
 /// bins), "kinect-bin" (12 one-part bins, 6-12 instances), "teach" (each part alone on a table,
 /// for each sensor preset: teach/<sensor>/<part>, and the other sides it can rest on,
@@ -40,12 +45,13 @@ SynthScene isolateNovelView(SynthScene bin, const std::vector<Eigen::Vector3d>& 
 /// teach/<sensor>/<part>-bin, one part cut from a bin of ten by isolateNovelView).
 std::vector<std::string> suiteNames();
 
-/// The scenes of suite `name` for `seed` (kDefaultSuiteSeed unless testing). Throws Error for an
-/// unknown suite.
-std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed);
-
-/// The seed `scanpick-cli synth-suite` uses, so everyone gets the same files.
-inline constexpr std::uint64_t kDefaultSuiteSeed = 20160401;
+/// The scenes of suite `name` for `seed` (kDefaultSuiteSeed unless testing). Besides
+/// suiteNames(), "random-parts": `random_parts` parts generated from the seed (randomPart,
+/// core/sim/RandomPart.h), each in random-parts/part-KKK/ with its table scans on each side it
+/// can rest on (teach, teach-side1..3) and three PhoXi M bins of ten (scene-000..002). Throws Error
+/// for an unknown suite.
+std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed,
+                                    int random_parts = kDefaultRandomParts);
 
 /// Generates `scenes` under `out_dir` (each scene written as by writeSynthScene) and returns the
 /// files written. `on_scene` (may be empty) is called after each scene with its prefix.
