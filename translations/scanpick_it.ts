@@ -722,6 +722,74 @@
         <source>Model taught: %1 features. Save it with Ctrl+S.</source>
         <translation>Modello appreso: %1 feature. Salvalo con Ctrl+S.</translation>
     </message>
+    <message>
+        <source>&amp;Help</source>
+        <translation>&amp;Aiuto</translation>
+    </message>
+    <message>
+        <source>&amp;User guide</source>
+        <translation>&amp;Guida utente</translation>
+    </message>
+    <message>
+        <source>&amp;About scanpick</source>
+        <translation>&amp;Informazioni su scanpick</translation>
+    </message>
+    <message>
+        <source>About scanpick</source>
+        <translation>Informazioni su scanpick</translation>
+    </message>
+    <message>
+        <source>User guide</source>
+        <translation>Guida utente</translation>
+    </message>
+    <message>
+        <source>Could not open the user guide (%1): open it with any text viewer.</source>
+        <translation>Impossibile aprire la guida utente (%1): aprila con un qualsiasi visualizzatore di testo.</translation>
+    </message>
+    <message>
+        <source>&lt;h3&gt;scanpick %1&lt;/h3&gt;&lt;p&gt;3D object recognition for bin picking, taught from a scan.&lt;/p&gt;&lt;p&gt;Built with Qt %2 and VTK %3.&lt;/p&gt;&lt;p&gt;User guide: %4&lt;/p&gt;</source>
+        <translation>&lt;h3&gt;scanpick %1&lt;/h3&gt;&lt;p&gt;Riconoscimento 3D di oggetti per il bin picking, appreso da una scansione.&lt;/p&gt;&lt;p&gt;Compilato con Qt %2 e VTK %3.&lt;/p&gt;&lt;p&gt;Guida utente: %4&lt;/p&gt;</translation>
+    </message>
+    <message>
+        <source>Show &amp;keypoints</source>
+        <translation>Mostra punti &amp;chiave</translation>
+    </message>
+    <message>
+        <source>Show f&amp;eatures</source>
+        <translation>Mostra f&amp;eature</translation>
+    </message>
+    <message>
+        <source>Move grip point</source>
+        <translation>Sposta punto di presa</translation>
+    </message>
+    <message>
+        <source>Add grip point</source>
+        <translation>Aggiungi punto di presa</translation>
+    </message>
+    <message>
+        <source>Rename grip point</source>
+        <translation>Rinomina punto di presa</translation>
+    </message>
+    <message>
+        <source>Select a grip point in the list, then click on the part where it should be</source>
+        <translation>Seleziona un punto di presa nella lista, poi fai clic sul pezzo dove deve stare</translation>
+    </message>
+    <message>
+        <source>Select the grip point to move in the list first</source>
+        <translation>Seleziona prima nella lista il punto di presa da spostare</translation>
+    </message>
+    <message>
+        <source>Click on the part where the grip point should be</source>
+        <translation>Fai clic sul pezzo dove deve stare il punto di presa</translation>
+    </message>
+    <message>
+        <source>Del removes the selected grip point; Ctrl+Z undoes</source>
+        <translation>Canc rimuove il punto di presa selezionato; Ctrl+Z annulla</translation>
+    </message>
+    <message>
+        <source>preprocess %1 · clustering %2 · keypoints %3 · features %4 · matching %5 · refine %6 · total %7 ms</source>
+        <translation>pre-elaborazione %1 · clustering %2 · punti chiave %3 · feature %4 · abbinamento %5 · rifinitura %6 · totale %7 ms</translation>
+    </message>
 </context>
 <context>
     <name>scanpick::ui::ParameterPanel</name>
@@ -837,6 +905,288 @@
             <numerusform>Questa scansione non distingue questa posa da %n altra posa del pezzo: la vista è quasi simmetrica e il dettaglio che le distingue è nascosto. Non fidarsi dei punti di presa che cambiano tra le due.</numerusform>
             <numerusform>Questa scansione non distingue questa posa da altre %n pose del pezzo: la vista è quasi simmetrica e il dettaglio che le distingue è nascosto. Non fidarsi dei punti di presa che cambiano tra le pose.</numerusform>
         </translation>
+    </message>
+    <message>
+        <source>Detection %1: drawn in this colour, labelled %1 in the view</source>
+        <translation>Rilevamento %1: disegnato in questo colore, etichettato %1 nella vista</translation>
+    </message>
+</context>
+<context>
+    <name>scanpick::core</name>
+    <message>
+        <source>Scene preprocessing</source>
+        <translation>Pre-elaborazione della scena</translation>
+    </message>
+    <message>
+        <source>Object count and clustering</source>
+        <translation>Conteggio oggetti e clustering</translation>
+    </message>
+    <message>
+        <source>First-level keypoints</source>
+        <translation>Punti chiave di primo livello</translation>
+    </message>
+    <message>
+        <source>Second-level features</source>
+        <translation>Feature di secondo livello</translation>
+    </message>
+    <message>
+        <source>Feature matching</source>
+        <translation>Abbinamento delle feature</translation>
+    </message>
+    <message>
+        <source>Refinement</source>
+        <translation>Rifinitura</translation>
+    </message>
+</context>
+<context>
+    <name>scanpick::core::params</name>
+    <message>
+        <source>Remove floor</source>
+        <translation>Rimuovi pavimento</translation>
+    </message>
+    <message>
+        <source>Floor distance</source>
+        <translation>Distanza dal pavimento</translation>
+    </message>
+    <message>
+        <source>Planes to remove</source>
+        <translation>Piani da rimuovere</translation>
+    </message>
+    <message>
+        <source>Min plane share</source>
+        <translation>Quota minima del piano</translation>
+    </message>
+    <message>
+        <source>Bin floor share</source>
+        <translation>Quota del fondo del cassone</translation>
+    </message>
+    <message>
+        <source>Voxel size</source>
+        <translation>Dimensione voxel</translation>
+    </message>
+    <message>
+        <source>Split into objects</source>
+        <translation>Dividi in oggetti</translation>
+    </message>
+    <message>
+        <source>Count radius r</source>
+        <translation>Raggio di conteggio r</translation>
+    </message>
+    <message>
+        <source>Min object size</source>
+        <translation>Dimensione minima oggetto</translation>
+    </message>
+    <message>
+        <source>k-means seeding</source>
+        <translation>Inizializzazione k-means</translation>
+    </message>
+    <message>
+        <source>k-means iterations</source>
+        <translation>Iterazioni k-means</translation>
+    </message>
+    <message>
+        <source>Min cluster size</source>
+        <translation>Dimensione minima cluster</translation>
+    </message>
+    <message>
+        <source>Split method</source>
+        <translation>Metodo di divisione</translation>
+    </message>
+    <message>
+        <source>Keypoint method</source>
+        <translation>Metodo dei punti chiave</translation>
+    </message>
+    <message>
+        <source>Neighbourhood radius Δr</source>
+        <translation>Raggio di vicinato Δr</translation>
+    </message>
+    <message>
+        <source>Neig. position range Δp</source>
+        <translation>Intervallo di posizione vic. Δp</translation>
+    </message>
+    <message>
+        <source>Gradient sensitivity s</source>
+        <translation>Sensibilità del gradiente s</translation>
+    </message>
+    <message>
+        <source>Gradient neighbours n</source>
+        <translation>Vicini per il gradiente n</translation>
+    </message>
+    <message>
+        <source>Normal radius</source>
+        <translation>Raggio delle normali</translation>
+    </message>
+    <message>
+        <source>Estimator</source>
+        <translation>Stimatore</translation>
+    </message>
+    <message>
+        <source>Ransac size</source>
+        <translation>Dimensione Ransac</translation>
+    </message>
+    <message>
+        <source>Ransac threshold (lines)</source>
+        <translation>Soglia Ransac (linee)</translation>
+    </message>
+    <message>
+        <source>Ransac threshold (circles)</source>
+        <translation>Soglia Ransac (cerchi)</translation>
+    </message>
+    <message>
+        <source>Ransac trials</source>
+        <translation>Tentativi Ransac</translation>
+    </message>
+    <message>
+        <source>Max features</source>
+        <translation>Feature massime</translation>
+    </message>
+    <message>
+        <source>Min circle radius</source>
+        <translation>Raggio minimo del cerchio</translation>
+    </message>
+    <message>
+        <source>Max circle radius</source>
+        <translation>Raggio massimo del cerchio</translation>
+    </message>
+    <message>
+        <source>Find lines</source>
+        <translation>Cerca linee</translation>
+    </message>
+    <message>
+        <source>Find circles</source>
+        <translation>Cerca cerchi</translation>
+    </message>
+    <message>
+        <source>Max inlier gap</source>
+        <translation>Distacco massimo tra inlier</translation>
+    </message>
+    <message>
+        <source>Sample radius</source>
+        <translation>Raggio di campionamento</translation>
+    </message>
+    <message>
+        <source>Matching length Δl</source>
+        <translation>Abbinamento lunghezza Δl</translation>
+    </message>
+    <message>
+        <source>Matching radius size</source>
+        <translation>Abbinamento raggio</translation>
+    </message>
+    <message>
+        <source>Matching position Δp</source>
+        <translation>Abbinamento posizione Δp</translation>
+    </message>
+    <message>
+        <source>Matching orientation Δo</source>
+        <translation>Abbinamento orientamento Δo</translation>
+    </message>
+    <message>
+        <source>Roll step</source>
+        <translation>Passo di rollio</translation>
+    </message>
+    <message>
+        <source>Score</source>
+        <translation>Punteggio</translation>
+    </message>
+    <message>
+        <source>Max detections</source>
+        <translation>Rilevamenti massimi</translation>
+    </message>
+    <message>
+        <source>Instances per object</source>
+        <translation>Istanze per oggetto</translation>
+    </message>
+    <message>
+        <source>Verify distance</source>
+        <translation>Distanza di verifica</translation>
+    </message>
+    <message>
+        <source>Min coverage</source>
+        <translation>Copertura minima</translation>
+    </message>
+    <message>
+        <source>Edge distance</source>
+        <translation>Distanza dai bordi</translation>
+    </message>
+    <message>
+        <source>Hypotheses</source>
+        <translation>Ipotesi</translation>
+    </message>
+    <message>
+        <source>Pose pool</source>
+        <translation>Insieme di pose</translation>
+    </message>
+    <message>
+        <source>Surface sampling</source>
+        <translation>Campionamento della superficie</translation>
+    </message>
+    <message>
+        <source>Surface reference stride</source>
+        <translation>Passo dei riferimenti di superficie</translation>
+    </message>
+    <message>
+        <source>Surface poses</source>
+        <translation>Pose di superficie</translation>
+    </message>
+    <message>
+        <source>Near-symmetry overlap</source>
+        <translation>Sovrapposizione quasi-simmetria</translation>
+    </message>
+    <message>
+        <source>ICP refinement</source>
+        <translation>Rifinitura ICP</translation>
+    </message>
+    <message>
+        <source>ICP iterations</source>
+        <translation>Iterazioni ICP</translation>
+    </message>
+    <message>
+        <source>ICP distance</source>
+        <translation>Distanza ICP</translation>
+    </message>
+    <message>
+        <source>ICP final distance</source>
+        <translation>Distanza finale ICP</translation>
+    </message>
+    <message>
+        <source>Inlier distance</source>
+        <translation>Distanza inlier</translation>
+    </message>
+    <message>
+        <source>ICP convergence</source>
+        <translation>Convergenza ICP</translation>
+    </message>
+    <message>
+        <source>ICP model points</source>
+        <translation>Punti del modello ICP</translation>
+    </message>
+    <message>
+        <source>Point-to-plane</source>
+        <translation>Punto-piano</translation>
+    </message>
+    <message>
+        <source>ICP min inliers</source>
+        <translation>Inlier minimi ICP</translation>
+    </message>
+    <message>
+        <source>Slide to the ends</source>
+        <translation>Scorri fino alle estremità</translation>
+    </message>
+    <message>
+        <source>Slide to the outline</source>
+        <translation>Scorri fino al contorno</translation>
+    </message>
+    <message>
+        <source>Random seed</source>
+        <translation>Seme casuale</translation>
+    </message>
+    <message>
+        <source>points</source>
+        <translation>punti</translation>
+    </message>
+    <message>
+        <source>deg</source>
+        <translation>gradi</translation>
     </message>
 </context>
 </TS>

@@ -3,6 +3,7 @@
 #include "core/cloud/CloudIo.h"
 #include "core/common/Log.h"
 #include "core/model/ModelFile.h"
+#include "ui/FileDialogs.h"
 #include "ui/Settings.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/DevicePanel.h"
@@ -15,24 +16,30 @@
 #include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
+#include <QDesktopServices>
 #include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QHeaderView>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSettings>
 #include <QStatusBar>
 #include <QTimer>
 #include <QToolBar>
 #include <QUndoStack>
+#include <QUrl>
 #include <vtkBoxWidget2.h>
 #include <vtkCamera.h>
 #include <vtkProp.h>
 #include <vtkRenderer.h>
+#include <vtkVersion.h>
 
 namespace scanpick::ui {
 
@@ -43,10 +50,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setDockNestingEnabled(true);
   m_view = new QtVtkViewport(this);
   setCentralWidget(m_view);
-  m_jobs = new JobRunner(this);
-  m_preview_jobs = new JobRunner(this);
-  m_recognize_jobs = new JobRunner(this);
-  m_prepare_jobs = new JobRunner(this);
+  m_pool = std::make_unique<JobPool>();
+  m_jobs = new JobRunner(m_pool.get(), this);
+  m_preview_jobs = new JobRunner(m_pool.get(), this);
+  m_recognize_jobs = new JobRunner(m_pool.get(), this);
+  m_prepare_jobs = new JobRunner(m_pool.get(), this);
   m_undo = new QUndoStack(this);
   m_recognizer = std::make_shared<core::Recognizer>();
   m_preview_timer = new QTimer(this);
@@ -69,16 +77,24 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   statusBar()->addPermanentWidget(m_status_timings);
   statusBar()->addPermanentWidget(m_progress);
   statusBar()->addPermanentWidget(m_cancel);
-  // One progress bar for the long jobs (loading, teaching, recognizing); previews stay quiet.
+  // One progress bar for the long jobs (loading, teaching, recognizing); previews stay quiet. It
+  // starts as a moving busy indicator and shows a percentage once the job reports one (file
+  // reading reports none).
   for (JobRunner* runner : {m_jobs, m_recognize_jobs}) {
-    connect(runner, &JobRunner::progress, this,
-            [this](double f) { m_progress->setValue(static_cast<int>(f * 1000)); });
+    connect(runner, &JobRunner::progress, this, [this](double f) {
+      if (f <= 0)
+        return;
+      m_progress->setRange(0, 1000);
+      m_progress->setValue(static_cast<int>(f * 1000));
+    });
     connect(runner, &JobRunner::busyChanged, this, [this] {
       const bool busy = m_jobs->busy() || m_recognize_jobs->busy();
       m_progress->setVisible(busy);
       m_cancel->setVisible(busy);
-      if (busy)
-        m_progress->setValue(0);
+      if (busy && m_progress->value() <= 0)
+        m_progress->setRange(0, 0);
+      if (!busy)
+        m_progress->reset();
     });
   }
   connect(m_cancel, &QPushButton::clicked, this, [this] {
@@ -90,6 +106,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   buildDocks();
   buildActions();
   buildTeachDock();
+  addPanelsToViewMenu();
   restoreSettings();
   statusBar()->showMessage(tr("Open a scan (Ctrl+O) or drop a PCD/PLY file here"));
 }
@@ -98,6 +115,7 @@ MainWindow::~MainWindow() {
   m_live = false;
   m_preview_jobs->cancel();
   m_recognize_jobs->cancel();
+  m_prepare_jobs->cancel();
   m_jobs->cancel();
   if (m_box_widget)
     m_box_widget->Off();
@@ -128,7 +146,11 @@ void MainWindow::buildDocks() {
   m_devices = new DevicePanel(this);
   auto* devices_dock = new QDockWidget(tr("Capture"), this);
   devices_dock->setObjectName(QStringLiteral("CaptureDock"));
-  devices_dock->setWidget(m_devices);
+  auto* devices_scroll = new QScrollArea(devices_dock);
+  devices_scroll->setWidgetResizable(true);
+  devices_scroll->setFrameShape(QFrame::NoFrame);
+  devices_scroll->setWidget(m_devices);
+  devices_dock->setWidget(devices_scroll);
   addDockWidget(Qt::LeftDockWidgetArea, devices_dock);
   connect(m_devices, &DevicePanel::frameCaptured, this,
           [this](std::shared_ptr<const core::PointCloud> cloud, const QString& name) {
@@ -142,6 +164,11 @@ void MainWindow::buildDocks() {
   addDockWidget(Qt::BottomDockWidgetArea, m_log);
   tabifyDockWidget(results_dock, m_log);
   results_dock->raise();
+  // Never smaller than the header, five rows (a typical bin's detections) and a scroll bar.
+  m_results->setMinimumHeight(m_results->horizontalHeader()->sizeHint().height() +
+                              5 * m_results->verticalHeader()->defaultSectionSize() +
+                              m_results->horizontalScrollBar()->sizeHint().height() +
+                              2 * m_results->frameWidth());
 }
 
 void MainWindow::buildActions() {
@@ -169,8 +196,8 @@ void MainWindow::buildActions() {
   QAction* save_model = file->addAction(tr("&Save model…"), this, [this] {
     if (!model())
       return showError(tr("Save model"), tr("Teach or open a model first."));
-    const QString path = QFileDialog::getSaveFileName(this, tr("Save model"), m_view_paths.value(0),
-                                                      tr("Models (*.spmodel)"));
+    const QString path = askSaveFileName(this, tr("Save model"), m_view_paths.value(0),
+                                         tr("Models (*.spmodel)"), QStringLiteral("spmodel"));
     if (!path.isEmpty())
       saveModel(path);
   });
@@ -178,20 +205,20 @@ void MainWindow::buildActions() {
   file->addAction(tr("Save &scan…"), this, [this] {
     if (!m_scan)
       return showError(tr("Save scan"), tr("Open or capture a scan first."));
-    const QString path =
-        QFileDialog::getSaveFileName(this, tr("Save scan"), QString(), tr("Scans (*.pcd *.ply)"));
+    const QString path = askSaveFileName(this, tr("Save scan"), QString(),
+                                         tr("Scans (*.pcd *.ply)"), QStringLiteral("pcd"));
     if (!path.isEmpty())
       saveScan(path);
   });
   file->addAction(tr("&Export results…"), this, [this] {
-    const QString path =
-        QFileDialog::getSaveFileName(this, tr("Export results"), QString(), tr("Results (*.json)"));
+    const QString path = askSaveFileName(this, tr("Export results"), QString(),
+                                         tr("Results (*.json)"), QStringLiteral("json"));
     if (!path.isEmpty())
       exportResults(path);
   });
   QAction* shot = file->addAction(tr("Save screens&hot…"), this, [this] {
-    const QString path =
-        QFileDialog::getSaveFileName(this, tr("Save screenshot"), QString(), tr("Images (*.png)"));
+    const QString path = askSaveFileName(this, tr("Save screenshot"), QString(),
+                                         tr("Images (*.png)"), QStringLiteral("png"));
     if (!path.isEmpty())
       saveScreenshot(path);
   });
@@ -243,11 +270,26 @@ void MainWindow::buildActions() {
   connect(m_live_action, &QAction::toggled, this, &MainWindow::setLiveRunning);
 
   QMenu* view = menuBar()->addMenu(tr("&View"));
+  m_view_menu = view;
   view->addAction(tr("&Reset camera"), m_view, &QtVtkViewport::resetCamera)
       ->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_0));
+  // Overlays: on while there are no detections, then off (setResult) so that they do not hide
+  // them; the operator turns them on again here.
+  m_show_keypoints_action = view->addAction(tr("Show &keypoints"));
+  m_show_keypoints_action->setObjectName(QStringLiteral("showKeypointsAction"));
+  m_show_keypoints_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_K));
+  m_show_features_action = view->addAction(tr("Show f&eatures"));
+  m_show_features_action->setObjectName(QStringLiteral("showFeaturesAction"));
+  m_show_features_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_E));
+  for (QAction* a : {m_show_keypoints_action, m_show_features_action}) {
+    a->setCheckable(true);
+    a->setChecked(true);
+    connect(a, &QAction::toggled, this, &MainWindow::applyOverlayVisibility);
+  }
   view->addSeparator();
-  for (QDockWidget* dock : findChildren<QDockWidget*>())
-    view->addAction(dock->toggleViewAction());
+  // The panels' entries go here once every panel exists (addPanelsToViewMenu).
+  m_panels_separator = view->addSeparator();
+  view->addSeparator();
   QMenu* language = view->addMenu(tr("&Language (applies at next start)"));
   auto* group = new QActionGroup(this);
   const QString current = QSettings().value(settings::kLanguage, QStringLiteral("en")).toString();
@@ -258,6 +300,11 @@ void MainWindow::buildActions() {
     a->setChecked(code == current);
     group->addAction(a);
   }
+
+  QMenu* help = menuBar()->addMenu(tr("&Help"));
+  help->addAction(tr("&User guide"), this, &MainWindow::openUserGuide)
+      ->setShortcut(QKeySequence::HelpContents);
+  help->addAction(tr("&About scanpick"), this, &MainWindow::showAbout);
 
   QToolBar* tools = addToolBar(tr("Main"));
   tools->setObjectName(QStringLiteral("MainToolBar"));
@@ -273,6 +320,43 @@ void MainWindow::buildActions() {
       tools->addAction(a);
   tools->addAction(run->actions().first());
   tools->addAction(m_live_action);
+}
+
+void MainWindow::addPanelsToViewMenu() {
+  // Every panel and toolbar, the Teach panel included, can be closed and opened again here.
+  for (QDockWidget* dock : findChildren<QDockWidget*>())
+    m_view_menu->insertAction(m_panels_separator, dock->toggleViewAction());
+  for (QToolBar* bar : findChildren<QToolBar*>())
+    m_view_menu->insertAction(m_panels_separator, bar->toggleViewAction());
+}
+
+QString MainWindow::userGuidePath() {
+  // Next to an installed binary first, then the source tree the build came from.
+  const QString installed =
+      QCoreApplication::applicationDirPath() + "/../share/doc/scanpick/user-guide.md";
+  if (QFileInfo::exists(installed))
+    return QFileInfo(installed).canonicalFilePath();
+  return QStringLiteral(SCANPICK_DOCS_DIR "/user-guide.md");
+}
+
+void MainWindow::openUserGuide() {
+  const QString path = userGuidePath();
+  if (!QFileInfo::exists(path) || !QDesktopServices::openUrl(QUrl::fromLocalFile(path)))
+    showError(tr("User guide"),
+              tr("Could not open the user guide (%1): open it with any text viewer.").arg(path));
+}
+
+void MainWindow::showAbout() {
+  auto* box = new QMessageBox(
+      QMessageBox::Information, tr("About scanpick"),
+      tr("<h3>scanpick %1</h3><p>3D object recognition for bin picking, taught from a scan.</p>"
+         "<p>Built with Qt %2 and VTK %3.</p><p>User guide: %4</p>")
+          .arg(QStringLiteral(SCANPICK_VERSION), QString::fromLatin1(qVersion()),
+               QString::fromLatin1(vtkVersion::GetVTKVersion()), userGuidePath().toHtmlEscaped()),
+      QMessageBox::Ok, this);
+  box->setObjectName(QStringLiteral("aboutDialog"));
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->open();
 }
 
 void MainWindow::restoreSettings() {
@@ -369,7 +453,14 @@ void MainWindow::setScan(std::shared_ptr<const core::PointCloud> scan_mm, const 
   m_result.reset();
   m_results->setDetections({}, {});
   refreshGripList();
-  clearLayers({QStringLiteral("detections"), QStringLiteral("grips"), QStringLiteral("scene")});
+  clearLayers({QStringLiteral("detections"), QStringLiteral("labels"), QStringLiteral("grips"),
+               QStringLiteral("scene")});
+  m_scene_shown.reset();
+  m_framed_scan.reset();
+  // No detections: the keypoint and feature previews are what there is to see.
+  m_detections_shown = false;
+  m_show_keypoints_action->setChecked(true);
+  m_show_features_action->setChecked(true);
   setPart(m_scan);
   lookFromSensor();
   setWindowTitle(tr("scanpick — %1").arg(name));
@@ -377,13 +468,21 @@ void MainWindow::setScan(std::shared_ptr<const core::PointCloud> scan_mm, const 
   statusBar()->showMessage(tr("%1: %2 points").arg(name).arg(m_scan->validCount()), 5000);
 }
 
-void MainWindow::lookFromSensor() {
+void MainWindow::lookFromSensor(const Eigen::AlignedBox3f& frame) {
   // Scans are in the camera frame: z forward, y down.
   vtkCamera* camera = m_view->renderer()->GetActiveCamera();
   camera->SetPosition(0, 0, 0);
   camera->SetFocalPoint(0, 0, 1);
   camera->SetViewUp(0, -1, 0);
-  m_view->resetCamera();
+  if (frame.isEmpty()) {
+    m_view->resetCamera();
+    return;
+  }
+  double bounds[6] = {frame.min().x(), frame.max().x(), frame.min().y(),
+                      frame.max().y(), frame.min().z(), frame.max().z()};
+  m_view->renderer()->ResetCamera(bounds);
+  m_view->renderer()->ResetCameraClippingRange();
+  m_view->requestRender();
 }
 
 bool MainWindow::openModels(const QStringList& paths) {
@@ -479,11 +578,12 @@ bool MainWindow::saveScan(const QString& path) {
   }
 }
 
-bool MainWindow::saveModel(const QString& path) {
+bool MainWindow::saveModel(const QString& file) {
   if (!model()) {
     showError(tr("Save model"), tr("Teach or open a model first."));
     return false;
   }
+  const QString path = withSuffix(file, QStringLiteral("spmodel"));
   try {
     core::saveModel(path.toStdString(), *model());
     // The first view now has this file, also for the results found with it.
@@ -531,6 +631,15 @@ void MainWindow::setLayer(const QString& name, vtkSmartPointer<vtkProp> prop) {
     m_view->renderer()->AddViewProp(prop);
     m_layers[name] = prop;
   }
+  applyOverlayVisibility();
+}
+
+void MainWindow::applyOverlayVisibility() {
+  for (const auto& [name, action] :
+       {std::pair{QStringLiteral("keypoints"), m_show_keypoints_action},
+        std::pair{QStringLiteral("features"), m_show_features_action}})
+    if (const auto it = m_layers.find(name); it != m_layers.end())
+      it->second->SetVisibility(action->isChecked() ? 1 : 0);
   m_view->requestRender();
 }
 

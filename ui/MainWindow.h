@@ -39,6 +39,7 @@ class vtkProp;
 namespace scanpick::ui {
 
 class DevicePanel;
+class JobPool;
 class JobRunner;
 class LassoOverlay;
 class LogDock;
@@ -82,9 +83,9 @@ public:
   /// Adds views of the same part to those opened or taught (e.g. the other sides' saved views to
   /// one just taught); the same checks as openModels. Returns success.
   bool addModelViews(const QStringList& paths);
-  /// Saves the model taught or opened first (the first view); returns false (and says why) on
-  /// failure.
-  bool saveModel(const QString& path);
+  /// Saves the model taught or opened first (the first view) as `file`, ".spmodel" added when it
+  /// does not end so; returns false (and says why) on failure.
+  bool saveModel(const QString& file);
   /// Saves the current scan (PCD or PLY by extension); returns false (and says why) on failure.
   bool saveScan(const QString& path);
 
@@ -118,8 +119,17 @@ public:
   [[nodiscard]] core::SensorModel currentSensor() const;
   /// The sensor preset whose grid (width × height) matches an organized `cloud`, if any.
   static std::optional<core::SensorModel> sensorOfGrid(const core::PointCloud& cloud);
-  /// Adds a grip point (scan frame, mm) with an automatic name.
+  /// Adds a grip point (scan frame, mm) with an automatic name (undoable).
   void addGripPoint(const Eigen::Vector3d& position_mm);
+  /// Moves grip point `index` to `position_mm` (scan frame; undoable). Nothing for a bad index.
+  void moveGripPoint(int index, const Eigen::Vector3d& position_mm);
+  /// Removes grip point `index` (undoable). Nothing for a bad index.
+  void removeGripPoint(int index);
+  /// Renames grip point `index` (undoable). Nothing for a bad index or the same name.
+  void renameGripPoint(int index, const QString& name);
+  /// Replaces the grip points and selects row `selected` of their list (used by the undo
+  /// commands; not undoable itself).
+  void setGripPoints(std::vector<core::GripPoint> grips, int selected = -1);
   /// Teaches the model from the working cloud in the background; emits modelTaught.
   void teach();
 
@@ -127,10 +137,20 @@ public:
   /// Recognizes the taught model in the current scan; emits recognitionFinished.
   void recognize();
   void cancelRecognition();
-  /// Writes the last results as JSON. Returns false (and says why) on failure.
-  bool exportResults(const QString& path);
+  /// Writes the last results as JSON to `file`, ".json" added when it does not end so. Returns
+  /// false (and says why) on failure.
+  bool exportResults(const QString& file);
   /// Starts or stops capture → recognize cycles on the open camera.
   void setLiveRunning(bool running);
+
+  // --- help ---
+  /// The user guide (docs/user-guide.md): installed beside the binary, or in the source tree.
+  static QString userGuidePath();
+  /// Opens the user guide with the desktop's viewer for Markdown files (Help → User guide, F1);
+  /// says so in a dialog when it cannot.
+  void openUserGuide();
+  /// Shows the About box (modeless): version, what scanpick does, Qt and VTK versions.
+  void showAbout();
 
   /// Renders the viewport into an image / a PNG file.
   [[nodiscard]] QImage screenshot();
@@ -193,6 +213,8 @@ private:
   // MainWindow.cpp: shell
   void buildActions();
   void buildDocks();
+  /// Adds every panel's and toolbar's show/hide entry to the View menu.
+  void addPanelsToViewMenu();
   void restoreSettings();
   void addRecentFile(const QString& path);
   void rebuildRecentMenu();
@@ -235,14 +257,20 @@ private:
   void prepareModelInBackground();
   void onResultSelected(int row);
   void runLiveCycle();
-  /// Points the camera as the sensor looks (scans are in the camera frame) and fits the view.
-  void lookFromSensor();
+  /// Points the camera as the sensor looks (scans are in the camera frame) and fits the view to
+  /// `frame` (scan frame, mm), or to everything shown when it is empty.
+  void lookFromSensor(const Eigen::AlignedBox3f& frame = {});
+  /// Shows or hides the keypoint and feature layers as the View menu's toggles say.
+  void applyOverlayVisibility();
 
   QtVtkViewport* m_view = nullptr;
   ParameterPanel* m_params = nullptr;
   LogDock* m_log = nullptr;
   ResultsTable* m_results = nullptr;
   DevicePanel* m_devices = nullptr;
+  // The threads every job below runs on (bounded, isolated from the GUI thread); destroyed after
+  // the destructor cancelled the jobs, waiting for them to end.
+  std::unique_ptr<JobPool> m_pool;
   JobRunner* m_jobs = nullptr;           // loading, floor removal, teach
   JobRunner* m_preview_jobs = nullptr;   // keypoint/feature preview
   JobRunner* m_recognize_jobs = nullptr; // recognition (single and live)
@@ -250,6 +278,10 @@ private:
   QTimer* m_preview_timer = nullptr;
   QUndoStack* m_undo = nullptr;
   QMenu* m_recent_menu = nullptr;
+  QMenu* m_view_menu = nullptr;
+  QAction* m_panels_separator = nullptr; // the View menu's panel entries go before it
+  QAction* m_show_keypoints_action = nullptr;
+  QAction* m_show_features_action = nullptr;
   QLabel* m_status_counts = nullptr;
   QLabel* m_status_timings = nullptr;
   QProgressBar* m_progress = nullptr;
@@ -257,6 +289,7 @@ private:
   QListWidget* m_grip_list = nullptr;
   QAction* m_crop_action = nullptr;
   QAction* m_grip_action = nullptr;
+  QAction* m_grip_move_action = nullptr; // the next click moves the selected grip point
   QAction* m_live_action = nullptr;
   QAction* m_lasso_action = nullptr;
   QAction* m_floor_preview_action = nullptr;
@@ -291,6 +324,11 @@ private:
     std::shared_ptr<const core::PointCloud> removed;   // the floor points, for display
   };
   std::shared_ptr<const FloorPreview> m_floor_preview;
+  // What the result view drew: the scan its grey scene layer shows, the scan the camera was
+  // framed on, and whether detections were shown since the scan was opened.
+  std::shared_ptr<const core::PointCloud> m_scene_shown;
+  std::shared_ptr<const core::PointCloud> m_framed_scan;
+  bool m_detections_shown = false;
   bool m_live = false;
   int m_live_cycles = 0; // cycles shown since Live started
 };

@@ -2,6 +2,7 @@
 // distinct colours over the grey scene, the results table, export, and capture → recognize loops.
 #include "core/common/Log.h"
 #include "core/pipeline/ResultsJson.h"
+#include "ui/FileDialogs.h"
 #include "ui/MainWindow.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/DevicePanel.h"
@@ -19,6 +20,7 @@
 #include <QUndoStack>
 #include <vtkActor.h>
 #include <vtkAssembly.h>
+#include <vtkPropAssembly.h>
 #include <vtkProperty.h>
 
 #ifdef SCANPICK_UI_WITH_DEVICES
@@ -37,12 +39,13 @@ struct LiveCycle {
 
 QString timingsText(const core::StageTimings& t) {
   return MainWindow::tr("preprocess %1 · clustering %2 · keypoints %3 · features %4 · matching %5 "
-                        "· total %6 ms")
+                        "· refine %6 · total %7 ms")
       .arg(t.preprocess_ms, 0, 'f', 0)
       .arg(t.clustering_ms, 0, 'f', 0)
       .arg(t.keypoints_ms, 0, 'f', 0)
       .arg(t.features_ms, 0, 'f', 0)
       .arg(t.matching_ms, 0, 'f', 0)
+      .arg(t.refine_ms, 0, 'f', 0)
       .arg(t.total_ms, 0, 'f', 0);
 }
 
@@ -110,17 +113,36 @@ void MainWindow::setResult(std::shared_ptr<const core::RecognitionResult> result
     for (const QString& path : m_result_view_paths)
       names << (path.isEmpty() ? tr("taught") : QFileInfo(path).completeBaseName());
   m_results->setDetections(m_result->detections, names);
+  if (!m_result->detections.empty() && !m_detections_shown) {
+    // The whole-scene keypoints and features would cover the detections: off until asked for.
+    m_detections_shown = true;
+    m_show_keypoints_action->setChecked(false);
+    m_show_features_action->setChecked(false);
+  }
   showResult(-1);
+  // Live keeps the camera where the operator put it after the first cycle.
+  if (m_framed_scan != m_scan && !(m_live && m_live_cycles > 0)) {
+    // The camera frames the bin: the scene without its floor (the parts and the bin's walls).
+    m_framed_scan = m_scan;
+    lookFromSensor(m_result->preprocessed && m_result->preprocessed->hasValidPoint()
+                       ? core::boundingBox(*m_result->preprocessed)
+                       : Eigen::AlignedBox3f());
+  }
 }
 
 void MainWindow::showResult(int selected) {
   if (!m_result || !m_scan)
     return;
-  clearLayers({QStringLiteral("scan"), QStringLiteral("keypoints"), QStringLiteral("features"),
-               QStringLiteral("grips")});
-  setLayer(QStringLiteral("part"),
-           makeCloudActor(*m_scan, QColor(200, 200, 200), 1.5, ratio(), false));
+  clearLayers({QStringLiteral("scan"), QStringLiteral("part"), QStringLiteral("grips")});
+  // The scene in greys by depth, so that the detections' colours stand out; drawn once per scan
+  // (selecting a row redraws the detections only).
+  if (m_scene_shown != m_scan) {
+    setLayer(QStringLiteral("scene"),
+             makeCloudActor(*m_scan, Qt::white, 1.5, ratio(), CloudShading::DepthGrey));
+    m_scene_shown = m_scan;
+  }
   auto assembly = vtkSmartPointer<vtkAssembly>::New();
+  auto labels = vtkSmartPointer<vtkPropAssembly>::New();
   for (int i = 0; i < static_cast<int>(m_result->detections.size()); ++i) {
     const core::Detection& d = m_result->detections[i];
     const bool highlight = selected < 0 || selected == i;
@@ -130,18 +152,30 @@ void MainWindow::showResult(int selected) {
         d.model_index >= 0 && d.model_index < static_cast<int>(m_result_views.size())
             ? m_result_views[std::size_t(d.model_index)].get()
             : nullptr;
-    const double axis_mm = view ? std::max(5.0, view->diameter_mm * 0.15) : 10.0;
+    const double diameter_mm = view ? view->diameter_mm : 50.0;
     if (view) {
-      auto cloud = makeCloudActor(view->cloud_mm, colour, highlight ? 3.0 : 2.0, ratio(), false,
-                                  d.T_scene_model);
+      // A few thousand points show the part's shape; a bin's worth of full views would cost
+      // the GUI thread a frame of its own.
+      auto cloud = makeCloudActor(view->cloud_mm, colour, highlight ? 3.0 : 2.0, ratio(),
+                                  CloudShading::Flat, d.T_scene_model, 6000);
       cloud->GetProperty()->SetOpacity(highlight ? 1.0 : 0.25);
       assembly->AddPart(cloud);
     }
-    auto axes = makeGripAxesActor(d.grip_points_scene, axis_mm, ratio(), d.T_scene_model.linear());
+    // Grip points: long axes (z, blue, is the approach) and a white ball where the gripper goes.
+    auto axes = makeGripAxesActor(d.grip_points_scene, std::max(8.0, diameter_mm * 0.3), ratio(),
+                                  d.T_scene_model.linear());
     axes->GetProperty()->SetOpacity(highlight ? 1.0 : 0.3);
     assembly->AddPart(axes);
+    auto markers = makeGripMarkersActor(d.grip_points_scene, Qt::white, 11.0, ratio());
+    markers->GetProperty()->SetOpacity(highlight ? 1.0 : 0.3);
+    assembly->AddPart(markers);
+    // The results table's ID, in the detection's colour, over its centre (the model origin).
+    labels->AddPart(makeLabelActor(QString::number(i + 1), d.T_scene_model.translation(), colour,
+                                   highlight ? 16 : 12, ratio()));
   }
   setLayer(QStringLiteral("detections"), assembly);
+  setLayer(QStringLiteral("labels"), labels);
+  applyOverlayVisibility();
 }
 
 void MainWindow::onResultSelected(int row) {
@@ -152,11 +186,12 @@ void MainWindow::onResultSelected(int row) {
         5000);
 }
 
-bool MainWindow::exportResults(const QString& path) {
+bool MainWindow::exportResults(const QString& file) {
   if (!m_result || m_result_views.empty()) {
     showError(tr("Export results"), tr("Run a recognition first (F5)."));
     return false;
   }
+  const QString path = withSuffix(file, QStringLiteral("json"));
   try {
     std::vector<core::ModelSource> sources;
     for (std::size_t v = 0; v < m_result_views.size(); ++v)
@@ -225,8 +260,7 @@ void MainWindow::runLiveCycle() {
       [this, views, paths](std::shared_ptr<const LiveCycle> c) {
         m_scan = c->scene;
         setResult(std::shared_ptr<const core::RecognitionResult>(c, &c->result), views, paths);
-        if (m_live_cycles++ == 0)
-          lookFromSensor(); // the operator may have been looking elsewhere, or at nothing
+        m_live_cycles++;
         m_status_counts->setText(
             tr("%n detection(s)", nullptr, static_cast<int>(m_result->detections.size())));
         m_status_timings->setText(tr("cycle %1 ms").arg(c->cycle_ms, 0, 'f', 0));

@@ -22,9 +22,12 @@
 #include <QListWidget>
 #include <QMouseEvent>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSettings>
+#include <QShortcut>
 #include <QStatusBar>
 #include <QTimer>
+#include <QToolButton>
 #include <QUndoCommand>
 #include <QUndoStack>
 #include <QVBoxLayout>
@@ -55,6 +58,22 @@ public:
 private:
   MainWindow* m_window;
   std::shared_ptr<const core::PointCloud> m_before, m_after;
+};
+
+/// Replaces the grip points (added, moved, renamed or removed); undo puts the previous ones back.
+class ReplaceGripsCommand : public QUndoCommand {
+public:
+  ReplaceGripsCommand(MainWindow* window, std::vector<core::GripPoint> before,
+                      std::vector<core::GripPoint> after, int selected, const QString& text)
+      : QUndoCommand(text), m_window(window), m_before(std::move(before)),
+        m_after(std::move(after)), m_selected(selected) {}
+  void undo() override { m_window->setGripPoints(m_before, m_selected); }
+  void redo() override { m_window->setGripPoints(m_after, m_selected); }
+
+private:
+  MainWindow* m_window;
+  std::vector<core::GripPoint> m_before, m_after;
+  int m_selected; // the row the change is about, selected after it and after its undo
 };
 
 /// Forwards single clicks (press and release within a few pixels) on the viewport.
@@ -112,28 +131,57 @@ void MainWindow::buildTeachDock() {
   layout->addWidget(new QLabel(tr("Grip points (double-click to rename):"), panel));
   m_grip_list = new QListWidget(panel);
   m_grip_list->setObjectName(QStringLiteral("gripList"));
+  m_grip_list->setToolTip(tr("Del removes the selected grip point; Ctrl+Z undoes"));
   layout->addWidget(m_grip_list, 1);
-  auto* remove = new QPushButton(tr("Remove grip point"), panel);
-  layout->addWidget(remove);
-  connect(remove, &QPushButton::clicked, this, [this] {
-    const int row = m_grip_list->currentRow();
-    if (row >= 0 && row < static_cast<int>(m_grips.size())) {
-      m_grips.erase(m_grips.begin() + row);
-      refreshGripList();
-      showGrips();
+  auto* grip_buttons = new QHBoxLayout;
+  m_grip_move_action = new QAction(tr("Move grip point"), this);
+  m_grip_move_action->setObjectName(QStringLiteral("moveGripAction"));
+  m_grip_move_action->setCheckable(true);
+  m_grip_move_action->setToolTip(
+      tr("Select a grip point in the list, then click on the part where it should be"));
+  connect(m_grip_move_action, &QAction::toggled, this, [this](bool on) {
+    if (on && m_grip_list->currentRow() < 0) {
+      statusBar()->showMessage(tr("Select the grip point to move in the list first"), 5000);
+      m_grip_move_action->setChecked(false);
+      return;
+    }
+    if (on) {
+      m_grip_action->setChecked(false);
+      statusBar()->showMessage(tr("Click on the part where the grip point should be"));
     }
   });
-  connect(m_grip_list, &QListWidget::itemChanged, this, [this](QListWidgetItem* item) {
-    const int row = m_grip_list->row(item);
-    if (row >= 0 && row < static_cast<int>(m_grips.size()))
-      m_grips[row].name = item->text().toStdString();
-  });
+  auto* move = new QToolButton(panel);
+  move->setObjectName(QStringLiteral("moveGripButton"));
+  move->setDefaultAction(m_grip_move_action);
+  move->setToolButtonStyle(Qt::ToolButtonTextOnly);
+  grip_buttons->addWidget(move);
+  auto* remove = new QPushButton(tr("Remove grip point"), panel);
+  remove->setObjectName(QStringLiteral("removeGripButton"));
+  grip_buttons->addWidget(remove);
+  layout->addLayout(grip_buttons);
+  const auto remove_selected = [this] { removeGripPoint(m_grip_list->currentRow()); };
+  connect(remove, &QPushButton::clicked, this, remove_selected);
+  auto* del =
+      new QShortcut(QKeySequence::Delete, m_grip_list, nullptr, nullptr, Qt::WidgetShortcut);
+  connect(del, &QShortcut::activated, this, remove_selected);
+  connect(m_grip_list, &QListWidget::itemChanged, this,
+          [this](QListWidgetItem* item) { renameGripPoint(m_grip_list->row(item), item->text()); });
   auto* dock = new QDockWidget(tr("Teach"), this);
   dock->setObjectName(QStringLiteral("TeachDock"));
-  dock->setWidget(panel);
+  // Scrolls rather than making the window taller than a 700-pixel screen.
+  auto* scroll = new QScrollArea(dock);
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setWidget(panel);
+  dock->setWidget(scroll);
   addDockWidget(Qt::LeftDockWidgetArea, dock);
+  // Teach and Capture share the left side as tabs, Teach in front.
+  if (auto* capture = findChild<QDockWidget*>(QStringLiteral("CaptureDock"))) {
+    tabifyDockWidget(capture, dock);
+    dock->raise();
+  }
   m_view->installEventFilter(new ClickFilter(this, [this](QPoint p) {
-    if (m_grip_action->isChecked())
+    if (m_grip_action->isChecked() || m_grip_move_action->isChecked())
       onViewportClick(p.x(), p.y());
   }));
 }
@@ -152,15 +200,18 @@ void MainWindow::setPart(std::shared_ptr<const core::PointCloud> part_mm) {
 }
 
 void MainWindow::showPart() {
+  // The working cloud replaces the recognition's grey scene.
+  setLayer(QStringLiteral("scene"), nullptr);
+  m_scene_shown.reset();
   if (!m_part) {
     clearLayers({QStringLiteral("part"), QStringLiteral("scan")});
     return;
   }
-  setLayer(QStringLiteral("part"), makeCloudActor(*m_part, Qt::white, pointSize(), ratio(), true));
+  setLayer(QStringLiteral("part"),
+           makeCloudActor(*m_part, Qt::white, pointSize(), ratio(), CloudShading::Depth));
   // The rest of the scan stays visible, dim, so the operator sees what the crop left out.
   if (m_scan && m_part != m_scan)
-    setLayer(QStringLiteral("scan"),
-             makeCloudActor(*m_scan, QColor(90, 90, 100), 1.0, ratio(), false));
+    setLayer(QStringLiteral("scan"), makeCloudActor(*m_scan, QColor(90, 90, 100), 1.0, ratio()));
   else
     setLayer(QStringLiteral("scan"), nullptr);
 }
@@ -268,17 +319,61 @@ void MainWindow::onViewportClick(int x, int y) {
     return;
   double p[3];
   picker->GetPickPosition(p);
-  addGripPoint(Eigen::Vector3d(p[0], p[1], p[2]));
+  if (m_grip_move_action->isChecked()) {
+    m_grip_move_action->setChecked(false);
+    moveGripPoint(m_grip_list->currentRow(), Eigen::Vector3d(p[0], p[1], p[2]));
+  } else {
+    addGripPoint(Eigen::Vector3d(p[0], p[1], p[2]));
+  }
 }
 
 void MainWindow::addGripPoint(const Eigen::Vector3d& position_mm) {
   core::GripPoint grip;
   grip.name = tr("grip %1").arg(m_grips.size() + 1).toStdString();
   grip.position_mm = position_mm;
-  m_grips.push_back(grip);
   core::logger()->info("grip point '{}' at ({:.1f}, {:.1f}, {:.1f}) mm", grip.name, position_mm.x(),
                        position_mm.y(), position_mm.z());
+  auto after = m_grips;
+  after.push_back(grip);
+  m_undo->push(new ReplaceGripsCommand(this, m_grips, std::move(after),
+                                       static_cast<int>(m_grips.size()), tr("Add grip point")));
+}
+
+void MainWindow::moveGripPoint(int index, const Eigen::Vector3d& position_mm) {
+  if (index < 0 || index >= static_cast<int>(m_grips.size()))
+    return;
+  auto after = m_grips;
+  after[std::size_t(index)].position_mm = position_mm;
+  core::logger()->info("grip point '{}' moved to ({:.1f}, {:.1f}, {:.1f}) mm",
+                       after[std::size_t(index)].name, position_mm.x(), position_mm.y(),
+                       position_mm.z());
+  m_undo->push(
+      new ReplaceGripsCommand(this, m_grips, std::move(after), index, tr("Move grip point")));
+}
+
+void MainWindow::removeGripPoint(int index) {
+  if (index < 0 || index >= static_cast<int>(m_grips.size()))
+    return;
+  auto after = m_grips;
+  after.erase(after.begin() + index);
+  m_undo->push(
+      new ReplaceGripsCommand(this, m_grips, std::move(after), index, tr("Remove grip point")));
+}
+
+void MainWindow::renameGripPoint(int index, const QString& name) {
+  if (index < 0 || index >= static_cast<int>(m_grips.size()) ||
+      name.toStdString() == m_grips[std::size_t(index)].name)
+    return;
+  auto after = m_grips;
+  after[std::size_t(index)].name = name.toStdString();
+  m_undo->push(
+      new ReplaceGripsCommand(this, m_grips, std::move(after), index, tr("Rename grip point")));
+}
+
+void MainWindow::setGripPoints(std::vector<core::GripPoint> grips, int selected) {
+  m_grips = std::move(grips);
   refreshGripList();
+  m_grip_list->setCurrentRow(std::min(selected, static_cast<int>(m_grips.size()) - 1));
   showGrips();
 }
 
@@ -369,6 +464,9 @@ void MainWindow::showPreview() {
   setLayer(QStringLiteral("features"),
            makeFeaturesActor(m_preview->features.features, QColor(0, 230, 255),
                              QColor(255, 60, 220), 3.0, ratio()));
+  // Once the scan has a recognition, the status bar keeps its stage timings.
+  if (m_result)
+    return;
   m_status_counts->setText(tr("keypoints %1 · lines %2 · circles %3")
                                .arg(m_preview->keypoints->points_mm.size())
                                .arg(lines)

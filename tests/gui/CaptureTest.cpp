@@ -173,8 +173,7 @@ TEST_F(Capture, LiveLoopRunsCyclesUntilStopped) {
   QTest::qWait(100);
   const QImage image = window.screenshot();
   image.save(test::screenshotDir() + "/live.png");
-  EXPECT_GT(test::countColour(image, QColor(200, 200, 200), 8), 1000)
-      << "the live scene is not drawn";
+  EXPECT_GT(test::countGrey(image), 1000) << "the live scene (greys by depth) is not drawn";
   if (!window.lastResult()->detections.empty()) {
     EXPECT_GT(test::countColour(image, ui::detectionColour(0), 30), 20) << "detection not drawn";
   }

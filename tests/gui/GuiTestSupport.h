@@ -31,6 +31,20 @@ inline int countColour(const QImage& image, const QColor& colour, int tolerance 
   return n;
 }
 
+/// Pixels of a neutral grey (channels within 4 of each other) between `lo` and `hi`: the
+/// recognition view draws the scene in greys by depth.
+inline int countGrey(const QImage& image, int lo = 60, int hi = 235) {
+  int n = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const QRgb p = image.pixel(x, y);
+      if (std::abs(qRed(p) - qGreen(p)) <= 4 && std::abs(qGreen(p) - qBlue(p)) <= 4 &&
+          qGreen(p) >= lo && qGreen(p) <= hi)
+        ++n;
+    }
+  return n;
+}
+
 /// Distinct colours in a coarse (4-bit per channel) histogram: a blank or uniform frame has
 /// very few, a rendered scene many.
 inline int distinctColours(const QImage& image) {

@@ -3,10 +3,13 @@
 /// Background jobs for the GUI: QtConcurrent::run with a QPromise, results back on the GUI thread
 /// through a QFutureWatcher. Each job has a generation number; starting a job cancels the
 /// running one (its ProgressFn returns false) and a result from an older generation is dropped,
-/// so a slow stale job can never overwrite a newer preview. Never blocks the GUI thread.
+/// so a slow stale job can never overwrite a newer preview. Jobs run on a JobPool (bounded, and
+/// isolated from the GUI thread) or, without one, on Qt's global pool. Never blocks the GUI
+/// thread.
 
 #include "core/common/Error.h"
 #include "core/common/Progress.h"
+#include "ui/jobs/JobPool.h"
 
 #include <QFutureWatcher>
 #include <QObject>
@@ -31,6 +34,8 @@ class JobRunner : public QObject {
   Q_OBJECT
 public:
   explicit JobRunner(QObject* parent = nullptr) : QObject(parent) {}
+  /// Runs its jobs on `pool`, which must outlive the jobs (JobPool's destructor waits for them).
+  explicit JobRunner(JobPool* pool, QObject* parent = nullptr) : QObject(parent), m_pool(pool) {}
   ~JobRunner() override;
 
   /// Starts `work` on the thread pool, cancelling the running job. `on_done` runs on the GUI
@@ -60,6 +65,7 @@ private:
   void jobStarted(QFutureWatcherBase* watcher);
   void jobEnded(QFutureWatcherBase* watcher);
 
+  JobPool* m_pool = nullptr;
   QFutureWatcherBase* m_current = nullptr;
   quint64 m_generation = 0;
   int m_running = 0;
@@ -95,7 +101,11 @@ quint64 JobRunner::run(std::function<R(const core::ProgressFn&)> work,
     }
     emit jobFinished(gen, accepted);
   });
-  watcher->setFuture(QtConcurrent::run([work = std::move(work)](QPromise<JobOutcome<R>>& promise) {
+  JobPool* pool = m_pool;
+  auto job = [work = std::move(work), pool](QPromise<JobOutcome<R>>& promise) {
+    // Cancelled while it waited in the queue: nothing to do.
+    if (promise.isCanceled())
+      return;
     promise.setProgressRange(0, 1000);
     const core::ProgressFn progress = [&promise](double fraction) {
       promise.setProgressValue(static_cast<int>(fraction * 1000));
@@ -103,14 +113,20 @@ quint64 JobRunner::run(std::function<R(const core::ProgressFn&)> work,
     };
     JobOutcome<R> outcome;
     try {
-      outcome.value = std::make_shared<const R>(work(progress));
+      const auto compute = [&] { outcome.value = std::make_shared<const R>(work(progress)); };
+      if (pool)
+        pool->execute(compute);
+      else
+        compute();
     } catch (const core::Cancelled&) {
       outcome.cancelled = true;
     } catch (const std::exception& e) {
       outcome.error = QString::fromStdString(e.what());
     }
     promise.addResult(std::move(outcome));
-  }));
+  };
+  watcher->setFuture(pool ? QtConcurrent::run(pool->threadPool(), std::move(job))
+                          : QtConcurrent::run(std::move(job)));
   jobStarted(watcher);
   return gen;
 }

@@ -9,11 +9,13 @@
 #include <QCoreApplication>
 #include <QDir>
 #include <QDoubleSpinBox>
+#include <QEvent>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
+#include <QLabel>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QScrollArea>
@@ -40,6 +42,30 @@ QString qs(const std::string& s) {
   return QString::fromStdString(s);
 }
 
+/// A parameter's label or unit from the core's table, in the application's language
+/// (translations/scanpick_it.ts, context "scanpick::core::params").
+QString translated(const std::string& s) {
+  return QCoreApplication::translate("scanpick::core::params", s.c_str());
+}
+
+/// Keeps the mouse wheel from changing an editor the operator has not clicked into: over an
+/// unfocused editor the wheel scrolls the panel instead (an ignored wheel event goes on to the
+/// parent, the scroll area).
+class WheelGuard : public QObject {
+public:
+  using QObject::QObject;
+  bool eventFilter(QObject* watched, QEvent* event) override {
+    if (event->type() == QEvent::Wheel) {
+      const auto* widget = qobject_cast<QWidget*>(watched);
+      if (widget && !widget->hasFocus()) {
+        event->ignore();
+        return true;
+      }
+    }
+    return false;
+  }
+};
+
 } // namespace
 
 ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
@@ -56,6 +82,12 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   preset_row->addWidget(load);
   preset_row->addWidget(save);
   outer->addLayout(preset_row);
+  // What the loaded preset is for (its file's description).
+  m_preset_description = new QLabel(this);
+  m_preset_description->setObjectName(QStringLiteral("presetDescription"));
+  m_preset_description->setWordWrap(true);
+  m_preset_description->setVisible(false);
+  outer->addWidget(m_preset_description);
   fillPresetList();
   connect(m_presets, &QComboBox::activated, this,
           [this](int index) { loadPresetOrWarn(m_presets->itemData(index).toString()); });
@@ -80,6 +112,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   auto* body = new QWidget(scroll);
   auto* body_layout = new QVBoxLayout(body);
   std::map<core::Stage, QFormLayout*> forms;
+  auto* wheel_guard = new WheelGuard(this);
   for (const core::ParamInfo& info : core::parameterTable()) {
     auto& form = forms[info.stage];
     if (!form) {
@@ -90,16 +123,21 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
       body_layout->addWidget(group);
     }
     QWidget* editor = makeEditor(info);
+    // A click or Tab focuses an editor; the wheel alone does not (see WheelGuard).
+    editor->setFocusPolicy(Qt::StrongFocus);
+    editor->installEventFilter(wheel_guard);
     editor->setObjectName(qs(info.key));
     editor->setToolTip(qs(info.description));
     m_editors[info.key] = editor;
-    form->addRow(qs(info.label), editor);
+    form->addRow(translated(info.label), editor);
   }
   auto* misc = new QGroupBox(tr("Random"), body);
   auto* misc_form = new QFormLayout(misc);
   m_seed = new QSpinBox(misc);
   m_seed->setObjectName(QStringLiteral("seed"));
   m_seed->setRange(0, std::numeric_limits<int>::max());
+  m_seed->setFocusPolicy(Qt::StrongFocus);
+  m_seed->installEventFilter(wheel_guard);
   m_seed->setToolTip(tr("Seed of every random choice: the same scan, parameters and seed give "
                         "the same result."));
   misc_form->addRow(tr("Seed"), m_seed);
@@ -139,7 +177,7 @@ QWidget* ParameterPanel::makeEditor(const core::ParamInfo& info) {
     spin->setRange(static_cast<int>(info.min_value), static_cast<int>(info.max_value));
     spin->setSingleStep(std::max(1, static_cast<int>(info.step)));
     if (!info.unit.empty())
-      spin->setSuffix(QStringLiteral(" ") + qs(info.unit));
+      spin->setSuffix(QStringLiteral(" ") + translated(info.unit));
     spin->setKeyboardTracking(false);
     connect(spin, &QSpinBox::valueChanged, this, [this, &info](int v) { editorChanged(info, v); });
     return spin;
@@ -151,7 +189,7 @@ QWidget* ParameterPanel::makeEditor(const core::ParamInfo& info) {
     spin->setRange(info.min_value, info.max_value);
     spin->setSingleStep(info.step);
     if (!info.unit.empty())
-      spin->setSuffix(QStringLiteral(" ") + qs(info.unit));
+      spin->setSuffix(QStringLiteral(" ") + translated(info.unit));
     spin->setKeyboardTracking(false);
     connect(spin, &QDoubleSpinBox::valueChanged, this,
             [this, &info](double v) { editorChanged(info, v); });
@@ -213,6 +251,11 @@ void ParameterPanel::loadPresetFile(const QString& path) {
   const core::Preset preset = core::loadPreset(path.toStdString());
   const core::RecognitionParams before = m_params;
   setParams(preset.params);
+  m_preset_description->setText(
+      QStringLiteral("<b>%1</b>: %2")
+          .arg(qs(preset.name).toHtmlEscaped(), qs(preset.description).toHtmlEscaped()));
+  m_preset_description->setToolTip(qs(preset.description));
+  m_preset_description->setVisible(!preset.description.empty());
   core::logger()->info("loaded preset '{}' from {}", preset.name, path.toStdString());
   emit presetLoaded(path);
   emit paramsChanged(m_params,
@@ -248,8 +291,18 @@ void ParameterPanel::fillPresetList() {
   m_presets->addItem(tr("(choose a preset)"), QString());
   const QDir dir(presetsDirectory());
   for (const QFileInfo& file :
-       dir.entryInfoList({QStringLiteral("*.json")}, QDir::Files, QDir::Name))
+       dir.entryInfoList({QStringLiteral("*.json")}, QDir::Files, QDir::Name)) {
     m_presets->addItem(file.completeBaseName(), file.absoluteFilePath());
+    // Each entry says what it is for; a file that does not read is still listed, and says why
+    // when chosen.
+    try {
+      const std::string description =
+          core::loadPreset(file.absoluteFilePath().toStdString()).description;
+      m_presets->setItemData(m_presets->count() - 1, qs(description), Qt::ToolTipRole);
+    } catch (const std::exception& e) {
+      core::logger()->warn("preset {}: {}", file.absoluteFilePath().toStdString(), e.what());
+    }
+  }
 }
 
 } // namespace scanpick::ui

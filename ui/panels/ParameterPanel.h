@@ -2,7 +2,9 @@
 /// @file ParameterPanel.h
 /// The parameter editor, built from the core's metadata table (core/params/ParameterTable.h):
 /// one editor per parameter with its label, unit, range and step, the description as tooltip,
-/// grouped by pipeline stage; presets (core/params/ParamsJson.h) can be loaded and saved.
+/// grouped by pipeline stage; presets (core/params/ParamsJson.h) can be loaded and saved, each
+/// described (its file's description: the list's tooltips, and a label once loaded). The mouse
+/// wheel changes an editor only once it has the focus; otherwise it scrolls the panel.
 
 #include "core/params/ParameterTable.h"
 
@@ -11,6 +13,7 @@
 #include <string>
 
 class QComboBox;
+class QLabel;
 class QSpinBox;
 
 namespace scanpick::ui {
@@ -54,6 +57,7 @@ private:
   core::RecognitionParams m_params;
   std::map<std::string, QWidget*> m_editors;
   QComboBox* m_presets = nullptr;
+  QLabel* m_preset_description = nullptr; // the loaded preset's description
   QSpinBox* m_seed = nullptr;
   bool m_updating = false;
 };

@@ -1,6 +1,10 @@
 #include "ui/panels/ResultsTable.h"
 
+#include "ui/viewport/Presenters.h"
+
 #include <QHeaderView>
+#include <QIcon>
+#include <QPixmap>
 #include <cmath>
 
 namespace scanpick::ui {
@@ -66,6 +70,13 @@ void ResultsTable::setDetections(const std::vector<core::Detection>& detections,
              nullptr, static_cast<int>(d.alternative_poses.size())));
     }
     setItem(row, 2, orientation);
+    // The row's ID (1, 2, …) with the colour its detection has in the viewport, where the same
+    // number labels it.
+    QPixmap swatch(12, 12);
+    swatch.fill(detectionColour(row));
+    auto* id = new QTableWidgetItem(QIcon(swatch), QString::number(row + 1));
+    id->setToolTip(tr("Detection %1: drawn in this colour, labelled %1 in the view").arg(row + 1));
+    setVerticalHeaderItem(row, id);
     setItem(row, 3, new QTableWidgetItem(QString::number(d.cluster)));
     setItem(row, 4, new QTableWidgetItem(grips.join(QStringLiteral("; "))));
     if (d.model_index >= 0 && d.model_index < view_names.size())

@@ -2,7 +2,9 @@
 /// @file ResultsTable.h
 /// The detections of the last recognition: score, position, orientation (roll, pitch, yaw),
 /// cluster, grip points and, with several views of the part, the view that found it; one row per
-/// detection, best first. Selecting a row highlights that detection.
+/// detection, best first. Each row's header is its ID (1, 2, …) beside a swatch of the colour the
+/// viewport draws that detection in, labelled with the same ID. Selecting a row highlights that
+/// detection.
 
 #include "core/pipeline/Detection.h"
 

@@ -1,16 +1,23 @@
 #include "ui/viewport/Presenters.h"
 
+#include <QString>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <vtkActor.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCoordinate.h>
+#include <vtkFloatArray.h>
+#include <vtkIdTypeArray.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
 
 namespace scanpick::ui {
@@ -35,6 +42,20 @@ Eigen::Vector3d map(const Eigen::Isometry3d& T, const Eigen::Vector3f& p) {
   return T * p.cast<double>();
 }
 
+/// Depth `z` (mm) between `z_min` (near: amber) and `z_max` (far: blue).
+std::array<unsigned char, 3> depthColour(float z, float z_min, float z_max) {
+  const float t = std::clamp((z - z_min) / (z_max - z_min), 0.0f, 1.0f);
+  return {static_cast<unsigned char>(230 - 170 * t), static_cast<unsigned char>(170 - 40 * t),
+          static_cast<unsigned char>(60 + 170 * t)};
+}
+
+/// Depth `z` (mm) between `z_min` (near: light grey) and `z_max` (far: dark grey).
+std::array<unsigned char, 3> depthGrey(float z, float z_min, float z_max) {
+  const float t = std::clamp((z - z_min) / (z_max - z_min), 0.0f, 1.0f);
+  const auto v = static_cast<unsigned char>(225 - 150 * t);
+  return {v, v, v};
+}
+
 /// Two unit vectors spanning the plane normal to `n`.
 void planeBasis(const Eigen::Vector3d& n, Eigen::Vector3d& u, Eigen::Vector3d& v) {
   const Eigen::Vector3d helper =
@@ -46,13 +67,19 @@ void planeBasis(const Eigen::Vector3d& n, Eigen::Vector3d& u, Eigen::Vector3d& v
 } // namespace
 
 vtkSmartPointer<vtkActor> makeCloudActor(const core::PointCloud& cloud, const QColor& colour,
-                                         double point_size_px, double ratio, bool by_depth,
-                                         const Eigen::Isometry3d& T) {
-  auto points = vtkSmartPointer<vtkPoints>::New();
-  auto verts = vtkSmartPointer<vtkCellArray>::New();
-  auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
-  colours->SetNumberOfComponents(3);
-  points->Allocate(static_cast<vtkIdType>(cloud.size()));
+                                         double point_size_px, double ratio, CloudShading shading,
+                                         const Eigen::Isometry3d& T, std::size_t max_points) {
+  const bool by_depth = shading != CloudShading::Flat;
+  const bool grey = shading == CloudShading::DepthGrey;
+  // The arrays are filled through their raw buffers: a whole scan (800,000 points) is drawn on
+  // the GUI thread, which must stay responsive.
+  std::size_t valid = 0;
+  for (const Eigen::Vector3f& p : cloud.points_mm)
+    valid += core::isValid(p) ? 1 : 0;
+  // Every stride-th valid point: a whole scan is thinned evenly to at most max_points.
+  max_points = std::max<std::size_t>(1, max_points);
+  const std::size_t stride = std::max<std::size_t>(1, (valid + max_points - 1) / max_points);
+  const auto n = static_cast<vtkIdType>((valid + stride - 1) / stride);
   float z_min = 0, z_max = 1;
   if (by_depth) {
     const Eigen::AlignedBox3f box = core::boundingBox(cloud);
@@ -61,22 +88,44 @@ vtkSmartPointer<vtkActor> makeCloudActor(const core::PointCloud& cloud, const QC
       z_max = std::max(box.max().z(), z_min + 1e-3f);
     }
   }
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const Eigen::Vector3f& p = cloud.points_mm[i];
-    if (!core::isValid(p))
+  auto coords = vtkSmartPointer<vtkFloatArray>::New();
+  coords->SetNumberOfComponents(3);
+  coords->SetNumberOfTuples(n);
+  auto colours = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  colours->SetNumberOfComponents(3);
+  colours->SetNumberOfTuples(by_depth ? n : 0);
+  float* xyz = coords->GetPointer(0);
+  unsigned char* rgb = colours->GetPointer(0);
+  const Eigen::Matrix3f R = T.linear().cast<float>();
+  const Eigen::Vector3f t = T.translation().cast<float>();
+  const bool identity = T.isApprox(Eigen::Isometry3d::Identity());
+  std::size_t seen = 0;
+  for (const Eigen::Vector3f& p : cloud.points_mm) {
+    if (!core::isValid(p) || seen++ % stride != 0)
       continue;
-    const Eigen::Vector3d q = map(T, p);
-    verts->InsertNextCell(1);
-    verts->InsertCellPoint(points->InsertNextPoint(q.x(), q.y(), q.z()));
+    const Eigen::Vector3f q = identity ? p : Eigen::Vector3f(R * p + t);
+    *xyz++ = q.x();
+    *xyz++ = q.y();
+    *xyz++ = q.z();
     if (by_depth) {
-      // Near (small z) is amber, far is blue: reads as depth from the camera's view.
-      const float t = std::clamp((p.z() - z_min) / (z_max - z_min), 0.0f, 1.0f);
-      const unsigned char rgb[3] = {static_cast<unsigned char>(230 - 170 * t),
-                                    static_cast<unsigned char>(170 - 40 * t),
-                                    static_cast<unsigned char>(60 + 170 * t)};
-      colours->InsertNextTypedTuple(rgb);
+      const auto [r, g, b] =
+          grey ? depthGrey(p.z(), z_min, z_max) : depthColour(p.z(), z_min, z_max);
+      *rgb++ = r;
+      *rgb++ = g;
+      *rgb++ = b;
     }
   }
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetData(coords);
+  // One vertex cell per point: offsets 0..n, connectivity 0..n-1.
+  auto offsets = vtkSmartPointer<vtkIdTypeArray>::New();
+  offsets->SetNumberOfTuples(n + 1);
+  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + n + 1, vtkIdType{0});
+  auto connectivity = vtkSmartPointer<vtkIdTypeArray>::New();
+  connectivity->SetNumberOfTuples(n);
+  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + n, vtkIdType{0});
+  auto verts = vtkSmartPointer<vtkCellArray>::New();
+  verts->SetData(offsets, connectivity);
   auto data = vtkSmartPointer<vtkPolyData>::New();
   data->SetPoints(points);
   data->SetVerts(verts);
@@ -91,7 +140,7 @@ vtkSmartPointer<vtkActor> makePointsActor(const std::vector<Eigen::Vector3f>& po
                                           const QColor& colour, double point_size_px, double ratio,
                                           const Eigen::Isometry3d& T) {
   return makeCloudActor(core::PointCloud::fromPoints(points_mm), colour, point_size_px, ratio,
-                        false, T);
+                        CloudShading::Flat, T);
 }
 
 vtkSmartPointer<vtkActor> makeFeaturesActor(const core::FeatureList& features,
@@ -163,8 +212,43 @@ vtkSmartPointer<vtkActor> makeGripAxesActor(const std::vector<core::GripPoint>& 
   data->SetLines(lines);
   data->GetCellData()->SetScalars(colours);
   auto actor = actorFor(data, Qt::white, true);
-  actor->GetProperty()->SetLineWidth(static_cast<float>(3.0 * ratio));
+  actor->GetProperty()->SetLineWidth(static_cast<float>(4.0 * ratio));
   return actor;
+}
+
+vtkSmartPointer<vtkActor> makeGripMarkersActor(const std::vector<core::GripPoint>& grips,
+                                               const QColor& colour, double size_px, double ratio) {
+  std::vector<Eigen::Vector3f> points;
+  for (const core::GripPoint& g : grips)
+    points.push_back(g.position_mm.cast<float>());
+  auto actor = makePointsActor(points, colour, size_px, ratio);
+  actor->GetProperty()->SetRenderPointsAsSpheres(true);
+  // Shaded spheres read as markers, not as more scan points.
+  actor->GetProperty()->LightingOn();
+  actor->GetProperty()->SetAmbient(0.3);
+  actor->GetProperty()->SetDiffuse(0.8);
+  return actor;
+}
+
+vtkSmartPointer<vtkProp> makeLabelActor(const QString& text, const Eigen::Vector3d& position_mm,
+                                        const QColor& colour, int font_px, double ratio) {
+  // A 2D text anchored at a 3D point: drawn over the scene, never hidden behind its points.
+  auto label = vtkSmartPointer<vtkTextActor>::New();
+  label->SetInput(text.toUtf8().constData());
+  label->GetPositionCoordinate()->SetCoordinateSystemToWorld();
+  label->GetPositionCoordinate()->SetValue(position_mm.x(), position_mm.y(), position_mm.z());
+  vtkTextProperty* style = label->GetTextProperty();
+  style->SetFontSize(static_cast<int>(font_px * ratio));
+  style->SetColor(colour.redF(), colour.greenF(), colour.blueF());
+  style->BoldOn();
+  style->SetJustificationToCentered();
+  style->SetVerticalJustificationToCentered();
+  style->SetBackgroundColor(0.05, 0.05, 0.08);
+  style->SetBackgroundOpacity(0.8);
+  style->SetFrame(true);
+  style->SetFrameColor(colour.redF(), colour.greenF(), colour.blueF());
+  style->SetFrameWidth(std::max(1, static_cast<int>(ratio)));
+  return label;
 }
 
 QColor detectionColour(int index) {
