@@ -42,7 +42,7 @@ fuzz() {
   CC=clang CXX=clang++ cmake -S "$here" -B "$fuzz_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DSCANPICK_FUZZ=ON -DSCANPICK_FUZZ_SECONDS="${FUZZ_SECONDS:-20}" -DSCANPICK_BUILD_GUI=OFF \
     -DSCANPICK_BUILD_DEVICES=OFF -DSCANPICK_BUILD_BENCHMARKS=OFF >/dev/null
-  cmake --build "$fuzz_dir" --parallel "$jobs" --target fuzz_cloud fuzz_mesh fuzz_model fuzz_json fuzz_multipart
+  cmake --build "$fuzz_dir" --parallel "$jobs" --target fuzz_cloud fuzz_mesh fuzz_model fuzz_json fuzz_multipart fuzz_link
   (cd "$fuzz_dir" && ctest --output-on-failure -L fuzz)
 }
 

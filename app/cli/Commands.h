@@ -13,4 +13,5 @@ void registerDeviceCommands(CLI::App& app);   ///< devices, capture (DeviceComma
 void registerDemoCommand(CLI::App& app);      ///< demo: the README's main job (DemoCommand.cpp)
 void registerParamsCommand(CLI::App& app);    ///< params: the parameter table (ParamsCommand.cpp)
 void registerBenchCommand(CLI::App& app);     ///< bench: recognition timings (BenchCommand.cpp)
+void registerServeCommand(CLI::App& app);     ///< serve: the robot link (ServeCommand.cpp)
 } // namespace scanpick::cli

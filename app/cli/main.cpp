@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   scanpick::cli::registerDemoCommand(app);
   scanpick::cli::registerParamsCommand(app);
   scanpick::cli::registerBenchCommand(app);
+  scanpick::cli::registerServeCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

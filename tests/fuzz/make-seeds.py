@@ -162,7 +162,24 @@ def multipart_seeds():
           bytes([1, 0, 1, 5, 3, 0, 3, 0, 3, 9, 3, 0, 3, 0]) + range_ + b"\x01" * 16 + b"\0" * 176)
 
 
+def link_seeds():
+    # The robot link (tests/fuzz/FuzzLink.cpp, docs/robot-link.md): selector 0 binary requests,
+    # 1 a JSON line, 2+ a mixed stream cut into chunks of (selector % 37) + 1 bytes.
+    def binary(command, request_id=0, arg=0):
+        return b"SPK1" + struct.pack("<7i", command, request_id, arg, 0, 0, 0, 0)
+    write("corpus/link", "binary-all.bin", b"\0" + b"".join(binary(c, c) for c in range(1, 6)))
+    write("corpus/link", "binary-set-recipe.bin", b"\0" + binary(4, 7, 1))
+    write("corpus/link", "json-trigger.txt", b"\1" + b'{"cmd": "trigger", "id": 1}')
+    write("corpus/link", "json-set-recipe.txt", b"\1" + b'{"cmd": "set_recipe", "recipe": "a"}')
+    write("corpus/link", "stream-mixed.bin", b"\5" + b'{"cmd":"status"}\n' + binary(2, 3) +
+          b' \r\n{"cmd":"next","id":4}\n' + binary(3)[:20])
+    write("regressions/link", "deep.txt", b"\1" + b'{"cmd":' + b"[" * 5000 + b"]" * 5000 + b"}")
+    write("regressions/link", "bad-utf8-recipe.txt", b"\1" + b'{"cmd":"set_recipe","recipe":"\xff\xfe"}')
+    write("regressions/link", "overlong-line.bin", b"\2{" + b" " * 5000 + b"\n")
+
+
 cloud_seeds()
+link_seeds()
 multipart_seeds()
 mesh_seeds()
 model_seeds()

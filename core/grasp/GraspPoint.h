@@ -1,0 +1,44 @@
+#pragma once
+/// @file GraspPoint.h
+/// A grip point with the direction the gripper comes from and, for fingers, the axis they close
+/// along.
+
+#include "core/common/GripPoint.h"
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace scanpick::core::grasp {
+
+/// Where and how the gripper takes the part, in the model frame (mm).
+struct GraspPoint {
+  std::string name;                                      ///< the grip point's name
+  Eigen::Vector3d position_mm = Eigen::Vector3d::Zero(); ///< model frame
+  /// Unit direction the tool moves in to reach the point (towards and into the part), model
+  /// frame. Default +z: the teach camera's viewing direction, which looks at the taught side.
+  Eigen::Vector3d approach = Eigen::Vector3d::UnitZ();
+  /// Fingers: the unit axis they close along, model frame, perpendicular to `approach` (it is
+  /// made so). Unset: any axis (suction cups); the planner picks one (toolPose()).
+  std::optional<Eigen::Vector3d> closing_axis;
+  bool operator==(const GraspPoint&) const = default;
+};
+
+/// A recipe's approach (and closing axis) for a grip point of the model, named.
+struct GraspSpec {
+  std::string grip;                                    ///< name of a model grip point
+  Eigen::Vector3d approach = Eigen::Vector3d::UnitZ(); ///< model frame, any length > 0
+  std::optional<Eigen::Vector3d> closing_axis;         ///< model frame, any length > 0
+  bool operator==(const GraspSpec&) const = default;
+};
+
+/// The grasp points of a model: with no specs, every grip point approached along +z; otherwise
+/// one per spec, in the specs' order, at its grip point's position, with its approach and
+/// closing axis normalized (the closing axis made perpendicular to the approach). Throws Error for
+/// a spec naming no grip point of the model ("grip 'x' is not a grip point of the model: ..."),
+/// a zero or non-finite direction, or a closing axis along the approach.
+std::vector<GraspPoint> graspPoints(const std::vector<GripPoint>& grips_model,
+                                    const std::vector<GraspSpec>& specs);
+
+} // namespace scanpick::core::grasp

@@ -1,0 +1,98 @@
+#include "core/grasp/Gripper.h"
+
+#include "core/common/Error.h"
+#include "core/grasp/GraspPlanner.h"
+#include "core/grasp/GraspPoint.h"
+
+#include <gtest/gtest.h>
+
+using namespace scanpick::core;
+using namespace scanpick::core::grasp;
+
+TEST(Gripper, SuctionCupIsACylinderBehindTheTcpWithTheBodyBehindIt) {
+  Gripper g;
+  g.suction = {40.0, 12.0};
+  g.body.length_mm = 50.0;
+  g.body.diameter_mm = 60.0;
+  const auto solids = toolSolids(g);
+  ASSERT_EQ(solids.size(), 2u);
+  EXPECT_EQ(solids[0].name, "cup");
+  EXPECT_EQ(solids[0].shape, SolidShape::Cylinder);
+  EXPECT_DOUBLE_EQ(solids[0].half_extents_mm.x(), 20.0);
+  // The cup spans z in [-12, 0]; the body [-62, -12].
+  EXPECT_DOUBLE_EQ(solids[0].centre_mm.z() + solids[0].half_extents_mm.z(), 0.0);
+  EXPECT_DOUBLE_EQ(solids[0].centre_mm.z() - solids[0].half_extents_mm.z(), -12.0);
+  EXPECT_DOUBLE_EQ(solids[1].centre_mm.z() + solids[1].half_extents_mm.z(), -12.0);
+  EXPECT_DOUBLE_EQ(solids[1].centre_mm.z() - solids[1].half_extents_mm.z(), -62.0);
+  EXPECT_DOUBLE_EQ(solids[1].half_extents_mm.x(), 30.0);
+}
+
+TEST(Gripper, FingersStandOutsideTheOpeningAndReachPastTheGripPoint) {
+  Gripper g;
+  g.kind = GripperKind::Fingers;
+  g.fingers = {8.0, 20.0, 40.0, 50.0, 5.0};
+  g.body.length_mm = 0.0;
+  const auto solids = toolSolids(g);
+  ASSERT_EQ(solids.size(), 3u); // two fingers and the closing region, no body
+  const ToolSolid& right = solids[0];
+  EXPECT_EQ(right.name, "finger +x");
+  EXPECT_TRUE(right.checks_part);
+  // Inner face at +25 (half the opening), outer at +33; tip at z = +5, root at -35.
+  EXPECT_DOUBLE_EQ(right.centre_mm.x() - right.half_extents_mm.x(), 25.0);
+  EXPECT_DOUBLE_EQ(right.centre_mm.x() + right.half_extents_mm.x(), 33.0);
+  EXPECT_DOUBLE_EQ(right.centre_mm.z() + right.half_extents_mm.z(), 5.0);
+  EXPECT_DOUBLE_EQ(right.centre_mm.z() - right.half_extents_mm.z(), -35.0);
+  EXPECT_DOUBLE_EQ(solids[1].centre_mm.x() + solids[1].half_extents_mm.x(), -25.0);
+  EXPECT_EQ(solids[2].name, "closing region");
+  EXPECT_FALSE(solids[2].checks_part);
+  EXPECT_DOUBLE_EQ(solids[2].half_extents_mm.x(), 25.0);
+}
+
+TEST(Gripper, BadDimensionsAreRejectedByName) {
+  Gripper g;
+  g.suction.diameter_mm = 0.0;
+  try {
+    (void)toolSolids(g);
+    FAIL() << "a zero cup diameter was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("suction.diameter_mm"), std::string::npos) << e.what();
+  }
+  g = Gripper{};
+  g.kind = GripperKind::Fingers;
+  g.fingers.opening_mm = std::nan("");
+  EXPECT_THROW((void)toolSolids(g), Error);
+  EXPECT_THROW((void)parseGripperKind("vacuum"), Error);
+}
+
+TEST(GraspPoint, SpecsTakeThePositionFromTheModelAndNormalizeDirections) {
+  const std::vector<GripPoint> grips{{"top", {1, 2, 3}}, {"side", {4, 5, 6}}};
+  const auto all = graspPoints(grips, {});
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[1].approach, Eigen::Vector3d::UnitZ());
+  const auto some = graspPoints(grips, {{"side", {2, 0, 0}, Eigen::Vector3d(1, 1, 0)}});
+  ASSERT_EQ(some.size(), 1u);
+  EXPECT_EQ(some[0].position_mm, Eigen::Vector3d(4, 5, 6));
+  EXPECT_TRUE(some[0].approach.isApprox(Eigen::Vector3d::UnitX()));
+  ASSERT_TRUE(some[0].closing_axis);
+  // Made perpendicular to the approach.
+  EXPECT_TRUE(some[0].closing_axis->isApprox(Eigen::Vector3d::UnitY()));
+  EXPECT_THROW((void)graspPoints(grips, {{"handle", {0, 0, 1}, {}}}), Error);
+  EXPECT_THROW((void)graspPoints(grips, {{"top", {0, 0, 0}, {}}}), Error);
+  EXPECT_THROW((void)graspPoints(grips, {{"top", {0, 0, 1}, Eigen::Vector3d(0, 0, 2)}}), Error);
+}
+
+TEST(ToolPose, OriginAtTheGripPointZAlongTheApproachXAlongTheClosingAxis) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+  T.translation() = Eigen::Vector3d(10, 20, 900);
+  GraspPoint g{"g", {5, 0, -3}, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY()};
+  const Eigen::Isometry3d tool = toolPose(T, g);
+  EXPECT_TRUE(tool.translation().isApprox(T * g.position_mm));
+  EXPECT_TRUE(tool.linear().col(2).isApprox(T.linear() * Eigen::Vector3d::UnitZ()));
+  EXPECT_TRUE(tool.linear().col(0).isApprox(T.linear() * Eigen::Vector3d::UnitY()));
+  EXPECT_NEAR(tool.linear().determinant(), 1.0, 1e-12);
+  // Without a closing axis, x follows the scene's x axis (deterministic).
+  g.closing_axis.reset();
+  const Eigen::Isometry3d free = toolPose(Eigen::Isometry3d::Identity(), g);
+  EXPECT_TRUE(free.linear().isApprox(Eigen::Matrix3d::Identity()));
+}
