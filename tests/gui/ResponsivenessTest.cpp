@@ -1,8 +1,8 @@
 // The GUI thread never waits on core work: with the whole-bin keypoint preview and a recognition
 // of the demo bin running together, a 50 ms timer on the GUI thread keeps firing (no tick a second
-// late: the freezes were 4-18 s), and Esc stops the recognition within a second. The figures
-// against the goals (p99 lateness 100 ms, Esc 200 ms) are printed and recorded in docs/results.md,
-// not asserted: a shared CI machine's scheduling is not the product's.
+// late: a freeze lasts seconds), and Esc stops the recognition within a second. The figures
+// against the goals (p99 lateness 100 ms, Esc 200 ms) are printed, not asserted: a shared CI
+// machine's scheduling is not the product's.
 #include "core/params/ParamsJson.h"
 #include "tests/gui/SyntheticScenes.h"
 #include "ui/MainWindow.h"
