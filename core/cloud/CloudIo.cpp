@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 namespace scanpick::core {
 namespace fs = std::filesystem;
@@ -79,17 +78,7 @@ std::string encodePlyBinary(const PointCloud& cloud) {
   if (colors)
     out += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   out += "end_header\n";
-  const std::size_t step = 12 + (normals ? 12 : 0) + (colors ? 3 : 0);
-  const std::size_t start = out.size();
-  out.resize(start + step * cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    char* p = out.data() + start + i * step;
-    std::memcpy(p, cloud.points_mm[i].data(), 12);
-    if (normals)
-      std::memcpy(p + 12, cloud.normals[i].data(), 12);
-    if (colors)
-      std::memcpy(p + step - 3, cloud.colors[i].data(), 3);
-  }
+  appendPointRecords(out, cloud, false);
   return out;
 }
 

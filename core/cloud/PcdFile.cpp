@@ -407,6 +407,29 @@ PointCloud decodePcd(std::string_view bytes, const std::string& source, std::siz
   return extract(h, FieldReader(h, raw, true), source, implausible);
 }
 
+void appendPointRecords(std::string& out, const PointCloud& cloud, bool packed_rgb) {
+  const bool normals = !cloud.normals.empty(), colors = !cloud.colors.empty();
+  const std::size_t colour_bytes = colors ? (packed_rgb ? 4 : 3) : 0;
+  const std::size_t step = 12 + (normals ? 12 : 0) + colour_bytes;
+  const std::size_t start = out.size();
+  out.resize(start + step * cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    char* p = out.data() + start + i * step;
+    std::memcpy(p, cloud.points_mm[i].data(), 12);
+    if (normals)
+      std::memcpy(p + 12, cloud.normals[i].data(), 12);
+    if (!colors)
+      continue;
+    const auto& c = cloud.colors[i];
+    if (packed_rgb) {
+      const std::uint32_t packed = (std::uint32_t{c[0]} << 16) | (std::uint32_t{c[1]} << 8) | c[2];
+      std::memcpy(p + step - 4, &packed, 4);
+    } else {
+      std::memcpy(p + step - 3, c.data(), 3);
+    }
+  }
+}
+
 std::string encodePcdBinary(const PointCloud& cloud) {
   cloud.validate();
   const bool normals = !cloud.normals.empty(), colors = !cloud.colors.empty();
@@ -418,21 +441,8 @@ std::string encodePcdBinary(const PointCloud& cloud) {
          << (normals ? " 1 1 1" : "") << (colors ? " 1" : "") << "\nWIDTH " << cloud.width
          << "\nHEIGHT " << cloud.height << "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << cloud.size()
          << "\nDATA binary\n";
-  const std::size_t step = 12 + (normals ? 12 : 0) + (colors ? 4 : 0);
   std::string out = header.str();
-  const std::size_t start = out.size();
-  out.resize(start + step * cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    char* p = out.data() + start + i * step;
-    std::memcpy(p, cloud.points_mm[i].data(), 12);
-    if (normals)
-      std::memcpy(p + 12, cloud.normals[i].data(), 12);
-    if (colors) {
-      const auto& c = cloud.colors[i];
-      const std::uint32_t packed = (std::uint32_t{c[0]} << 16) | (std::uint32_t{c[1]} << 8) | c[2];
-      std::memcpy(p + step - 4, &packed, 4);
-    }
-  }
+  appendPointRecords(out, cloud, true);
   return out;
 }
 

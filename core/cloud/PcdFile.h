@@ -56,6 +56,11 @@ PcdHeader parsePcdHeader(std::string_view bytes, const std::string& source);
 PointCloud decodePcd(std::string_view bytes, const std::string& source,
                      std::size_t* implausible = nullptr);
 
+/// Appends `cloud`'s points as little-endian binary records, one per point: x, y, z (float), the
+/// normal (3 floats) when the cloud has normals, the colour when it has colours (one packed uint32
+/// 0x00RRGGBB with `packed_rgb`, as PCD stores it, else three bytes, as PLY does).
+void appendPointRecords(std::string& out, const PointCloud& cloud, bool packed_rgb);
+
 /// Encodes `cloud` as a binary PCD 0.7 (x, y, z float; normals and rgb when present).
 std::string encodePcdBinary(const PointCloud& cloud);
 
