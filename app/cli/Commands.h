@@ -14,4 +14,5 @@ void registerDemoCommand(CLI::App& app);      ///< demo: the README's main job (
 void registerParamsCommand(CLI::App& app);    ///< params: the parameter table (ParamsCommand.cpp)
 void registerBenchCommand(CLI::App& app);     ///< bench: recognition timings (BenchCommand.cpp)
 void registerServeCommand(CLI::App& app);     ///< serve: the robot link (ServeCommand.cpp)
+void registerCalibrateCommand(CLI::App& app); ///< calibrate: hand-eye (CalibrateCommand.cpp)
 } // namespace scanpick::cli

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   scanpick::cli::registerParamsCommand(app);
   scanpick::cli::registerBenchCommand(app);
   scanpick::cli::registerServeCommand(app);
+  scanpick::cli::registerCalibrateCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {
