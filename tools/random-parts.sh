@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # tools/random-parts.sh: scores scanpick on parts it has never seen and writes docs/random-parts.md.
 #
-#   BUILD_DIR=build PARTS=50 SEED=20160401 PRESET=phoxi-bin-surface tools/random-parts.sh
+#   BUILD_DIR=build PARTS=50 SEED=20160401 tools/random-parts.sh
 #
 # For each of PARTS parts generated from SEED (scanpick-cli synth-suite --suite random-parts), it
 # teaches a view from each table scan (--crop-from-truth --remove-floor, the part's own name; a
@@ -14,7 +14,7 @@
 # at. Needs jq. It builds nothing.
 #
 # Environment: BUILD_DIR (default build), WORK_DIR (default BUILD_DIR/random-parts), PARTS
-# (default 50), SEED (default 20160401), PRESET (default phoxi-bin-surface; empty: the defaults),
+# (default 50), SEED (default 20160401), PRESET (default none: the parameters teach derives for each part),
 # OUT (default docs/random-parts.md).
 set -euo pipefail
 export LC_ALL=C
@@ -26,7 +26,7 @@ CLI=$BUILD_DIR/bin/scanpick-cli
 WORK=${WORK_DIR:-$BUILD_DIR/random-parts}
 PARTS=${PARTS:-50}
 SEED=${SEED:-20160401}
-PRESET=${PRESET-phoxi-bin-surface}
+PRESET=${PRESET-}
 OUT=${OUT:-$ROOT/docs/random-parts.md}
 [[ -x $CLI ]] || { echo "random-parts.sh: $CLI not found: build scanpick-cli first" >&2; exit 1; }
 command -v jq > /dev/null || { echo "random-parts.sh: jq not found: apt-get install jq" >&2; exit 1; }
@@ -96,7 +96,8 @@ distribution() {
   echo
   echo "How scanpick does on parts it has never seen: $PARTS parts generated from seed $SEED"
   echo "(core/sim/RandomPart.h: plates, brackets, prisms, bushings, flanges, extrusions, 20-300 mm),"
-  echo "each taught from its table scans on four sides and searched in three PhoXi M bins of ten."
+  echo "each taught from its table scans on four sides and searched in three PhoXi M bins of ten"
+  echo "(of a large part, as many as two layers of the bin's floor hold, in a bin at least 1.4 x 1.1 its diameter)."
   echo "Written by:"
   echo
   echo '```sh'

@@ -32,6 +32,21 @@ std::vector<double> parseNumbers(const std::string& text, std::size_t count,
   return values;
 }
 
+/// The measured scan and part, then each derived parameter with its reason (or that --set
+/// replaced it).
+void printDerived(const core::AutoParams& derived, const core::TaughtModel& model) {
+  std::cout << "measured: point spacing " << derived.scan.spacing_mm << " mm, depth noise "
+            << derived.scan.noise_mm << " mm, part diameter " << derived.part.diameter_mm << " mm ("
+            << derived.part.extent_mm.x() << " x " << derived.part.extent_mm.y() << " x "
+            << derived.part.extent_mm.z() << " mm), " << derived.part.points
+            << " points\nparameters derived for this part (--set overrides any):\n";
+  for (const auto& v : derived.values) {
+    const auto reason = model.param_reasons.find(v.key);
+    std::cout << "  " << v.key << " = " << core::findParameter(v.key)->get(model.params) << ": "
+              << (reason != model.param_reasons.end() ? reason->second : "set by --set") << "\n";
+  }
+}
+
 } // namespace
 
 void registerTeachCommand(CLI::App& app) {
@@ -79,7 +94,17 @@ void registerTeachCommand(CLI::App& app) {
           }
         }
         const core::PointCloud scan = loadWithUnitsCheck(o->scan, o->recipe.units);
-        core::TaughtModel model = core::teach(scan, options, resolveParams(o->recipe));
+        // With no preset and no parameter file, every value is derived from the part and the
+        // scan; --set still overrides any of them.
+        const bool derive = o->recipe.preset.empty() && o->recipe.params.empty();
+        core::AutoParams derived;
+        if (derive)
+          derived = core::autoTeachParams(scan, options);
+        core::TaughtModel model =
+            core::teach(scan, options, resolveParams(o->recipe, derived.params));
+        for (const auto& v : derived.values)
+          if (core::findParameter(v.key)->get(model.params) == v.value)
+            model.param_reasons[v.key] = v.reason;
         model.teach_scan = std::filesystem::path(o->scan).filename().string();
         for (const auto& kv : o->view_settings) {
           // Parsed and checked as --set is (an unknown key or a value out of range is an Error),
@@ -97,6 +122,8 @@ void registerTeachCommand(CLI::App& app) {
         for (const auto& [key, value] : model.view_params)
           std::cout << ", " << key << " = " << value << " for this view";
         std::cout << " -> " << o->out << "\n";
+        if (derive)
+          printDerived(derived, model);
         return kOk;
       });
   sub->add_option("--scan", o->scan, "Scan holding the part (.pcd or .ply)")->required();

@@ -235,6 +235,8 @@ std::string encodeModel(const TaughtModel& model) {
                                      ? json(static_cast<long long>(std::llround(value)))
                                      : json(value);
   }
+  for (const auto& [key, reason] : model.param_reasons)
+    header["param_reasons"][key] = reason;
   header["header_crc32"] = kHeaderCrcPlaceholder;
   std::string line = dumpJsonText(header);
   const std::size_t at = line.find(headerCrcField(kHeaderCrcPlaceholder));
@@ -307,6 +309,16 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
         r.fail(std::string("view_params: ") + e.what());
       }
       model.view_params[key] = number;
+    }
+  }
+  if (header.contains("param_reasons")) {
+    const json& reasons = header["param_reasons"];
+    if (!reasons.is_object())
+      r.fail("param_reasons is not an object");
+    for (const auto& [key, reason] : reasons.items()) {
+      if (!reason.is_string() || !findParameter(key))
+        r.fail("param_reasons: '" + key + "' is not a parameter with a reason");
+      model.param_reasons[key] = reason.get<std::string>();
     }
   }
   if (header.contains("sensor"))

@@ -3,15 +3,35 @@
 #include "core/common/Error.h"
 #include "core/features/FeatureExtraction.h"
 #include "core/keypoints/Keypoints.h"
+#include "core/model/AutoParams.h"
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
 
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 namespace scanpick::core {
+
+namespace {
+
+/// Whether a point (scan frame, mm) is valid and lies in the crop of `options` (the oriented box
+/// if set).
+std::function<bool(const Eigen::Vector3f&)> cropTest(const TeachOptions& options) {
+  if (options.crop_oriented) {
+    const Eigen::Isometry3f T_box_scan = options.crop_oriented->T_scan_box.inverse();
+    const Eigen::Vector3f half = options.crop_oriented->half_extents_mm;
+    return [T_box_scan, half](const Eigen::Vector3f& p) {
+      return isValid(p) && ((T_box_scan * p).cwiseAbs().array() <= half.array()).all();
+    };
+  }
+  const Eigen::AlignedBox3f box = *options.crop_box_mm;
+  return [box](const Eigen::Vector3f& p) { return isValid(p) && box.contains(p); };
+}
+
+} // namespace
 
 PointCloud cropToOrientedBox(const PointCloud& cloud, const OrientedBox& box) {
   const Eigen::Isometry3f T_box_scan = box.T_scan_box.inverse();
@@ -21,28 +41,54 @@ PointCloud cropToOrientedBox(const PointCloud& cloud, const OrientedBox& box) {
   });
 }
 
-TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
-                  const RecognitionParams& params, const ProgressFn& progress) {
+PointCloud cropPart(const PointCloud& scan_mm, const TeachOptions& options,
+                    const RecognitionParams& params, const ProgressFn& progress) {
   scan_mm.validate();
   if (!options.crop_box_mm && !options.crop_oriented)
     throw Error("no crop box given: draw a box around the part (or pass --crop-box)");
   // The floor is found in the whole scan, where the table is the dominant plane: inside a tight
   // crop a large flat face of the part may hold more points than the table and would go instead.
+  // It is the plane the part rests on (removeFloor with the crop as the part): a face that
+  // outnumbers the table even so (a large plate's) has the table behind it.
+  const auto inCrop = cropTest(options);
   PointCloud floorless;
   const PointCloud* source = &scan_mm;
   if (options.remove_floor && scan_mm.validCount() >= kMinTeachPoints) {
     FloorParams floor = params.floor;
     floor.enabled = true;
-    floorless = removeFloor(scan_mm, floor, params.seed, subProgress(progress, 0.0, 0.2)).remaining;
+    std::vector<char> cropped(scan_mm.size());
+    for (std::size_t i = 0; i < scan_mm.size(); ++i)
+      cropped[i] = inCrop(scan_mm.points_mm[i]);
+    floorless = removeFloor(scan_mm, floor, params.seed, progress, cropped).remaining;
     source = &floorless;
   }
-  PointCloud part = options.crop_oriented ? cropToOrientedBox(*source, *options.crop_oriented)
-                                          : cropToBox(*source, *options.crop_box_mm);
-  reportProgress(progress, 0.25);
+  PointCloud part =
+      selectPoints(*source, [&](std::size_t i) { return inCrop(source->points_mm[i]); });
   part = dropInvalid(voxelDownsample(part, params.downsample.voxel_mm));
   if (part.size() < kMinTeachPoints)
     throw Error("the crop holds " + std::to_string(part.size()) + " points (at least " +
                 std::to_string(kMinTeachPoints) + " are needed): widen the crop box");
+  reportProgress(progress, 1.0);
+  return part;
+}
+
+AutoParams autoTeachParams(const PointCloud& scan_mm, const TeachOptions& options,
+                           const RecognitionParams& base, const ProgressFn& progress) {
+  if (!options.crop_box_mm && !options.crop_oriented)
+    throw Error("no crop box given: draw a box around the part (or pass --crop-box)");
+  const auto inCrop = cropTest(options);
+  const ScanMeasures scan = measureScan(
+      selectPoints(scan_mm, [&](std::size_t i) { return inCrop(scan_mm.points_mm[i]); }));
+  if (!(scan.spacing_mm > 0))
+    throw Error("the crop's points coincide (no spacing between them): crop a part of a scan");
+  const AutoParams scan_params = deriveScanParams(scan, base);
+  const PointCloud part = cropPart(scan_mm, options, scan_params.params, progress);
+  return deriveParams(scan, measurePart(part, scan.spacing_mm), base);
+}
+
+TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
+                  const RecognitionParams& params, const ProgressFn& progress) {
+  const PointCloud part = cropPart(scan_mm, options, params, subProgress(progress, 0.0, 0.25));
 
   // Keypoints and features are found in the scan frame, as for scene objects (normals are
   // oriented towards the camera), then moved into the model frame.

@@ -8,11 +8,13 @@
 #include "core/cloud/Units.h"
 #include "core/common/Progress.h"
 #include "core/features/Feature.h"
+#include "core/model/AutoParams.h"
 #include "core/params/Parameters.h"
 #include "core/params/ViewParams.h"
 #include "core/pipeline/Detection.h"
 
 #include <Eigen/Geometry>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,6 +56,9 @@ struct TaughtModel {
   /// (empty: none). E.g. a lower matching.min_coverage for a thin plate seen edge-on, whose edge
   /// normals agree with a scan's only in part (docs/design-notes.md, "A view's own parameters").
   ViewParams view_params;
+  /// Why each parameter derived for this part has its value (autoTeachParams), by key; empty when
+  /// the parameters were given.
+  std::map<std::string, std::string> param_reasons;
 };
 
 /// A box in the scan frame given by its pose and half extents (an operator's rotated crop box).
@@ -80,6 +85,19 @@ struct TeachOptions {
 
 /// Smallest crop accepted by teach(), in points.
 inline constexpr std::size_t kMinTeachPoints = 100;
+
+/// The part cut out of `scan_mm` as teach() cuts it: floor removal (with options.remove_floor:
+/// the plane the part rests on, found in the whole scan), crop, downsampling (params.downsample);
+/// unorganized, scan frame. Throws Error without a crop box or when the crop holds fewer than
+/// kMinTeachPoints points.
+PointCloud cropPart(const PointCloud& scan_mm, const TeachOptions& options,
+                    const RecognitionParams& params, const ProgressFn& progress = {});
+
+/// Parameters for teaching and recognizing this part, derived from the scan around the crop (its
+/// point spacing and noise) and from the part cut out with them (its size); `base` gives every
+/// value not derived. Throws Error as cropPart does, or when the crop's points coincide.
+AutoParams autoTeachParams(const PointCloud& scan_mm, const TeachOptions& options,
+                           const RecognitionParams& base = {}, const ProgressFn& progress = {});
 
 /// Teaches a model from `scan_mm` (camera frame): crop, optional floor removal, downsampling
 /// (params.downsample), keypoints and features as for a scene object, then moves everything into

@@ -35,6 +35,11 @@ constexpr double kBinFloorBandMm = 5.0;
 /// A bin floor has at most this share of the remaining points behind it (the bin walls' feet).
 constexpr double kMaxShareBehindBinFloor = 0.02;
 
+/// A supporting floor has at most this share of the points farther than kBehindDistances x the
+/// plane distance behind it (noise and flying pixels).
+constexpr double kMaxShareBehindFloor = 0.02;
+constexpr double kBehindDistances = 3.0;
+
 /// Heights above the first plane searched for a bin floor (mm).
 constexpr double kMaxBinFloorHeightMm = 500.0;
 
@@ -104,11 +109,54 @@ std::optional<Eigen::Vector4f> findBinFloor(const std::vector<Eigen::Vector3f>& 
   return plane.cast<float>();
 }
 
+/// The plane RANSAC finds among `indices` of `points` (an evenly strided sample of at most
+/// kMaxSamplePoints), refined by least squares on its inliers: (a, b, c, d) with a unit normal
+/// pointing towards the camera (the origin). None when RANSAC finds nothing.
+std::optional<Eigen::Vector4f> fitPlane(const std::vector<Eigen::Vector3f>& points,
+                                        const std::vector<int>& indices, double distance_mm,
+                                        std::uint64_t seed) {
+  if (indices.size() < 3)
+    return std::nullopt;
+  // Evenly strided sample: deterministic and spatially uniform.
+  const std::size_t stride = std::max<std::size_t>(1, indices.size() / kMaxSamplePoints);
+  auto sample = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  for (std::size_t j = 0; j < indices.size(); j += stride) {
+    const auto& p = points[static_cast<std::size_t>(indices[j])];
+    sample->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  }
+  auto model = std::make_shared<SeededPlaneModel>(sample);
+  model->seed(seed);
+  pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, distance_mm);
+  ransac.setMaxIterations(kPlaneTrials);
+  if (!ransac.computeModel())
+    return std::nullopt;
+  pcl::Indices inliers;
+  ransac.getInliers(inliers);
+  Eigen::VectorXf coefficients;
+  ransac.getModelCoefficients(coefficients);
+  if (inliers.size() >= 3) {
+    Eigen::VectorXf refined;
+    model->optimizeModelCoefficients(inliers, coefficients, refined);
+    if (refined.size() == 4 && refined.allFinite())
+      coefficients = refined;
+  }
+  Eigen::Vector4f plane = coefficients.head<4>();
+  plane /= plane.head<3>().norm();
+  if (plane[3] < 0) // the camera (origin) on the positive side
+    plane = -plane;
+  return plane;
+}
+
 } // namespace
 
 FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& params,
-                               std::uint64_t seed, const ProgressFn& progress) {
+                               std::uint64_t seed, const ProgressFn& progress,
+                               const std::vector<char>& part) {
   scene_mm.validate();
+  if (!part.empty() && part.size() != scene_mm.size())
+    throw Error("floor removal: " + std::to_string(part.size()) + " part flags for " +
+                std::to_string(scene_mm.size()) + " points");
+  const bool support_only = !part.empty();
   if (params.distance_mm <= 0)
     throw Error("floor removal needs a positive plane distance (floor.distance_mm), got " +
                 std::to_string(params.distance_mm));
@@ -155,45 +203,64 @@ FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& pa
   };
   const auto min_points =
       static_cast<std::size_t>(std::ceil(params.min_plane_fraction * double(total_valid)));
+  // Whether more than kMaxShareBehindFloor of the valid points lie beyond `plane`.
+  const auto hasPointsBehind = [&](const Eigen::Vector4f& plane) {
+    const auto beyond = static_cast<float>(-kBehindDistances * params.distance_mm);
+    const auto behind = std::count_if(alive.begin(), alive.end(), [&](int i) {
+      const auto& p = scene_mm.points_mm[static_cast<std::size_t>(i)];
+      return plane.head<3>().dot(p) + plane[3] < beyond;
+    });
+    return double(behind) > kMaxShareBehindFloor * double(total_valid);
+  };
+  std::vector<char> set_aside(scene_mm.size(), 0);
   const int planes = params.enabled ? params.max_planes : 0;
-  for (int plane = 0; plane < planes && alive.size() >= 3; ++plane) {
+  for (int plane = 0, retries = 0; plane < planes && alive.size() >= 3;) {
     reportProgress(progress, static_cast<double>(plane) / planes);
-    // Evenly strided sample of the remaining points: deterministic and spatially uniform.
-    const std::size_t stride = std::max<std::size_t>(1, alive.size() / kMaxSamplePoints);
-    auto sample = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-    for (std::size_t j = 0; j < alive.size(); j += stride) {
-      const auto& p = scene_mm.points_mm[static_cast<std::size_t>(alive[j])];
-      sample->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-    }
-    auto model = std::make_shared<SeededPlaneModel>(sample);
-    model->seed(seed + 0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(plane + 1));
-    pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, params.distance_mm);
-    ransac.setMaxIterations(kPlaneTrials);
-    if (!ransac.computeModel())
+    std::vector<int> candidates;
+    candidates.reserve(alive.size());
+    for (const int i : alive)
+      if (!set_aside[static_cast<std::size_t>(i)])
+        candidates.push_back(i);
+    const std::uint64_t attempt = static_cast<std::uint64_t>(plane + 1 + 1000 * retries);
+    const auto found = fitPlane(scene_mm.points_mm, candidates, params.distance_mm,
+                                seed + 0x9e3779b97f4a7c15ULL * attempt);
+    if (!found)
       break;
-    pcl::Indices inliers;
-    ransac.getInliers(inliers);
-    Eigen::VectorXf coefficients;
-    ransac.getModelCoefficients(coefficients);
-    if (inliers.size() >= 3) {
-      Eigen::VectorXf refined;
-      model->optimizeModelCoefficients(inliers, coefficients, refined);
-      if (refined.size() == 4 && refined.allFinite())
-        coefficients = refined;
+    if (support_only && hasPointsBehind(*found)) {
+      if (++retries > kFloorRetries)
+        break;
+      logger()->debug("plane ({:.3f}, {:.3f}, {:.3f}) at {:.1f} mm has points behind it: a "
+                      "face of a part, not the floor",
+                      (*found)[0], (*found)[1], (*found)[2], (*found)[3]);
+      const auto distance = static_cast<float>(params.distance_mm);
+      for (const int i : candidates) {
+        const auto& p = scene_mm.points_mm[static_cast<std::size_t>(i)];
+        if (std::abs(found->head<3>().dot(p) + (*found)[3]) <= distance)
+          set_aside[static_cast<std::size_t>(i)] = 1;
+      }
+      continue;
     }
-    Eigen::Vector4f plane_coefficients = coefficients.head<4>();
-    plane_coefficients /= plane_coefficients.head<3>().norm();
-    if (plane_coefficients[3] < 0) // the camera (origin) on the positive side
-      plane_coefficients = -plane_coefficients;
-
-    if (!removePlane(plane_coefficients, min_points))
+    if (!removePlane(*found, min_points))
       break; // the largest remaining plane is too small: no more floor or walls
+    ++plane;
   }
+  // Whether more of `plane`'s points lie outside the part than in it: a floor reaches beyond
+  // the part resting on it, a face of the part does not.
+  const auto reachesBeyondPart = [&](const Eigen::Vector4f& plane) {
+    std::size_t inside = 0, outside = 0;
+    for (const int i : alive) {
+      const auto& p = scene_mm.points_mm[static_cast<std::size_t>(i)];
+      if (std::abs(plane.head<3>().dot(p) + plane[3]) <= params.distance_mm)
+        ++(part[static_cast<std::size_t>(i)] ? inside : outside);
+    }
+    return outside > inside;
+  };
   if (params.bin_floor_fraction > 0 && !result.planes.empty()) {
     const auto min_bin_floor_points =
         static_cast<std::size_t>(std::ceil(params.bin_floor_fraction * double(total_valid)));
-    if (const auto bin_floor = findBinFloor(scene_mm.points_mm, alive, result.planes.front(),
-                                            params.distance_mm, min_bin_floor_points))
+    const auto bin_floor = findBinFloor(scene_mm.points_mm, alive, result.planes.front(),
+                                        params.distance_mm, min_bin_floor_points);
+    if (bin_floor && (!support_only || reachesBeyondPart(*bin_floor)))
       removePlane(*bin_floor, min_bin_floor_points);
   }
 

@@ -2,6 +2,7 @@
 
 #include "core/common/Error.h"
 #include "core/sim/PartCatalog.h"
+#include "core/sim/RandomPart.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,8 +42,25 @@ std::vector<SuiteScene> binSuite(const std::string& dir, const std::string& sens
   return out;
 }
 
+/// The bin of a random-parts scene: the default one, widened to 1.4 x 1.1 times the part's
+/// diameter for a part too large for it (still inside a PhoXi M's view from the bin's camera).
+BinGeometry binFor(double diameter_mm) {
+  BinGeometry bin;
+  bin.inner_x_mm = std::max(bin.inner_x_mm, 1.4 * diameter_mm);
+  bin.inner_y_mm = std::max(bin.inner_y_mm, 1.1 * diameter_mm);
+  return bin;
+}
+
+/// Instances of a part of `diameter_mm` in `bin`: ten, or as many as two layers of its floor
+/// hold (at least one), so that a pile of large parts stays inside the bin and below the
+/// camera's near range.
+int binCount(double diameter_mm, const BinGeometry& bin) {
+  const double fit = 2.0 * bin.inner_x_mm * bin.inner_y_mm / (diameter_mm * diameter_mm);
+  return static_cast<int>(std::clamp(std::floor(fit), 1.0, 10.0));
+}
+
 /// Per generated part (random-parts/part-KKK/): its table scans on kTeachSides sides and three
-/// PhoXi bins of ten.
+/// PhoXi bins of ten (fewer of a large part, in a larger bin: binFor, binCount).
 std::vector<SuiteScene> randomPartsSuite(std::uint64_t seed, int parts) {
   if (parts < 1 || parts > 10000)
     throw Error("the random-parts suite takes 1 to 10000 parts, not " + std::to_string(parts));
@@ -63,12 +81,16 @@ std::vector<SuiteScene> randomPartsSuite(std::uint64_t seed, int parts) {
       t.request.seed = hashMix(part_seed, static_cast<std::uint64_t>(side), 7);
       out.push_back(t);
     }
+    const double diameter_mm = randomPart(part_seed).diameter_mm();
+    const BinGeometry bin_geometry = binFor(diameter_mm);
+    const int count = binCount(diameter_mm, bin_geometry);
     for (int bin = 0; bin < 3; ++bin) {
       SuiteScene b;
       b.relative_prefix = prefix / sceneName(static_cast<std::size_t>(bin));
       b.request.layout = LayoutKind::Bin;
       b.request.parts = {"random-" + std::to_string(part_seed)};
-      b.request.count = 10;
+      b.request.count = count;
+      b.request.bin = bin_geometry;
       b.request.seed = hashMix(part_seed, static_cast<std::uint64_t>(bin), 8);
       out.push_back(b);
     }

@@ -48,8 +48,8 @@ std::vector<std::string> suiteNames();
 /// The scenes of suite `name` for `seed` (kDefaultSuiteSeed unless testing). Besides
 /// suiteNames(), "random-parts": `random_parts` parts generated from the seed (randomPart,
 /// core/sim/RandomPart.h), each in random-parts/part-KKK/ with its table scans on each side it
-/// can rest on (teach, teach-side1..3) and three PhoXi M bins of ten (scene-000..002). Throws Error
-/// for an unknown suite.
+/// can rest on (teach, teach-side1..3) and three PhoXi M bins of ten, fewer of a large part
+/// (scene-000..002). Throws Error for an unknown suite.
 std::vector<SuiteScene> suiteScenes(const std::string& name, std::uint64_t seed,
                                     int random_parts = kDefaultRandomParts);
 

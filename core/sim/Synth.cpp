@@ -86,6 +86,7 @@ SynthScene synthesize(const SynthRequest& request, const ProgressFn& progress) {
   spec.seed = hashMix(request.seed, 0, 100); // physics and rendering draw from separate streams
   spec.camera_height_mm = request.camera_height_mm;
   spec.teach_side = request.teach_side;
+  spec.bin = request.bin;
   out.scene = buildScene(spec, out.sensor, subProgress(progress, 0.0, 0.4));
   out.render = renderScene(out.scene, out.sensor, out.noise, hashMix(request.seed, 0, 101),
                            subProgress(progress, 0.4, 1.0));

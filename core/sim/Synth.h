@@ -29,6 +29,7 @@ struct SynthRequest {
   bool noiseless = false;      ///< exact geometry (SensorNoise::none), for checks
   double camera_height_mm = 0; ///< 0 = default for the sensor and layout
   int teach_side = 0;          ///< teach layout: the side it rests on (SceneSpec)
+  BinGeometry bin;             ///< bin layout: the bin's size
   /// Each instance's shape varies by up to this fraction (deformedPart: stretched, sheared and
   /// bent, like pears of one kind); 0 = every instance exactly as designed.
   double deformation = 0.0;

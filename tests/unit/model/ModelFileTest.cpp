@@ -2,6 +2,7 @@
 
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
+#include "tests/support/RaycastScene.h"
 #include "tests/support/TempDir.h"
 #include "tests/unit/pipeline/IdealScene.h"
 
@@ -74,6 +75,29 @@ TEST(Teach, SurfaceVotingModelNeedsNoFeatures) {
   const TaughtModel none = teach(teachScan(), one, params);
   EXPECT_TRUE(none.features.empty());
   EXPECT_GT(none.cloud_mm.size(), 0u);
+}
+
+TEST(Teach, TheFloorRemovedIsTheTableNotAPlatesTopFace) {
+  // A 360 x 260 x 20 mm plate on a table 1000 mm away fills most of the scan; the crop excludes
+  // the table. Floor removal with a bin-floor search (phoxi-bin's) took the plate's top face for a
+  // floor; a part taught on a table keeps it.
+  test::RaycastScene scene;
+  scene.floor_z_mm = 1000.0;
+  scene.boxes.emplace_back(Eigen::Vector3d(-180, -130, 980), Eigen::Vector3d(180, 130, 1000));
+  const PointCloud scan = scene.render(320, 240, 800.0, {300, 0, 0}, 0.1, 5);
+  std::size_t plate_points = 0;
+  for (std::size_t i = 0; i < scan.size(); ++i)
+    plate_points += isValid(scan.points_mm[i]) && scene.labels[i] >= 0;
+  TeachOptions options;
+  options.crop_box_mm =
+      Eigen::AlignedBox3f(Eigen::Vector3f(-190, -140, 970), Eigen::Vector3f(190, 140, 999));
+  options.remove_floor = true;
+  RecognitionParams params = test::idealParams(0.1);
+  params.floor.min_plane_fraction = 0.05;
+  params.floor.bin_floor_fraction = 0.02;
+  params.matching.surface_sampling_mm = 10.0;
+  const TaughtModel model = teach(scan, options, params);
+  EXPECT_GT(model.cloud_mm.size(), plate_points * 9 / 10);
 }
 
 TEST(ModelFile, RoundTripKeepsEverything) {

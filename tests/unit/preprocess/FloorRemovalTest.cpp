@@ -98,9 +98,51 @@ TEST(FloorRemoval, BinFloorGoesAndTheRimAndPartsStay) {
   ASSERT_GT(parts, 300u);
   EXPECT_EQ(parts_kept, parts);
 
+  // A part taught from the bin (the first one cropped) rests on the bin's floor: it goes too.
+  std::vector<char> first_part(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    first_part[i] = scene.labels[i] == kFirstPart;
+  const auto teach = core::removeFloor(cloud, params, 42, {}, first_part);
+  ASSERT_EQ(teach.planes.size(), 2u);
+  EXPECT_NEAR(teach.planes[1].w(), 990.0f, 0.2);
+
   // Too small a bin floor for the share asked: nothing more goes.
   params.bin_floor_fraction = 0.5;
   EXPECT_EQ(core::removeFloor(cloud, params, 42).planes.size(), 1u);
+}
+
+TEST(FloorRemoval, SupportOnlyKeepsAPlateFaceThatOutnumbersTheTable) {
+  // A 360 x 260 x 20 mm plate on a table 1000 mm from the camera fills most of the view: its top
+  // face is the largest plane, with the table behind it. As a support, only the table goes.
+  test::RaycastScene scene;
+  scene.floor_z_mm = 1000.0;
+  scene.boxes.emplace_back(Eigen::Vector3d(-180, -130, 980), Eigen::Vector3d(180, 130, 1000));
+  const core::PointCloud cloud = scene.render(320, 240, 800.0, {300, 0, 0}, 0.1, 5);
+  std::size_t floor_points = 0, plate_points = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (core::isValid(cloud.points_mm[i]))
+      (scene.labels[i] < 0 ? floor_points : plate_points)++;
+  ASSERT_GT(plate_points, floor_points); // the plate's face is the dominant plane
+  ASSERT_GT(floor_points, plate_points / 10);
+
+  core::FloorParams params;
+  params.min_plane_fraction = 0.05;
+  const auto any = core::removeFloor(cloud, params, 42);
+  ASSERT_EQ(any.planes.size(), 1u);
+  EXPECT_NEAR(any.planes[0].w(), 980.0f, 0.5); // the plate's face, without the check
+
+  std::vector<char> plate(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    plate[i] = scene.labels[i] >= 0;
+  const auto support = core::removeFloor(cloud, params, 42, {}, plate);
+  ASSERT_EQ(support.planes.size(), 1u);
+  EXPECT_NEAR(support.planes[0].z(), -1.0f, 1e-3);
+  EXPECT_NEAR(support.planes[0].w(), 1000.0f, 0.5);
+  std::size_t kept_plate = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (core::isValid(support.remaining.points_mm[i]) && scene.labels[i] >= 0)
+      ++kept_plate;
+  EXPECT_GT(kept_plate, plate_points * 9 / 10);
 }
 
 TEST(FloorRemoval, SmallPlanesAreKeptAndDisabledIsACopy) {

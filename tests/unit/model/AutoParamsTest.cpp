@@ -1,0 +1,138 @@
+#include "core/model/AutoParams.h"
+
+#include "core/common/Error.h"
+#include "core/model/TaughtModel.h"
+#include "core/params/ParameterTable.h"
+#include "tests/support/RaycastScene.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+#include <random>
+
+using namespace scanpick;
+using namespace scanpick::core;
+
+namespace {
+
+/// Points spread over the surface of a box of the given size centred at the origin.
+PointCloud boxSurface(const Eigen::Vector3f& size_mm, std::size_t count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> unit(-0.5f, 0.5f);
+  std::uniform_int_distribution<int> face(0, 5);
+  PointCloud cloud;
+  for (std::size_t i = 0; i < count; ++i) {
+    Eigen::Vector3f p(unit(rng), unit(rng), unit(rng));
+    const int f = face(rng);
+    p[f / 2] = f % 2 ? 0.5f : -0.5f;
+    cloud.points_mm.push_back(p.cwiseProduct(size_mm));
+  }
+  cloud.width = static_cast<std::uint32_t>(count);
+  cloud.height = 1;
+  return cloud;
+}
+
+/// The table on its own, 1000 mm from a camera of focal length 300 px: 3.33 mm point spacing.
+PointCloud tableScan(double noise_mm) {
+  test::RaycastScene scene;
+  scene.floor_z_mm = 1000.0;
+  return scene.render(200, 150, 300.0, {0, 0, 0}, noise_mm, 3);
+}
+
+} // namespace
+
+TEST(AutoParams, MeasuresTheSpacingAndNoiseOfAScan) {
+  const ScanMeasures quiet = measureScan(tableScan(0.0));
+  EXPECT_NEAR(quiet.spacing_mm, 1000.0 / 300.0, 0.05);
+  EXPECT_LT(quiet.noise_mm, 0.01);
+  const ScanMeasures noisy = measureScan(tableScan(0.5));
+  EXPECT_NEAR(noisy.spacing_mm, 1000.0 / 300.0, 0.2);
+  EXPECT_GT(noisy.noise_mm, 0.3);
+  EXPECT_LT(noisy.noise_mm, 0.6);
+  PointCloud few;
+  few.points_mm.assign(5, Eigen::Vector3f(1, 2, 3));
+  few.width = 5;
+  few.height = 1;
+  EXPECT_THROW(measureScan(few), Error);
+}
+
+TEST(AutoParams, TheDiameterAndTheDerivedValuesDoNotDependOnTheYaw) {
+  const Eigen::Vector3f size(120, 60, 20);
+  const PointCloud part = boxSurface(size, 20000, 1);
+  const double diagonal = size.cast<double>().norm();
+  const ScanMeasures scan{0.7, 0.1};
+  const AutoParams first = deriveParams(scan, measurePart(part, scan.spacing_mm));
+  EXPECT_NEAR(first.part.diameter_mm, diagonal, 0.01 * diagonal);
+  EXPECT_NEAR(first.part.extent_mm.x(), 120.0, 1.0);
+  EXPECT_NEAR(first.part.extent_mm.y(), 60.0, 1.0);
+  EXPECT_NEAR(first.part.extent_mm.z(), 20.0, 1.0);
+  for (int step = 1; step < 24; ++step) {
+    SCOPED_TRACE("yaw " + std::to_string(15 * step) + " deg");
+    const Eigen::Isometry3f T(Eigen::AngleAxisf(float(step * M_PI / 12), Eigen::Vector3f::UnitZ()));
+    const AutoParams turned =
+        deriveParams(scan, measurePart(transformed(part, T), scan.spacing_mm));
+    EXPECT_NEAR(turned.part.diameter_mm, first.part.diameter_mm, 0.01 * diagonal);
+    ASSERT_EQ(turned.values.size(), first.values.size());
+    for (std::size_t i = 0; i < first.values.size(); ++i)
+      EXPECT_NEAR(turned.values[i].value, first.values[i].value,
+                  0.01 * std::abs(first.values[i].value) + 1e-9)
+          << first.values[i].key;
+  }
+}
+
+TEST(AutoParams, FlyingPixelsDoNotEnlargeThePart) {
+  PointCloud part = boxSurface({40, 30, 10}, 5000, 2);
+  const double clean = measurePart(part, 0.5).diameter_mm;
+  part.points_mm.push_back({300, 0, 0});
+  part.points_mm.push_back({0, -250, 40});
+  part.width += 2;
+  EXPECT_NEAR(measurePart(part, 0.5).diameter_mm, clean, 1e-6);
+}
+
+TEST(AutoParams, ValuesFollowTheScanAndThePartWithAReasonEach) {
+  PartMeasures part;
+  part.diameter_mm = 150.0;
+  part.points = 20000;
+  const AutoParams fine = deriveParams({0.7, 0.1}, part);
+  const AutoParams coarse = deriveParams({2.0, 1.5}, part); // a Kinect-class scan
+  const auto value = [](const AutoParams& a, const std::string& key) {
+    return findParameter(key)->get(a.params);
+  };
+  // Neighbourhoods scale with the spacing; tolerances keep above the noise; the surface sampling
+  // scales with the part.
+  EXPECT_NEAR(value(coarse, "keypoints.neighbourhood_radius_mm") /
+                  value(fine, "keypoints.neighbourhood_radius_mm"),
+              2.0 / 0.7, 1e-9);
+  EXPECT_GE(value(coarse, "matching.verify_tolerance_mm"), 5 * 1.5);
+  EXPECT_GE(value(coarse, "floor.distance_mm"), 8 * 1.5);
+  EXPECT_NEAR(value(fine, "matching.surface_sampling_mm"), 0.035 * 150.0, 1e-9);
+  part.diameter_mm = 25.0;
+  part.points = 400;
+  const AutoParams small = deriveParams({0.7, 0.1}, part);
+  EXPECT_LT(value(small, "features.ransac_size"), value(fine, "features.ransac_size"));
+  EXPECT_LT(value(small, "clustering.count_min_points"), 100.0);
+  EXPECT_GE(value(small, "matching.surface_sampling_mm"), 2.5 * 0.7);
+  EXPECT_EQ(value(fine, "refine.enabled"), 1.0);
+  for (const AutoParams* a : {&fine, &coarse, &small})
+    for (const auto& v : a->values) {
+      EXPECT_FALSE(v.reason.empty()) << v.key;
+      EXPECT_NO_THROW(checkParamValue(*findParameter(v.key), v.value)) << v.key;
+      EXPECT_EQ(value(*a, v.key), v.value) << v.key;
+    }
+}
+
+TEST(AutoParams, TeachMeasuresThePartWithoutItsTable) {
+  // A 150 x 100 x 30 mm block on a table 1000 mm away, cropped with the table inside the box.
+  test::RaycastScene scene;
+  scene.floor_z_mm = 1000.0;
+  scene.boxes.emplace_back(Eigen::Vector3d(-75, -50, 970), Eigen::Vector3d(75, 50, 1000));
+  const PointCloud scan = scene.render(400, 300, 600.0, {300, 0, 0}, 0.1, 4);
+  TeachOptions options;
+  options.crop_box_mm =
+      Eigen::AlignedBox3f(Eigen::Vector3f(-90, -65, 900), Eigen::Vector3f(90, 65, 1010));
+  options.remove_floor = true;
+  const AutoParams a = autoTeachParams(scan, options);
+  EXPECT_NEAR(a.scan.spacing_mm, 1000.0 / 600.0, 0.15);
+  // The block's visible top and side faces span its diagonal (the table went with the floor).
+  EXPECT_NEAR(a.part.diameter_mm, Eigen::Vector3d(150, 100, 30).norm(), 6.0);
+  EXPECT_EQ(findParameter("refine.enabled")->get(a.params), 1.0);
+}
