@@ -790,6 +790,22 @@
         <source>preprocess %1 · clustering %2 · keypoints %3 · features %4 · matching %5 · refine %6 · total %7 ms</source>
         <translation>pre-elaborazione %1 · clustering %2 · punti chiave %3 · feature %4 · abbinamento %5 · rifinitura %6 · totale %7 ms</translation>
     </message>
+    <message>
+        <source>Deriving the parameters from the part and teaching…</source>
+        <translation>Derivazione dei parametri dal pezzo e apprendimento…</translation>
+    </message>
+    <message>
+        <source>point spacing %1 mm, depth noise %2 mm, part diameter %3 mm</source>
+        <translation>passo tra i punti %1 mm, rumore di profondità %2 mm, diametro del pezzo %3 mm</translation>
+    </message>
+    <message>
+        <source>Parameters derived from the part: %1 (the values marked “derived” in the Parameters panel).</source>
+        <translation>Parametri derivati dal pezzo: %1 (i valori segnati “derivato” nel pannello Parametri).</translation>
+    </message>
+    <message>
+        <source>Model taught: %1 features, with parameters derived from the part. Save it with Ctrl+S.</source>
+        <translation>Modello appreso: %1 feature, con parametri derivati dal pezzo. Salvalo con Ctrl+S.</translation>
+    </message>
 </context>
 <context>
     <name>scanpick::ui::ParameterPanel</name>
@@ -847,9 +863,24 @@
         <translation>Seme</translation>
     </message>
     <message>
-        <location filename="../ui/panels/ParameterPanel.cpp" line="250"/>
-        <source>(choose a preset)</source>
-        <translation>(scegli un preset)</translation>
+        <source>Derived from the part (default)</source>
+        <translation>Derivati dal pezzo (predefinito)</translation>
+    </message>
+    <message>
+        <source>Teach derives every parameter from the part and the scan (point spacing, depth noise, the part&apos;s size) and shows each here with its reason. Values you change by hand before teaching override the derived ones, as --set does on the command line. A preset below is used as it is, with nothing derived.</source>
+        <translation>L&apos;apprendimento deriva ogni parametro dal pezzo e dalla scansione (passo tra i punti, rumore di profondità, dimensione del pezzo) e li mostra qui, ciascuno con il suo motivo. I valori cambiati a mano prima dell&apos;apprendimento sostituiscono quelli derivati, come --set sulla riga di comando. Un preset qui sotto si usa così com&apos;è, senza derivare nulla.</translation>
+    </message>
+    <message>
+        <source>Values marked “derived” come from the part and the scan at teach: hover one for its reason. Values you change override them at the next teach.</source>
+        <translation>I valori segnati “derivato” vengono dal pezzo e dalla scansione all&apos;apprendimento: passa sopra uno per il suo motivo. I valori che cambi li sostituiscono al prossimo apprendimento.</translation>
+    </message>
+    <message>
+        <source>derived</source>
+        <translation>derivato</translation>
+    </message>
+    <message>
+        <source>Derived from the part: %1</source>
+        <translation>Derivato dal pezzo: %1</translation>
     </message>
 </context>
 <context>

@@ -529,8 +529,19 @@ void MainWindow::setViews(std::vector<std::shared_ptr<const core::TaughtModel>> 
   } else {
     m_views = core::joinViews(m_loaded_views);
   }
-  if (take_params)
-    m_params->setParams(params);
+  if (take_params) {
+    // The reasons of the values derived at teach; a view's own value has none.
+    auto reasons = first.param_reasons;
+    for (const auto& [key, value] : first.view_params)
+      reasons.erase(key);
+    if (!reasons.empty())
+      core::logger()->info("model '{}': {} parameters derived from the part at teach, each with "
+                           "its reason in the Parameters panel",
+                           first.name, reasons.size());
+    m_params->setParams(params, std::move(reasons));
+  }
+  // What a derived teach measured belongs to that teach (teach() shows it again).
+  m_teach_measures->setVisible(false);
   prepareModelInBackground();
   const auto joined = std::count_if(m_views.begin(), m_views.end(),
                                     [](const auto& v) { return !v->joined_views.empty(); });

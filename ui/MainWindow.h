@@ -130,7 +130,12 @@ public:
   /// Replaces the grip points and selects row `selected` of their list (used by the undo
   /// commands; not undoable itself).
   void setGripPoints(std::vector<core::GripPoint> grips, int selected = -1);
-  /// Teaches the model from the working cloud in the background; emits modelTaught.
+  /// Teaches the model from the working cloud in the background; emits modelTaught. With the
+  /// Parameters panel's default choice (ParameterPanel::derivesAtTeach) the parameters are
+  /// derived from the part and the scan in the same job (values set by hand since the last teach
+  /// or preset win), the model keeps the reasons, the panel shows the derived values with them
+  /// and the Teach panel the measured spacing, noise and diameter; otherwise the panel's values
+  /// are used as they are.
   void teach();
 
   // --- recognize ---
@@ -235,6 +240,9 @@ private:
   void refreshGripList();
   void onViewportClick(int x, int y);
   void showFloorPreview();
+  /// Shows what the last derived teach measured (spacing, noise, diameter) in the Teach panel,
+  /// the status bar and the log; hides the Teach panel's line for `derived` empty.
+  void showTeachMeasures(const core::AutoParams* derived, std::size_t features);
   /// Pushes an undoable replacement of the working cloud by `after`.
   void replacePart(std::shared_ptr<const core::PointCloud> after, const QString& text);
   // MainWindowTools.cpp
@@ -296,8 +304,9 @@ private:
   QAction* m_floor_remove_action = nullptr;
   bool m_apply_floor_pending = false; // Remove floor asked before a preview existed
   QComboBox* m_sensor_combo = nullptr;
-  QLineEdit* m_part_name = nullptr; // teach: the part's name (empty: the scan's)
-  QLineEdit* m_part_pose = nullptr; // teach: its pose in the scan, optional
+  QLineEdit* m_part_name = nullptr;   // teach: the part's name (empty: the scan's)
+  QLineEdit* m_part_pose = nullptr;   // teach: its pose in the scan, optional
+  QLabel* m_teach_measures = nullptr; // teach: what the derived parameters were measured from
   LassoOverlay* m_lasso = nullptr;
   vtkSmartPointer<vtkBoxWidget2> m_box_widget;
   std::map<QString, vtkSmartPointer<vtkProp>> m_layers;

@@ -6,6 +6,7 @@
 #include "core/preprocess/FloorRemoval.h"
 #include "ui/MainWindow.h"
 #include "ui/Settings.h"
+#include "ui/TeachJob.h"
 #include "ui/jobs/JobRunner.h"
 #include "ui/panels/ParameterPanel.h"
 #include "ui/viewport/Presenters.h"
@@ -128,6 +129,12 @@ void MainWindow::buildTeachDock() {
             tr("Where the part lies in this scan (from a fixture, or the robot that placed it): "
                "views that know it are joined, each knowing the others"));
   layout->addLayout(part_form);
+  // After a derived teach: what the parameters were derived from.
+  m_teach_measures = new QLabel(panel);
+  m_teach_measures->setObjectName(QStringLiteral("teachMeasures"));
+  m_teach_measures->setWordWrap(true);
+  m_teach_measures->setVisible(false);
+  layout->addWidget(m_teach_measures);
   layout->addWidget(new QLabel(tr("Grip points (double-click to rename):"), panel));
   m_grip_list = new QListWidget(panel);
   m_grip_list->setObjectName(QStringLiteral("gripList"));
@@ -506,13 +513,18 @@ void MainWindow::teach() {
   options.sensor = currentSensor();
   const auto part = m_part;
   const core::RecognitionParams params = m_params->params();
-  statusBar()->showMessage(tr("Teaching…"));
-  m_jobs->run<core::TaughtModel>(
-      [part, options, params](const core::ProgressFn& progress) {
-        return core::teach(*part, options, params, progress);
+  const std::set<std::string> hand_edits = m_params->handEdits();
+  const bool derive = m_params->derivesAtTeach();
+  statusBar()->showMessage(derive ? tr("Deriving the parameters from the part and teaching…")
+                                  : tr("Teaching…"));
+  m_jobs->run<TeachOutcome>(
+      [part, options, params, hand_edits, derive](const core::ProgressFn& progress) {
+        return teachPart(*part, options, params, hand_edits, derive, progress);
       },
-      [this](std::shared_ptr<const core::TaughtModel> model) {
-        setViews({model}, {QString()}, false);
+      [this](std::shared_ptr<const TeachOutcome> outcome) {
+        const auto& model = outcome->model;
+        // The panel takes the taught values (and their reasons): recognition uses them.
+        setViews({model}, {QString()}, true);
         core::logger()->info("taught '{}': {} points, {} keypoints, {} features, {} grip points",
                              model->name, model->cloud_mm.size(), model->keypoints_mm.size(),
                              model->features.size(), model->grip_points.size());
@@ -520,12 +532,38 @@ void MainWindow::teach() {
         setLayer(QStringLiteral("features"),
                  makeFeaturesActor(model->features, QColor(0, 230, 255), QColor(255, 60, 220), 3.0,
                                    ratio(), model->T_teach_model));
-        statusBar()->showMessage(
-            tr("Model taught: %1 features. Save it with Ctrl+S.").arg(model->features.size()),
-            8000);
+        showTeachMeasures(outcome->derived ? &*outcome->derived : nullptr, model->features.size());
+        // The preview's keypoints were found with the values before the derivation.
+        if (outcome->derived)
+          schedulePreview(core::Stage::Keypoints);
         emit modelTaught();
       },
       [this](const QString& e) { showError(tr("Teach"), e); });
+}
+
+void MainWindow::showTeachMeasures(const core::AutoParams* derived, std::size_t features) {
+  m_teach_measures->setVisible(derived != nullptr);
+  if (!derived) {
+    statusBar()->showMessage(tr("Model taught: %1 features. Save it with Ctrl+S.").arg(features),
+                             8000);
+    return;
+  }
+  const auto mm = [](double v) { return QString::number(v, 'f', v < 10 ? 2 : 1); };
+  const QString measures = tr("point spacing %1 mm, depth noise %2 mm, part diameter %3 mm")
+                               .arg(mm(derived->scan.spacing_mm), mm(derived->scan.noise_mm),
+                                    mm(derived->part.diameter_mm));
+  m_teach_measures->setText(
+      tr("Parameters derived from the part: %1 (the values marked “derived” in the Parameters "
+         "panel).")
+          .arg(measures));
+  core::logger()->info("parameters derived from the part: point spacing {:.3f} mm, depth noise "
+                       "{:.3f} mm, part diameter {:.1f} mm, {} values",
+                       derived->scan.spacing_mm, derived->scan.noise_mm, derived->part.diameter_mm,
+                       derived->values.size());
+  statusBar()->showMessage(
+      tr("Model taught: %1 features, with parameters derived from the part. Save it with Ctrl+S.")
+          .arg(features),
+      8000);
 }
 
 } // namespace scanpick::ui

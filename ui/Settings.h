@@ -11,6 +11,7 @@ inline const QString kGeometry = QStringLiteral("window/geometry"); ///< QByteAr
 inline const QString kWindowState = QStringLiteral("window/state"); ///< docks, QByteArray
 inline const QString kRecentFiles = QStringLiteral("files/recent"); ///< QStringList
 inline const QString kLastDirectory = QStringLiteral("files/lastDirectory");
+/// The preset file in effect; empty or absent: parameters derived from the part at teach.
 inline const QString kLastPreset = QStringLiteral("params/lastPreset");  ///< preset file path
 inline const QString kLastDevice = QStringLiteral("capture/lastDevice"); ///< device id
 inline const QString kLanguage = QStringLiteral("ui/language");          ///< "en" or "it"

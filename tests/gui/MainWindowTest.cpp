@@ -5,6 +5,7 @@
 
 #include "core/common/Log.h"
 #include "core/model/ModelFile.h"
+#include "core/params/ParamsJson.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "tests/unit/pipeline/IdealScene.h"
 #include "ui/jobs/JobRunner.h"
@@ -53,11 +54,20 @@ core::OrientedBox cropAroundPart() {
   return box;
 }
 
+/// The ideal part's parameters as a named preset: Teach uses a preset's values as they are
+/// (the panel's default choice would derive them from the part).
+QString idealPreset() {
+  const QString path = test::screenshotDir() + "/ideal-preset.json";
+  core::savePreset(path.toStdString(),
+                   core::Preset{"ideal", "the thesis's ideal part", test::idealParams(0.001)});
+  return path;
+}
+
 struct WindowFixture : ::testing::Test {
   MainWindow window;
   void SetUp() override {
     window.setPreviewDelay(20);
-    window.parameterPanel()->setParams(test::idealParams(0.001));
+    window.parameterPanel()->loadPresetFile(idealPreset());
     window.resize(1200, 800);
     window.show();
     ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));

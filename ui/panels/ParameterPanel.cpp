@@ -88,9 +88,22 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   m_preset_description->setWordWrap(true);
   m_preset_description->setVisible(false);
   outer->addWidget(m_preset_description);
+  // Which values teach derived from the part (marked "derived" below).
+  m_derived_note = new QLabel(tr("Values marked “derived” come from the part and the scan at "
+                                 "teach: hover one for its reason. Values you change override "
+                                 "them at the next teach."),
+                              this);
+  m_derived_note->setObjectName(QStringLiteral("derivedNote"));
+  m_derived_note->setWordWrap(true);
+  m_derived_note->setVisible(false);
+  outer->addWidget(m_derived_note);
   fillPresetList();
-  connect(m_presets, &QComboBox::activated, this,
-          [this](int index) { loadPresetOrWarn(m_presets->itemData(index).toString()); });
+  connect(m_presets, &QComboBox::activated, this, [this](int index) {
+    if (index == 0)
+      chooseDerived();
+    else
+      loadPresetOrWarn(m_presets->itemData(index).toString());
+  });
   connect(load, &QPushButton::clicked, this, [this] {
     loadPresetOrWarn(QFileDialog::getOpenFileName(this, tr("Load preset"), presetsDirectory(),
                                                   tr("Presets (*.json)")));
@@ -129,7 +142,28 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
     editor->setObjectName(qs(info.key));
     editor->setToolTip(qs(info.description));
     m_editors[info.key] = editor;
-    form->addRow(translated(info.label), editor);
+    // The editor and, when teach derived its value, a small "derived" marker beside it.
+    auto* row = new QWidget(body);
+    auto* row_layout = new QHBoxLayout(row);
+    row_layout->setContentsMargins(0, 0, 0, 0);
+    row_layout->addWidget(editor, 1);
+    auto* marker = new QLabel(tr("derived"), row);
+    marker->setObjectName(qs(info.key + ".derived"));
+    marker->setForegroundRole(QPalette::Link);
+    QFont small = marker->font();
+    small.setItalic(true);
+    small.setPointSizeF(small.pointSizeF() * 0.85);
+    marker->setFont(small);
+    // Its room is kept while hidden, so that the editors line up.
+    QSizePolicy keep_room = marker->sizePolicy();
+    keep_room.setRetainSizeWhenHidden(true);
+    marker->setSizePolicy(keep_room);
+    marker->setVisible(false);
+    row_layout->addWidget(marker);
+    m_markers[info.key] = marker;
+    auto* label = new QLabel(translated(info.label), row);
+    label->setBuddy(editor);
+    form->addRow(label, row);
   }
   auto* misc = new QGroupBox(tr("Random"), body);
   auto* misc_form = new QFormLayout(misc);
@@ -148,6 +182,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
       return;
     const core::RecognitionParams before = m_params;
     m_params.seed = static_cast<std::uint64_t>(value);
+    m_hand_edits.insert("seed");
     if (const auto stage = core::firstChangedStage(before, m_params))
       emit paramsChanged(m_params, *stage);
   });
@@ -203,6 +238,9 @@ void ParameterPanel::editorChanged(const core::ParamInfo& info, double value) {
     return;
   const core::RecognitionParams before = m_params;
   info.set(m_params, value);
+  m_hand_edits.insert(info.key);
+  if (m_reasons.erase(info.key) > 0)
+    refreshReasons();
   if (const auto stage = core::firstChangedStage(before, m_params))
     emit paramsChanged(m_params, *stage);
 }
@@ -225,9 +263,28 @@ void ParameterPanel::refreshEditors() {
   m_updating = false;
 }
 
-void ParameterPanel::setParams(const core::RecognitionParams& params) {
+void ParameterPanel::refreshReasons() {
+  for (const core::ParamInfo& info : core::parameterTable()) {
+    const auto reason = m_reasons.find(info.key);
+    const bool derived = reason != m_reasons.end();
+    m_editors.at(info.key)->setToolTip(
+        derived ? qs(info.description) + "\n\n" +
+                      tr("Derived from the part: %1").arg(qs(reason->second))
+                : qs(info.description));
+    QLabel* marker = m_markers.at(info.key);
+    marker->setToolTip(derived ? qs(reason->second) : QString());
+    marker->setVisible(derived);
+  }
+  m_derived_note->setVisible(!m_reasons.empty());
+}
+
+void ParameterPanel::setParams(const core::RecognitionParams& params,
+                               std::map<std::string, std::string> reasons) {
   m_params = params;
+  m_reasons = std::move(reasons);
+  m_hand_edits.clear();
   refreshEditors();
+  refreshReasons();
 }
 
 bool ParameterPanel::setValue(const std::string& key, double value) {
@@ -236,6 +293,9 @@ bool ParameterPanel::setValue(const std::string& key, double value) {
     return false;
   const core::RecognitionParams before = m_params;
   info->set(m_params, value);
+  m_hand_edits.insert(key);
+  if (m_reasons.erase(key) > 0)
+    refreshReasons();
   refreshEditors();
   if (const auto stage = core::firstChangedStage(before, m_params))
     emit paramsChanged(m_params, *stage);
@@ -251,6 +311,18 @@ void ParameterPanel::loadPresetFile(const QString& path) {
   const core::Preset preset = core::loadPreset(path.toStdString());
   const core::RecognitionParams before = m_params;
   setParams(preset.params);
+  // The list shows the preset in effect; a file from elsewhere (Load…) joins it.
+  int index = -1;
+  const QString canonical = QFileInfo(path).canonicalFilePath();
+  for (int i = 1; i < m_presets->count() && index < 0; ++i)
+    if (QFileInfo(m_presets->itemData(i).toString()).canonicalFilePath() == canonical)
+      index = i;
+  if (index < 0) {
+    m_presets->addItem(QFileInfo(path).completeBaseName(), QFileInfo(path).absoluteFilePath());
+    index = m_presets->count() - 1;
+    m_presets->setItemData(index, qs(preset.description), Qt::ToolTipRole);
+  }
+  setChoice(index);
   m_preset_description->setText(
       QStringLiteral("<b>%1</b>: %2")
           .arg(qs(preset.name).toHtmlEscaped(), qs(preset.description).toHtmlEscaped()));
@@ -262,12 +334,32 @@ void ParameterPanel::loadPresetFile(const QString& path) {
                      core::firstChangedStage(before, m_params).value_or(core::Stage::Preprocess));
 }
 
+void ParameterPanel::chooseDerived() {
+  const core::RecognitionParams before = m_params;
+  setParams(core::RecognitionParams{});
+  setChoice(0);
+  m_preset_description->setVisible(false);
+  core::logger()->info("parameters: derived from the part and the scan at teach");
+  emit presetLoaded(QString());
+  emit paramsChanged(m_params,
+                     core::firstChangedStage(before, m_params).value_or(core::Stage::Preprocess));
+}
+
+void ParameterPanel::setChoice(int index) {
+  m_choice = index;
+  m_presets->setCurrentIndex(index);
+  // The list's own tooltip says what the entry in effect does.
+  const QString tip = m_presets->itemData(index, Qt::ToolTipRole).toString();
+  m_presets->setToolTip(tip.isEmpty() ? tr("Bundled parameter presets") : tip);
+}
+
 void ParameterPanel::loadPresetOrWarn(const QString& path) {
   if (path.isEmpty())
     return;
   try {
     loadPresetFile(path);
   } catch (const std::exception& e) {
+    setChoice(m_choice); // the list goes back to what is in effect
     QMessageBox::warning(this, tr("Preset"), QString::fromUtf8(e.what()));
   }
 }
@@ -288,7 +380,14 @@ QString ParameterPanel::presetsDirectory() {
 
 void ParameterPanel::fillPresetList() {
   m_presets->clear();
-  m_presets->addItem(tr("(choose a preset)"), QString());
+  m_presets->addItem(tr("Derived from the part (default)"), QString());
+  m_presets->setItemData(
+      0,
+      tr("Teach derives every parameter from the part and the scan (point spacing, depth noise, "
+         "the part's size) and shows each here with its reason. Values you change by hand before "
+         "teaching override the derived ones, as --set does on the command line. A preset below "
+         "is used as it is, with nothing derived."),
+      Qt::ToolTipRole);
   const QDir dir(presetsDirectory());
   for (const QFileInfo& file :
        dir.entryInfoList({QStringLiteral("*.json")}, QDir::Files, QDir::Name)) {
@@ -303,6 +402,19 @@ void ParameterPanel::fillPresetList() {
       core::logger()->warn("preset {}: {}", file.absoluteFilePath().toStdString(), e.what());
     }
   }
+  setChoice(0);
+}
+
+core::RecognitionParams withHandEdits(core::RecognitionParams derived,
+                                      const core::RecognitionParams& panel,
+                                      const std::set<std::string>& keys) {
+  for (const std::string& key : keys) {
+    if (key == "seed")
+      derived.seed = panel.seed;
+    else if (const core::ParamInfo* info = core::findParameter(key))
+      info->set(derived, info->get(panel));
+  }
+  return derived;
 }
 
 } // namespace scanpick::ui

@@ -3,13 +3,17 @@
 /// The parameter editor, built from the core's metadata table (core/params/ParameterTable.h):
 /// one editor per parameter with its label, unit, range and step, the description as tooltip,
 /// grouped by pipeline stage; presets (core/params/ParamsJson.h) can be loaded and saved, each
-/// described (its file's description: the list's tooltips, and a label once loaded). The mouse
-/// wheel changes an editor only once it has the focus; otherwise it scrolls the panel.
+/// described (its file's description: the list's tooltips, and a label once loaded). The list's
+/// first entry, "Derived from the part (default)", has Teach derive the parameters from the part
+/// and the scan instead (core::autoTeachParams); values derived so are marked "derived" beside
+/// their editor, with the reason in its tooltip. The mouse wheel changes an editor only once it
+/// has the focus; otherwise it scrolls the panel.
 
 #include "core/params/ParameterTable.h"
 
 #include <QWidget>
 #include <map>
+#include <set>
 #include <string>
 
 class QComboBox;
@@ -24,11 +28,28 @@ public:
   explicit ParameterPanel(QWidget* parent = nullptr);
 
   [[nodiscard]] const core::RecognitionParams& params() const { return m_params; }
-  /// Shows `params` in the editors without emitting paramsChanged.
-  void setParams(const core::RecognitionParams& params);
+  /// Shows `params` in the editors without emitting paramsChanged, and `reasons` (key -> why it
+  /// has its value, as core::TaughtModel::param_reasons) beside the values derived from the part.
+  /// Forgets the hand edits (handEdits); keeps the preset list's choice.
+  void setParams(const core::RecognitionParams& params,
+                 std::map<std::string, std::string> reasons = {});
   /// Sets one parameter by key as if the operator had edited it (emits paramsChanged).
   /// Returns false for an unknown key.
   bool setValue(const std::string& key, double value);
+  /// Why each value shown was derived from the part and the scan, by key (empty: none was). A
+  /// value edited by hand loses its reason.
+  [[nodiscard]] const std::map<std::string, std::string>& reasons() const { return m_reasons; }
+  /// Keys of the values changed by hand (editors, setValue; "seed" for the seed) since the last
+  /// setParams, preset load or chooseDerived.
+  [[nodiscard]] const std::set<std::string>& handEdits() const { return m_hand_edits; }
+
+  /// True while the preset list's first entry, "Derived from the part (default)", is chosen (at
+  /// the first start, and until a preset is loaded): Teach then derives the parameters from the
+  /// part and the scan over the core's defaults, the hand edits applied on them.
+  [[nodiscard]] bool derivesAtTeach() const { return m_choice == 0; }
+  /// Chooses that entry: the core's defaults in the editors, no reasons and no hand edits; emits
+  /// presetLoaded with an empty path, then paramsChanged.
+  void chooseDerived();
   /// The editor of `key` (QDoubleSpinBox, QSpinBox, QCheckBox or QComboBox), or nullptr.
   [[nodiscard]] QWidget* editor(const std::string& key) const;
 
@@ -43,7 +64,7 @@ signals:
   /// The operator changed a value; `first_stage` is the earliest stage to re-run.
   void paramsChanged(const scanpick::core::RecognitionParams& params,
                      scanpick::core::Stage first_stage);
-  /// A preset was loaded from `path`.
+  /// A preset was loaded from `path`, or (`path` empty) the derived entry was chosen.
   void presetLoaded(const QString& path);
 
 private:
@@ -52,14 +73,30 @@ private:
   QWidget* makeEditor(const core::ParamInfo& info);
   void editorChanged(const core::ParamInfo& info, double value);
   void refreshEditors();
+  /// Shows m_reasons: the editors' tooltips, the "derived" markers and the note above them.
+  void refreshReasons();
   void fillPresetList();
+  /// Makes entry `index` of the preset list the one in effect (m_choice) and shows it.
+  void setChoice(int index);
 
   core::RecognitionParams m_params;
   std::map<std::string, QWidget*> m_editors;
+  std::map<std::string, QLabel*> m_markers; // "derived", beside each editor
+  std::map<std::string, std::string> m_reasons;
+  std::set<std::string> m_hand_edits;
   QComboBox* m_presets = nullptr;
+  int m_choice = 0;                       // the preset list's entry in effect; 0 derives at teach
   QLabel* m_preset_description = nullptr; // the loaded preset's description
+  QLabel* m_derived_note = nullptr;       // shown while values are marked "derived"
   QSpinBox* m_seed = nullptr;
   bool m_updating = false;
 };
+
+/// `derived` with the values of `keys` (handEdits; "seed" for the seed) taken from `panel`: at a
+/// derived teach, values set by hand win over derived ones, as --set does on the CLI. Pure: the
+/// teach job calls it on its own thread.
+core::RecognitionParams withHandEdits(core::RecognitionParams derived,
+                                      const core::RecognitionParams& panel,
+                                      const std::set<std::string>& keys);
 
 } // namespace scanpick::ui
