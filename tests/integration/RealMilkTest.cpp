@@ -85,3 +85,34 @@ TEST(RealMilk, CartonFoundOnceAndOnTheSurface) {
   EXPECT_LT(dt_mm, 5.0);
   EXPECT_LT(dr_deg, 2.0);
 }
+
+TEST(RealMilk, FoundExactlyWithTheParametersTeachDerives) {
+  // No preset and no sensor: the parameters come from the scan's spacing and noise and the
+  // carton's size (AutoParams), with ICP on.
+  const fs::path model_file = kData / "milk.pcd",
+                 scene_file = kData / "milk_cartoon_all_small_clorox.pcd";
+  if (!fs::exists(model_file) || !fs::exists(scene_file))
+    GTEST_SKIP() << "real scans " << model_file << " / " << scene_file
+                 << " are absent (they live in ../shared/data/pcl beside the project)";
+  const PointCloud teach_scan = loadCloud(model_file, LengthUnit::Metres).cloud;
+  const PointCloud scene = loadCloud(scene_file, LengthUnit::Metres).cloud;
+  TeachOptions options;
+  options.name = "milk";
+  options.crop_box_mm =
+      Eigen::AlignedBox3f(Eigen::Vector3f::Constant(-1e5f), Eigen::Vector3f::Constant(1e5f));
+  const AutoParams derived = autoTeachParams(teach_scan, options);
+  std::printf("milk: spacing %.2f mm, noise %.2f mm, diameter %.1f mm\n", derived.scan.spacing_mm,
+              derived.scan.noise_mm, derived.part.diameter_mm);
+  EXPECT_GT(derived.scan.spacing_mm, 1.0); // a Kinect v1 at about 0.8 m
+  EXPECT_TRUE(derived.params.refine.enabled);
+  auto model = std::make_shared<TaughtModel>(teach(teach_scan, options, derived.params));
+  Recognizer recognizer(model);
+  const RecognitionResult result = recognizer.recognize(scene, SensorModel{}, derived.params);
+  ASSERT_EQ(result.detections.size(), 1u) << "the carton must be found exactly once";
+  const Eigen::Isometry3d& T = result.detections[0].T_scene_model;
+  const double dt_mm = (T.translation() - model->T_teach_model.translation()).norm();
+  const double dr_deg = Eigen::AngleAxisd(T.linear()).angle() * 180.0 / M_PI;
+  std::printf("milk, derived parameters: pose error %.3f mm, %.3f deg\n", dt_mm, dr_deg);
+  EXPECT_LT(dt_mm, 0.5);
+  EXPECT_LT(dr_deg, 0.2);
+}
