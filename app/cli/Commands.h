@@ -15,4 +15,6 @@ void registerParamsCommand(CLI::App& app);    ///< params: the parameter table (
 void registerBenchCommand(CLI::App& app);     ///< bench: recognition timings (BenchCommand.cpp)
 void registerServeCommand(CLI::App& app);     ///< serve: the robot link (ServeCommand.cpp)
 void registerCalibrateCommand(CLI::App& app); ///< calibrate: hand-eye (CalibrateCommand.cpp)
+void registerClearBinCommand(
+    CLI::App& app); ///< clear-bin: virtual bin clearing (ClearBinCommand.cpp)
 } // namespace scanpick::cli

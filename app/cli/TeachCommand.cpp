@@ -118,7 +118,7 @@ void registerTeachCommand(CLI::App& app) {
         core::saveModel(o->out, model);
         std::cout << "taught '" << model.name << "': " << model.cloud_mm.size() << " points, "
                   << model.keypoints_mm.size() << " keypoints, " << model.features.size()
-                  << " features, diameter " << model.diameter_mm << " mm";
+                  << " features, bounding box diagonal " << model.diameter_mm << " mm";
         for (const auto& [key, value] : model.view_params)
           std::cout << ", " << key << " = " << value << " for this view";
         std::cout << " -> " << o->out << "\n";

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   scanpick::cli::registerBenchCommand(app);
   scanpick::cli::registerServeCommand(app);
   scanpick::cli::registerCalibrateCommand(app);
+  scanpick::cli::registerClearBinCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

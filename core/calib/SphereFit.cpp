@@ -1,8 +1,8 @@
 #include "core/calib/SphereFit.h"
 
 #include "core/common/Error.h"
+#include "core/common/PrincipalAxes.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <pcl/point_cloud.h>
@@ -27,17 +27,10 @@ struct Plane {
 
 /// Least-squares plane through `points` (the smallest principal direction).
 Plane fitPlane(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : points)
-    mean += p;
-  mean /= double(points.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& p : points)
-    cov += (p - mean) * (p - mean).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const PrincipalAxes pca = principalAxes(points);
   Plane plane;
-  plane.n = eig.eigenvectors().col(0).normalized();
-  plane.d = -plane.n.dot(mean);
+  plane.n = pca.axes.col(0).normalized();
+  plane.d = -plane.n.dot(pca.mean);
   return plane;
 }
 

@@ -1,8 +1,8 @@
 #include "core/grasp/BinBox.h"
 
 #include "core/common/Error.h"
+#include "core/common/PrincipalAxes.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,16 +23,9 @@ struct Plane {
 bool fitPlane(const std::vector<Eigen::Vector3d>& points, Eigen::Vector3d& normal, double& d) {
   if (points.size() < 3)
     return false;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : points)
-    mean += p;
-  mean /= double(points.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& p : points)
-    cov += (p - mean) * (p - mean).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
-  normal = solver.eigenvectors().col(0).normalized();
-  d = -normal.dot(mean);
+  const PrincipalAxes pca = principalAxes(points);
+  normal = pca.axes.col(0).normalized();
+  d = -normal.dot(pca.mean);
   return normal.allFinite();
 }
 

@@ -2,6 +2,7 @@
 
 #include "core/common/Error.h"
 #include "core/grasp/PointGrid.h"
+#include "core/grasp/ToolVolume.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,82 +23,6 @@ std::string format(const char* fmt, double a, double b = 0.0) {
   char buf[128];
   std::snprintf(buf, sizeof buf, fmt, a, b);
   return buf;
-}
-
-/// The solid swept from the pre-grasp pose to the grasp (back along tool z by `length`), grown by
-/// `clearance` all round.
-ToolSolid swept(const ToolSolid& s, double length, double clearance) {
-  ToolSolid out = s;
-  const double z_min = s.centre_mm.z() - s.half_extents_mm.z() - length - clearance;
-  const double z_max = s.centre_mm.z() + s.half_extents_mm.z() + clearance;
-  out.centre_mm.z() = 0.5 * (z_min + z_max);
-  out.half_extents_mm.x() += clearance;
-  out.half_extents_mm.y() += clearance;
-  out.half_extents_mm.z() = 0.5 * (z_max - z_min);
-  return out;
-}
-
-bool inside(const ToolSolid& s, const Eigen::Vector3d& p_tool) {
-  const Eigen::Vector3d v = p_tool - s.centre_mm;
-  if (std::abs(v.z()) > s.half_extents_mm.z())
-    return false;
-  if (s.shape == SolidShape::Box)
-    return std::abs(v.x()) <= s.half_extents_mm.x() && std::abs(v.y()) <= s.half_extents_mm.y();
-  return v.head<2>().squaredNorm() <= s.half_extents_mm.x() * s.half_extents_mm.x();
-}
-
-/// Axis-aligned bounds (scene frame) of a solid at T_scene_tool.
-Eigen::AlignedBox3d sceneBounds(const ToolSolid& s, const Eigen::Isometry3d& T_scene_tool) {
-  Eigen::AlignedBox3d box;
-  for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector3d corner(i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0);
-    box.extend(T_scene_tool * (s.centre_mm + corner.cwiseProduct(s.half_extents_mm)));
-  }
-  return box;
-}
-
-/// Points on the surface of a solid (tool frame), no farther than `spacing` apart.
-std::vector<Eigen::Vector3d> surfaceSamples(const ToolSolid& s, double spacing) {
-  std::vector<Eigen::Vector3d> out;
-  const Eigen::Vector3d& h = s.half_extents_mm;
-  const auto steps = [spacing](double length) {
-    return std::max(1, int(std::ceil(length / spacing)));
-  };
-  if (s.shape == SolidShape::Box) {
-    // Each pair of faces perpendicular to axis a, sampled on a grid over the other two axes.
-    for (int a = 0; a < 3; ++a) {
-      const int b = (a + 1) % 3, c = (a + 2) % 3;
-      const int nb = steps(2 * h[b]), nc = steps(2 * h[c]);
-      for (int side = -1; side <= 1; side += 2)
-        for (int i = 0; i <= nb; ++i)
-          for (int j = 0; j <= nc; ++j) {
-            Eigen::Vector3d v;
-            v[a] = side * h[a];
-            v[b] = -h[b] + 2 * h[b] * i / nb;
-            v[c] = -h[c] + 2 * h[c] * j / nc;
-            out.push_back(s.centre_mm + v);
-          }
-    }
-    return out;
-  }
-  const double r = h.x();
-  const int nz = steps(2 * h.z());
-  const int rings = steps(r);
-  for (int ring = 0; ring <= rings; ++ring) {
-    const double rr = r * ring / rings;
-    const int nt = std::max(1, int(std::ceil(2 * std::numbers::pi * rr / spacing)));
-    for (int t = 0; t < nt; ++t) {
-      const double th = 2 * std::numbers::pi * t / nt;
-      const Eigen::Vector3d xy(rr * std::cos(th), rr * std::sin(th), 0.0);
-      if (ring == rings)
-        for (int k = 0; k <= nz; ++k)
-          out.push_back(s.centre_mm + xy + Eigen::Vector3d(0, 0, -h.z() + 2 * h.z() * k / nz));
-      else
-        for (int side = -1; side <= 1; side += 2)
-          out.push_back(s.centre_mm + xy + Eigen::Vector3d(0, 0, side * h.z()));
-    }
-  }
-  return out;
 }
 
 /// Points of the scene that belong to detected parts: (point index, detection), sorted.
@@ -191,8 +116,8 @@ void checkPoints(const PointGrid& grid, const Owned& owned, int picked, const To
                  std::vector<Rejection>& out) {
   const Eigen::Isometry3d T_tool_scene = T_scene_tool.inverse();
   std::map<int, int> hits; // owner (-1: nothing detected) → points
-  grid.forEachNear(sceneBounds(solid, T_scene_tool), [&](std::uint32_t i) {
-    if (inside(solid, T_tool_scene * grid.points()[i].cast<double>()))
+  grid.forEachNear(solidBounds(solid, T_scene_tool), [&](std::uint32_t i) {
+    if (insideSolid(solid, T_tool_scene * grid.points()[i].cast<double>()))
       ++hits[ownerOf(owned, i, picked)];
     return true;
   });
@@ -282,7 +207,7 @@ PickList planGrasps(const PointCloud& scene_mm, const std::vector<Detection>& de
                   ", but " + std::to_string(models.size()) + " model(s) were given");
   std::vector<ToolSolid> solids;
   for (const auto& s : toolSolids(gripper))
-    solids.push_back(swept(s, p.approach_length_mm, p.clearance_mm));
+    solids.push_back(sweptSolid(s, p.approach_length_mm, p.clearance_mm));
   const PointGrid grid(scene_mm.points_mm, p.grid_cell_mm);
   const Owned owned = partPoints(grid, detections, models, p.part_tolerance_mm);
 
@@ -339,7 +264,7 @@ PickList planGrasps(const PointCloud& scene_mm, const std::vector<Detection>& de
         checkPoints(grid, owned, int(d), solid, c.T_scene_tool, p, c.rejections);
         if (!bin)
           continue;
-        for (const auto& q : surfaceSamples(solid, p.bin_sample_mm)) {
+        for (const auto& q : solidSurfaceSamples(solid, p.bin_sample_mm)) {
           const std::string hit = binCollision(*bin, c.T_scene_tool * q);
           if (!hit.empty()) {
             c.rejections.push_back({RejectKind::BinCollision, solid.name + " hits the " + hit});

@@ -2,10 +2,11 @@
 
 #include "core/cloud/PointKdTree.h"
 #include "core/common/Error.h"
+#include "core/common/PrincipalAxes.h"
 #include "core/params/ParameterTable.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <spdlog/fmt/fmt.h>
 
@@ -84,19 +85,9 @@ ScanMeasures measureScan(const PointCloud& cloud_mm) {
     spacing.push_back(std::sqrt(double(distance2[1])));
     if (found < kPlaneNeighbours + 1)
       continue;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (std::size_t k = 0; k < found; ++k)
-      mean += points[index[k]].cast<double>();
-    mean /= double(found);
-    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-    for (std::size_t k = 0; k < found; ++k) {
-      const Eigen::Vector3d d = points[index[k]].cast<double>() - mean;
-      scatter += d * d.transpose();
-    }
-    const double smallest =
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter, Eigen::EigenvaluesOnly)
-            .eigenvalues()[0];
-    noise.push_back(std::sqrt(std::max(0.0, smallest) / double(found)));
+    const PrincipalAxes plane =
+        principalAxes(found, [&](std::size_t k) { return points[index[k]]; });
+    noise.push_back(std::sqrt(plane.variances[0]));
   }
   ScanMeasures measures;
   measures.spacing_mm = spacing.empty() ? 0.0 : median(spacing);
@@ -123,17 +114,10 @@ PartMeasures measurePart(const PointCloud& part_mm, double spacing_mm) {
 
   PartMeasures measures;
   measures.points = all.size();
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : points)
-    mean += p.cast<double>();
-  mean /= double(points.size());
-  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-  for (const auto& p : points)
-    scatter += (p.cast<double>() - mean) * (p.cast<double>() - mean).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(scatter);
+  const PrincipalAxes pca = principalAxes(points);
   Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
   for (const auto& p : points) {
-    const Eigen::Vector3d q = pca.eigenvectors().transpose() * (p.cast<double>() - mean);
+    const Eigen::Vector3d q = pca.axes.transpose() * (p.cast<double>() - pca.mean);
     low = low.cwiseMin(q);
     high = high.cwiseMax(q);
   }
@@ -226,7 +210,8 @@ AutoParams deriveParams(const ScanMeasures& scan, const PartMeasures& part,
                               "1.4 x" + spacing + ", at least 5 x" + noise +
                                   ": a surface point confirms the pose within");
   d.set("matching.edge_tolerance_mm", 2.0 * verify, "2 x the verification tolerance");
-  d.set("matching.min_coverage", 0.65, "two thirds of the surface the camera should see");
+  d.set("matching.min_coverage", 0.75,
+        "three quarters of the surface the camera should see: less is weak evidence");
   d.set("matching.hypotheses", 16, "poses re-ranked by verification per search");
   d.set("matching.max_instances_per_cluster", 40, "touching parts in one cluster");
   d.set("matching.pool_size", 200, "poses kept over all seed pairs of a cluster");

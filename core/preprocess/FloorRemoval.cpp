@@ -2,8 +2,8 @@
 
 #include "core/common/Error.h"
 #include "core/common/Log.h"
+#include "core/common/PrincipalAxes.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -82,26 +82,19 @@ std::optional<Eigen::Vector4f> findBinFloor(const std::vector<Eigen::Vector3f>& 
   // Least-squares plane (PCA) through the band's points, then again through those within
   // `bin_mm` of it, so that the feet of the parts in the band do not tilt it.
   const auto fit = [&](const Eigen::Vector4d& around, double within_mm) {
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     std::vector<Eigen::Vector3d> near;
     for (const int i : alive) {
       const Eigen::Vector3d p = points[static_cast<std::size_t>(i)].cast<double>();
-      if (std::abs(around.head<3>().dot(p) + around[3]) <= within_mm) {
+      if (std::abs(around.head<3>().dot(p) + around[3]) <= within_mm)
         near.push_back(p);
-        mean += p;
-      }
     }
     if (near.size() < 3)
       return around;
-    mean /= double(near.size());
-    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-    for (const auto& p : near)
-      scatter += (p - mean) * (p - mean).transpose();
-    Eigen::Vector3d normal =
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter).eigenvectors().col(0);
+    const PrincipalAxes pca = principalAxes(near);
+    Eigen::Vector3d normal = pca.axes.col(0);
     if (normal.dot(around.head<3>()) < 0)
       normal = -normal;
-    return Eigen::Vector4d(normal.x(), normal.y(), normal.z(), -normal.dot(mean));
+    return Eigen::Vector4d(normal.x(), normal.y(), normal.z(), -normal.dot(pca.mean));
   };
   Eigen::Vector4d band_centre = ground.cast<double>();
   band_centre[3] -= (double(best_bin) + 0.5) * bin_mm;

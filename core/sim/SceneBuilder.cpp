@@ -2,6 +2,7 @@
 #include "core/common/Error.h"
 #include "core/sim/MeshBuilder.h"
 #include "core/sim/Scene.h"
+#include "core/sim/Settle.h"
 
 #include <LinearMath/btConvexHullComputer.h>
 #include <algorithm>
@@ -155,6 +156,32 @@ void simulate(World& w, double seconds, std::size_t first_dynamic, bool stop_whe
   }
 }
 
+/// The static bodies of a layout: the bin's floor and walls, or a table.
+void addEnvironment(World& w, LayoutKind layout, const BinGeometry& b) {
+  if (layout == LayoutKind::Bin) {
+    // Walls go well above the rendered rim so that nothing bounces out of the bin.
+    const double hx = b.inner_x_mm / 2, hy = b.inner_y_mm / 2, t = b.wall_thickness_mm, h = 2000;
+    w.addStaticBox({-hx - t, -hy - t, -t}, {hx + t, hy + t, 0});
+    w.addStaticBox({-hx - t, -hy - t, 0}, {-hx, hy + t, h});
+    w.addStaticBox({hx, -hy - t, 0}, {hx + t, hy + t, h});
+    w.addStaticBox({-hx, -hy - t, 0}, {hx, -hy, h});
+    w.addStaticBox({-hx, hy, 0}, {hx, hy + t, h});
+  } else {
+    w.addStaticBox({-600, -600, -20}, {600, 600, 0});
+  }
+}
+
+/// Adds a part as a dynamic body whose frame is centred on the part's bounding box, at
+/// T_world_body, with the damping and CCD settings of every dropped part.
+void addPartBody(World& w, btCollisionShape* shape, const Part& part,
+                 const Eigen::Isometry3d& T_world_body) {
+  const double mass = partVolume_mm3(part) * 1e-3; // grams at 1 g/cm³
+  btRigidBody* body = w.addBody(shape, mass, toBt(T_world_body));
+  body->setCcdMotionThreshold(static_cast<btScalar>(2.0 / kMmPerUnit));
+  body->setCcdSweptSphereRadius(static_cast<btScalar>(1.5 / kMmPerUnit));
+  body->setSleepingThresholds(0.05f, 0.05f);
+}
+
 } // namespace
 
 TriangleMesh environmentMesh(LayoutKind layout, const BinGeometry& bin) {
@@ -243,18 +270,7 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
   std::uniform_real_distribution<double> unit(0.0, 1.0);
 
   World w;
-  if (spec.layout == LayoutKind::Bin) {
-    // Walls go well above the rendered rim so that nothing bounces out of the bin.
-    const BinGeometry& b = spec.bin;
-    const double hx = b.inner_x_mm / 2, hy = b.inner_y_mm / 2, t = b.wall_thickness_mm, h = 2000;
-    w.addStaticBox({-hx - t, -hy - t, -t}, {hx + t, hy + t, 0});
-    w.addStaticBox({-hx - t, -hy - t, 0}, {-hx, hy + t, h});
-    w.addStaticBox({hx, -hy - t, 0}, {hx + t, hy + t, h});
-    w.addStaticBox({-hx, -hy - t, 0}, {hx, -hy, h});
-    w.addStaticBox({-hx, hy, 0}, {hx, hy + t, h});
-  } else {
-    w.addStaticBox({-600, -600, -20}, {600, 600, 0});
-  }
+  addEnvironment(w, spec.layout, spec.bin);
   const std::size_t first_dynamic = w.bodies.size();
   std::vector<btCollisionShape*> shapes;
   for (const auto& p : scene.parts)
@@ -265,12 +281,7 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
     Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
     T_world_body.linear() = R;
     T_world_body.translation() = center_world_mm;
-    const double mass = partVolume_mm3(part) * 1e-3; // grams at 1 g/cm³
-    btRigidBody* body =
-        w.addBody(shapes[static_cast<std::size_t>(id) % shapes.size()], mass, toBt(T_world_body));
-    body->setCcdMotionThreshold(static_cast<btScalar>(2.0 / kMmPerUnit));
-    body->setCcdSweptSphereRadius(static_cast<btScalar>(1.5 / kMmPerUnit));
-    body->setSleepingThresholds(0.05f, 0.05f);
+    addPartBody(w, shapes[static_cast<std::size_t>(id) % shapes.size()], part, T_world_body);
   };
   const int n = spec.count;
   if (spec.layout == LayoutKind::Bin) {
@@ -351,6 +362,34 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
     scene.crop_box_world = box;
   }
   return scene;
+}
+
+Scene settleScene(const Scene& scene, const std::vector<int>& removed_ids, double max_seconds) {
+  Scene out = scene;
+  out.instances.clear();
+  World w;
+  addEnvironment(w, scene.layout, scene.bin);
+  const std::size_t first_dynamic = w.bodies.size();
+  std::vector<btCollisionShape*> shapes;
+  for (const auto& p : scene.parts)
+    shapes.push_back(partShape(w, p, kMargin_units));
+  for (const auto& inst : scene.instances) {
+    if (std::find(removed_ids.begin(), removed_ids.end(), inst.id) != removed_ids.end())
+      continue;
+    const Part& part = scene.parts[inst.part];
+    addPartBody(w, shapes[inst.part], part,
+                inst.T_world_part * Eigen::Translation3d(part.center_mm()));
+    PartInstance kept = inst;
+    kept.id = static_cast<int>(out.instances.size());
+    out.instances.push_back(kept);
+  }
+  simulate(w, max_seconds, first_dynamic, true);
+  for (auto& inst : out.instances) {
+    const btRigidBody& body = *w.bodies[first_dynamic + static_cast<std::size_t>(inst.id)];
+    inst.T_world_part = fromBt(body.getWorldTransform()) *
+                        Eigen::Translation3d(-scene.parts[inst.part].center_mm());
+  }
+  return out;
 }
 
 namespace {
