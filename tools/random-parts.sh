@@ -96,19 +96,26 @@ distribution() {
   echo
   echo "How scanpick does on parts it has never seen: $PARTS parts generated from seed $SEED"
   echo "(core/sim/RandomPart.h: plates, brackets, prisms, bushings, flanges, extrusions, 20-300 mm),"
-  echo "each taught from its table scans on four sides and searched in three PhoXi M bins of ten"
-  echo "(of a large part, as many as two layers of the bin's floor hold, in a bin at least 1.4 x 1.1 its diameter)."
+  echo "each taught from its table scans on four sides and searched in three PhoXi M bins of ten (of a"
+  echo "large part, as many as two layers of the bin's floor hold, in a bin at least 1.4 x 1.1 its"
+  echo "diameter)."
   echo "Written by:"
   echo
   echo '```sh'
-  echo "BUILD_DIR=build PARTS=$PARTS SEED=$SEED PRESET=$PRESET tools/random-parts.sh"
+  echo "BUILD_DIR=build PARTS=$PARTS SEED=$SEED ${PRESET:+PRESET=$PRESET }tools/random-parts.sh"
   echo '```'
   echo
-  echo "Teaching: \`teach --crop-from-truth --remove-floor${PRESET:+ --preset $PRESET}\`, one view per"
-  echo "side whose crop holds enough points (\"sides skipped\" counts the others); recognition with all"
-  echo "of a part's views. Recall counts instances at least 50 % visible. **Strict** scores each"
-  echo "reported pose; **accepted** also counts a detection right up to the turns it reports the scan"
-  echo "cannot tell (\`eval --accept-free-turns\`)."
+  if [[ -n $PRESET ]]; then
+    echo "Teaching: \`teach --crop-from-truth --remove-floor --preset $PRESET\`."
+  else
+    echo "Teaching: \`teach --crop-from-truth --remove-floor\` with no preset: each view derives its"
+    echo "parameters from the part and the scan ([user guide](user-guide.md#parameters-derived-at-teach))."
+  fi
+  echo "One view per side whose crop holds enough points (\"sides skipped\" counts the others);"
+  echo "recognition with all of a part's views. Recall counts instances at least 50 % visible."
+  echo "**Strict** scores each reported pose; **accepted** also counts a detection right up to the"
+  echo "turns it reports the scan cannot tell (\`eval --accept-free-turns\`). Times: the recognizer's"
+  echo "total per scene, the views prepared once."
   echo
   echo "## Over the parts"
   echo

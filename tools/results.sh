@@ -10,7 +10,8 @@
 #   2. teaches each part's views from the teach suite (scanpick-cli teach --crop-from-truth);
 #   3. recognizes every scene of phoxi-bin (without and with ICP) and kinect-bin
 #      (scanpick-cli recognize --suite) and scores the results (scanpick-cli eval, strictly and with
-#      --accept-free-turns);
+#      --accept-free-turns); then the same with the views taught with no preset (the parameters
+#      teach derives from the part and the scan);
 #   4. times each part's slowest phoxi-bin scene (scanpick-cli bench, views prepared and cold), the
 #      teaching and the virtual scanner, and runs the stage benchmarks when they are built
 #      (-DSCANPICK_BUILD_BENCHMARKS=ON);
@@ -96,9 +97,9 @@ view_settings() { # view
 }
 
 # --model arguments for a part's views, one per line.
-model_args() { # sensor part
+model_args() { # sensor-or-derived-sensor part
   local view
-  for view in $(part_views "$1" "$2"); do
+  for view in $(part_views "${1#derived-}" "$2"); do
     printf -- '--model\n%s\n' "$WORK/models/$1/$view.spmodel"
   done
 }
@@ -137,22 +138,43 @@ for sensor in "$PHOXI" "$KINECT"; do
   done
 done
 
+# The same views taught with no preset: every value derived from the part and the scan.
+for sensor in "$PHOXI" "$KINECT"; do
+  mkdir -p "$WORK/models/derived-$sensor"
+  for part in "${PARTS[@]}"; do
+    for view in $(part_views "$sensor" "$part"); do
+      log "teaching $sensor/$view (derived)"
+      T=$SUITES/teach/$sensor
+      "$CLI" teach --scan "$T/$view.pcd" --crop-from-truth "$T/$view.gt.json" --remove-floor \
+        --sensor "$sensor" --name "$part" --out "$WORK/models/derived-$sensor/$view.spmodel" \
+        > "$WORK/models/derived-$sensor/$view.log"
+    done
+  done
+done
+
 # ---------------------------------------------------------------------------------------------
 # 3. Recognition and evaluation on the suites
 
 # Recognizes every scene of a suite with a part's views and scores the results strictly and with
 # the reported turns and alternatives accepted: RESULTS/SUITE/NAME/ (results files),
 # NAME.strict.json and NAME.accepted.json (eval reports).
+# With name NAME-derived, the views taught with no preset and their own parameters.
 run_suite() { # suite sensor part name [recognize options...]
   local suite=$1 sensor=$2 part=$3 name=$4
   shift 4
-  local res=$WORK/results/$suite/$name models
-  mapfile -t models < <(model_args "$sensor" "$part")
+  local res=$WORK/results/$suite/$name models recipe
+  if [[ $name == *-derived ]]; then
+    mapfile -t models < <(model_args "derived-$sensor" "$part")
+    recipe=()
+  else
+    mapfile -t models < <(model_args "$sensor" "$part")
+    recipe=(--preset "$(part_preset "$sensor" "$part")")
+  fi
   log "recognizing $suite with the $part's views ($name)"
   rm -rf "$res"
   mkdir -p "$res"
-  "$CLI" recognize --suite "$SUITES/$suite" "${models[@]}" --preset "$(part_preset "$sensor" "$part")" \
-    "$@" --out "$res" > "$res.log"
+  "$CLI" recognize --suite "$SUITES/$suite" "${models[@]}" "${recipe[@]}" "$@" --out "$res" \
+    > "$res.log"
   "$CLI" eval --suite "$SUITES/$suite" --results "$res" --json "$res.strict.json" > "$res.strict.txt"
   "$CLI" eval --suite "$SUITES/$suite" --results "$res" --accept-free-turns \
     --json "$res.accepted.json" > "$res.accepted.txt"
@@ -162,6 +184,8 @@ for part in "${PARTS[@]}"; do
   run_suite phoxi-bin "$PHOXI" "$part" "$part"
   run_suite phoxi-bin "$PHOXI" "$part" "$part-icp" --set refine.enabled=true
   run_suite kinect-bin "$KINECT" "$part" "$part"
+  run_suite phoxi-bin "$PHOXI" "$part" "$part-derived"
+  run_suite kinect-bin "$KINECT" "$part" "$part-derived"
 done
 
 # ---------------------------------------------------------------------------------------------
@@ -496,6 +520,30 @@ EOF
       "$(num %.2f "$(st "$s" rotation_error_deg median)")" \
       "$(num %.0f "$(st "$s" time_per_scene_ms median)")" \
       "$(num %.0f "$(st "$s" time_per_scene_ms p95)")"
+  done
+  cat << 'EOF'
+
+## With no preset
+
+The same views taught with no preset (`teach` without `--preset`: every value derived from the
+part and the scan, [user guide](user-guide.md#parameters-derived-at-teach)) and without a view's
+own parameters, recognized with the parameters stored in the first view (`recognize` without
+`--preset`); strictly and accepted as above.
+
+| suite | part | detections | strictly: right / precision / recall | accepted: precision / recall | accepted: median origin error (mm) | median time per scene (ms) |
+|---|---|---|---|---|---|---|
+EOF
+  for suite in phoxi-bin kinect-bin; do
+    for part in "${PARTS[@]}"; do
+      s=$WORK/results/$suite/$part-derived.strict.json
+      a=$WORK/results/$suite/$part-derived.accepted.json
+      printf '| %s | %s | %s | %s / %s / %s | %s / %s | %s | %s |\n' "$suite" "$part" \
+        "$(ov "$s" .detections)" "$(ov "$s" .true_positives)" \
+        "$(num %.3f "$(ov "$s" .precision)")" "$(num %.3f "$(ov "$s" .recall)")" \
+        "$(num %.3f "$(ov "$a" .precision)")" "$(num %.3f "$(ov "$a" .recall)")" \
+        "$(num %.3f "$(st "$a" translation_error_mm median)")" \
+        "$(num %.0f "$(st "$s" time_per_scene_ms median)")"
+    done
   done
   cat << 'EOF'
 
