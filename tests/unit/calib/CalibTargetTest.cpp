@@ -6,6 +6,7 @@
 #include "core/calib/CalibJson.h"
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
+#include "tests/support/ErrorText.h"
 #include "tests/support/TempDir.h"
 #include "tests/unit/calib/CalibScenes.h"
 
@@ -14,19 +15,7 @@
 using namespace scanpick;
 using namespace scanpick::core::calib;
 using json = nlohmann::json;
-
-namespace {
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const core::Error& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
-} // namespace
+using test::errorOf;
 
 TEST(CalibTarget, TheDefaultTargetsDistancesAllDiffer) {
   // Six distances between four spheres, the closest two 8.3 mm apart: far more than the 2 mm

@@ -5,6 +5,7 @@
 #include "core/calib/HandEye.h"
 
 #include "core/common/Error.h"
+#include "tests/support/ErrorText.h"
 #include "tests/unit/calib/CalibScenes.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 
 using namespace scanpick;
 using namespace scanpick::core::calib;
+using test::errorOf;
 
 namespace {
 
@@ -38,15 +40,6 @@ std::vector<HandEyeSample> samplesOf(const test::SimulatedCell& cell, double sig
     samples.push_back(s);
   }
   return samples;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const core::Error& e) {
-    return e.what();
-  }
-  return "no error";
 }
 
 } // namespace
