@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <map>
 #include <spdlog/fmt/fmt.h>
 
 namespace scanpick::core {
@@ -42,6 +44,81 @@ std::vector<std::size_t> examined(std::size_t count) {
   for (std::size_t i = 0; i < count; i += stride)
     indices.push_back(i);
   return indices;
+}
+
+/// A lower bound of the diameter: the largest distance among the points extreme along 62
+/// directions spread over the sphere (within ~1 % of the exact value).
+double extremesDistance_mm(const std::vector<Eigen::Vector3f>& points) {
+  std::vector<std::size_t> extremes;
+  constexpr int kDirections = 31;
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int d = 0; d < kDirections; ++d) {
+    const double z = 1.0 - (d + 0.5) / kDirections, r = std::sqrt(1.0 - z * z);
+    const Eigen::Vector3f axis(float(r * std::cos(golden * d)), float(r * std::sin(golden * d)),
+                               float(z));
+    std::size_t lo = 0, hi = 0;
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      const float t = axis.dot(points[i]);
+      lo = t < axis.dot(points[lo]) ? i : lo;
+      hi = t > axis.dot(points[hi]) ? i : hi;
+    }
+    extremes.push_back(lo);
+    extremes.push_back(hi);
+  }
+  double best = 0.0;
+  for (std::size_t a = 0; a < extremes.size(); ++a)
+    for (std::size_t b = a + 1; b < extremes.size(); ++b)
+      best = std::max(best, (points[extremes[a]] - points[extremes[b]]).cast<double>().norm());
+  return best;
+}
+
+/// The points binned in a grid of cubic cells, each cell with the bounding box of its points.
+struct CellGrid {
+  struct Cell {
+    Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300), high = -low;
+    std::vector<std::size_t> members;
+  };
+  std::vector<Cell> cells;
+};
+
+CellGrid binPoints(const std::vector<Eigen::Vector3f>& points, double cell_mm) {
+  std::map<std::array<std::int64_t, 3>, std::size_t> index_of;
+  CellGrid grid;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d p = points[i].cast<double>();
+    const std::array<std::int64_t, 3> key{std::int64_t(std::floor(p.x() / cell_mm)),
+                                          std::int64_t(std::floor(p.y() / cell_mm)),
+                                          std::int64_t(std::floor(p.z() / cell_mm))};
+    const auto [it, added] = index_of.try_emplace(key, grid.cells.size());
+    if (added)
+      grid.cells.emplace_back();
+    auto& cell = grid.cells[it->second];
+    cell.low = cell.low.cwiseMin(p);
+    cell.high = cell.high.cwiseMax(p);
+    cell.members.push_back(i);
+  }
+  return grid;
+}
+
+/// The largest distance between two of `points`, exact: starting from the extremes' lower
+/// bound, only pairs of grid cells whose bounding boxes can lie farther apart are examined.
+double largestDistance_mm(const std::vector<Eigen::Vector3f>& points) {
+  double best = extremesDistance_mm(points);
+  if (!(best > 0))
+    return 0.0;
+  const CellGrid grid = binPoints(points, best / 24);
+  for (std::size_t a = 0; a < grid.cells.size(); ++a)
+    for (std::size_t b = a; b < grid.cells.size(); ++b) {
+      const auto &ca = grid.cells[a], &cb = grid.cells[b];
+      const Eigen::Vector3d span =
+          (ca.high - cb.low).cwiseAbs().cwiseMax((cb.high - ca.low).cwiseAbs());
+      if (span.norm() <= best)
+        continue;
+      for (const std::size_t i : ca.members)
+        for (const std::size_t j : cb.members)
+          best = std::max(best, (points[i] - points[j]).cast<double>().norm());
+    }
+  return best;
 }
 
 /// Records each value set, clamped to its parameter's range as the table does.
@@ -124,28 +201,7 @@ PartMeasures measurePart(const PointCloud& part_mm, double spacing_mm) {
   const Eigen::Vector3d extent = high - low; // smallest eigenvalue first
   measures.extent_mm = Eigen::Vector3d(extent[2], extent[1], extent[0]);
 
-  // The diameter: the largest distance among the points extreme along 62 directions spread over
-  // the sphere (within ~1 % of the exact value, and the same however the part is turned).
-  std::vector<std::size_t> extremes;
-  constexpr int kDirections = 31;
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  for (int d = 0; d < kDirections; ++d) {
-    const double z = 1.0 - (d + 0.5) / kDirections, r = std::sqrt(1.0 - z * z);
-    const Eigen::Vector3f axis(float(r * std::cos(golden * d)), float(r * std::sin(golden * d)),
-                               float(z));
-    std::size_t lo = 0, hi = 0;
-    for (std::size_t i = 1; i < points.size(); ++i) {
-      const float t = axis.dot(points[i]);
-      lo = t < axis.dot(points[lo]) ? i : lo;
-      hi = t > axis.dot(points[hi]) ? i : hi;
-    }
-    extremes.push_back(lo);
-    extremes.push_back(hi);
-  }
-  for (std::size_t a = 0; a < extremes.size(); ++a)
-    for (std::size_t b = a + 1; b < extremes.size(); ++b)
-      measures.diameter_mm = std::max(measures.diameter_mm,
-                                      double((points[extremes[a]] - points[extremes[b]]).norm()));
+  measures.diameter_mm = largestDistance_mm(points);
   return measures;
 }
 

@@ -6,7 +6,9 @@
 #include "tests/support/RaycastScene.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <gtest/gtest.h>
+#include <optional>
 #include <random>
 
 using namespace scanpick;
@@ -55,6 +57,20 @@ TEST(AutoParams, MeasuresTheSpacingAndNoiseOfAScan) {
   EXPECT_THROW(measureScan(few), Error);
 }
 
+TEST(AutoParams, TheDiameterIsTheLargestDistanceBetweenTwoPoints) {
+  for (const std::uint64_t seed : {3u, 4u, 5u}) {
+    PointCloud part = boxSurface({70, 45, 12}, 3000, seed);
+    // A bump on one corner, so the farthest pair is not a pair of the box's corners.
+    part.points_mm.push_back({37, 24, 8});
+    part.width += 1;
+    double brute_force = 0;
+    for (const auto& p : part.points_mm)
+      for (const auto& q : part.points_mm)
+        brute_force = std::max(brute_force, (p - q).cast<double>().norm());
+    EXPECT_NEAR(measurePart(part, 50.0).diameter_mm, brute_force, 1e-9) << "seed " << seed;
+  }
+}
+
 TEST(AutoParams, TheDiameterAndTheDerivedValuesDoNotDependOnTheYaw) {
   const Eigen::Vector3f size(120, 60, 20);
   const PointCloud part = boxSurface(size, 20000, 1);
@@ -70,11 +86,11 @@ TEST(AutoParams, TheDiameterAndTheDerivedValuesDoNotDependOnTheYaw) {
     const Eigen::Isometry3f T(Eigen::AngleAxisf(float(step * M_PI / 12), Eigen::Vector3f::UnitZ()));
     const AutoParams turned =
         deriveParams(scan, measurePart(transformed(part, T), scan.spacing_mm));
-    EXPECT_NEAR(turned.part.diameter_mm, first.part.diameter_mm, 0.01 * diagonal);
+    EXPECT_NEAR(turned.part.diameter_mm, first.part.diameter_mm, 1e-4);
     ASSERT_EQ(turned.values.size(), first.values.size());
     for (std::size_t i = 0; i < first.values.size(); ++i)
       EXPECT_NEAR(turned.values[i].value, first.values[i].value,
-                  0.01 * std::abs(first.values[i].value) + 1e-9)
+                  1e-5 * std::abs(first.values[i].value) + 1e-9)
           << first.values[i].key;
   }
 }
@@ -135,4 +151,39 @@ TEST(AutoParams, TeachMeasuresThePartWithoutItsTable) {
   // The block's visible top and side faces span its diagonal (the table went with the floor).
   EXPECT_NEAR(a.part.diameter_mm, Eigen::Vector3d(150, 100, 30).norm(), 6.0);
   EXPECT_EQ(findParameter("refine.enabled")->get(a.params), 1.0);
+}
+
+TEST(AutoParams, TeachingOneScanTurnedInSteps) {
+  // One scan of a block on a table, turned about the table's normal through the block in 15°
+  // steps: teach derives the same diameter and the same values at every yaw.
+  test::RaycastScene scene;
+  scene.floor_z_mm = 1000.0;
+  scene.boxes.emplace_back(Eigen::Vector3d(-75, -50, 970), Eigen::Vector3d(75, 50, 1000));
+  const PointCloud scan = scene.render(400, 300, 600.0, {300, 0, 0}, 0.1, 4);
+  TeachOptions options;
+  options.remove_floor = true;
+  const Eigen::Vector3f centre(0, 0, 985);
+  std::optional<AutoParams> first;
+  for (int step = 0; step < 24; ++step) {
+    SCOPED_TRACE("yaw " + std::to_string(15 * step) + " deg");
+    const Eigen::Isometry3f T =
+        Eigen::Translation3f(centre) *
+        Eigen::AngleAxisf(float(step * M_PI / 12), Eigen::Vector3f::UnitZ()) *
+        Eigen::Translation3f(-centre);
+    const PointCloud turned = transformed(scan, T);
+    // The crop box turns with the scan, so it holds the same points at every yaw.
+    options.crop_oriented = OrientedBox{T * Eigen::Translation3f(0, 0, 955), {90, 65, 55}};
+    const AutoParams a = autoTeachParams(turned, options);
+    if (!first) {
+      first = a;
+      EXPECT_NEAR(a.part.diameter_mm, Eigen::Vector3d(150, 100, 30).norm(), 6.0);
+      continue;
+    }
+    EXPECT_NEAR(a.part.diameter_mm, first->part.diameter_mm, 1e-3);
+    ASSERT_EQ(a.values.size(), first->values.size());
+    for (std::size_t i = 0; i < a.values.size(); ++i)
+      EXPECT_NEAR(a.values[i].value, first->values[i].value,
+                  1e-4 * std::abs(first->values[i].value) + 1e-9)
+          << a.values[i].key;
+  }
 }
