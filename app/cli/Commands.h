@@ -17,4 +17,6 @@ void registerServeCommand(CLI::App& app);     ///< serve: the robot link (ServeC
 void registerCalibrateCommand(CLI::App& app); ///< calibrate: hand-eye (CalibrateCommand.cpp)
 void registerClearBinCommand(
     CLI::App& app); ///< clear-bin: virtual bin clearing (ClearBinCommand.cpp)
+void registerRestingSidesCommand(
+    CLI::App& app); ///< resting-sides: which sides to teach (RestingSidesCommand.cpp)
 } // namespace scanpick::cli

@@ -21,8 +21,9 @@ namespace {
 struct SynthOptions {
   std::vector<std::string> parts;
   std::string mesh, layout = "bin", sensor = "phoxi-m-1032", out;
-  std::optional<int> count; ///< default: 1 in a teach scene, else 8
-  int teach_side = 0;
+  std::optional<int> count;        ///< default: 1 in a teach scene, else 8
+  std::optional<int> teach_side;   ///< default 0
+  std::optional<int> resting_side; ///< teach layout: the N-th most probable resting pose
   std::uint64_t seed = 0;
   double noise_sigma_mm = -1;
   double camera_height_mm = 0;
@@ -81,7 +82,10 @@ int runSynth(const SynthOptions& o) {
     r.close_holes = o.close_holes;
   }
   r.layout = core::layoutFromName(o.layout);
-  r.teach_side = o.teach_side;
+  if (o.teach_side && o.resting_side)
+    throw core::Error("give either --teach-side or --resting-side, not both");
+  r.teach_side = o.teach_side.value_or(0);
+  r.resting_side = o.resting_side;
   r.count = o.count.value_or(r.layout == core::LayoutKind::Teach ? 1 : 8);
   r.sensor = o.sensor;
   r.seed = o.seed;
@@ -125,12 +129,14 @@ void registerSynthCommands(CLI::App& app) {
   synth->add_flag("--close-holes", o->close_holes,
                   "cap the --mesh file's holes (a scanned part's open base) with triangles");
   synth->add_option("--layout", o->layout, "bin, scatter or teach")->capture_default_str();
-  synth
-      ->add_option(
-          "--teach-side", o->teach_side,
-          "teach layout: side the part rests on, 0 = usual, 1 = turned over, 2 = on its side, "
-          "3 = on its end (one taught view per side)")
-      ->capture_default_str();
+  synth->add_option(
+      "--teach-side", o->teach_side,
+      "teach layout: side the part rests on, 0 = usual (default), 1 = turned over, 2 = on its "
+      "side, 3 = on its end (one taught view per side)");
+  synth->add_option("--resting-side", o->resting_side,
+                    "teach layout, instead of --teach-side: rest the part on its N-th most "
+                    "probable distinct resting side (0 = most probable; `resting-sides` lists "
+                    "them), random yaw");
   synth->add_option("--count", o->count, "number of instances (default: 8; teach: 1)");
   synth->add_option("--sensor", o->sensor, "phoxi-m-1032, phoxi-m-2064 or kinect-v1")
       ->capture_default_str();

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   scanpick::cli::registerServeCommand(app);
   scanpick::cli::registerCalibrateCommand(app);
   scanpick::cli::registerClearBinCommand(app);
+  scanpick::cli::registerRestingSidesCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -49,6 +49,10 @@ struct SceneSpec {
   /// 1-3 = turned over (180° about x), on its side (90° about x) or on its end (90° about y)
   /// before it is dropped, so the camera sees other sides (one taught view each).
   int teach_side = 0;
+  /// Teach scenes: rest the part on its N-th most probable distinct resting pose instead
+  /// (restingPoses with default RestingPoseParams, core/sim/RestingPoses.h), with a random yaw;
+  /// teach_side must then be 0. Unset = teach_side decides.
+  std::optional<int> resting_side;
 };
 
 /// A scene at rest.
@@ -85,8 +89,10 @@ double defaultCameraHeight_mm(const SensorModel& sensor, LayoutKind layout);
 
 /// Drops the instances with rigid-body physics (Bullet) until they rest: one after the other from
 /// just above the pile into the bin, spread apart onto a table, or a single part in its natural
-/// pose (Part::R_table_part, random yaw). Deterministic for a given spec. Throws Error for
-/// count < 1, a teach layout with count != 1, or no parts. Progress covers the simulation.
+/// pose (Part::R_table_part, random yaw; or the side SceneSpec::teach_side / resting_side
+/// names). Deterministic for a given spec. Throws Error for count < 1, a teach layout with
+/// count != 1, no parts, or a teach / resting side that does not exist (naming how many there
+/// are). Progress covers the simulation.
 Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const ProgressFn& progress = {});
 
 /// Deepest interpenetration (mm): how far dense surface samples (about 1 per mm², plus the

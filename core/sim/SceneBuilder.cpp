@@ -1,188 +1,21 @@
 // Rigid-body drop of parts into a bin or onto a table with Bullet.
 #include "core/common/Error.h"
 #include "core/sim/MeshBuilder.h"
+#include "core/sim/PhysicsWorld.h"
+#include "core/sim/RestingPoses.h"
 #include "core/sim/Scene.h"
 #include "core/sim/Settle.h"
 
 #include <LinearMath/btConvexHullComputer.h>
 #include <algorithm>
-#include <btBulletCollisionCommon.h>
-#include <btBulletDynamicsCommon.h>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <random>
 
 namespace scanpick::core {
-namespace {
 
-/// Bullet is tuned for bodies of about 0.1-10 units: one unit is 10 mm, so parts are ~8 units.
-constexpr double kMmPerUnit = 10.0;
-constexpr double kGravity_mm_s2 = 9810.0;
-constexpr double kStep_s = 1.0 / 300.0;
-constexpr float kMargin_units = 0.04f; // 0.4 mm, outside the hulls: parts rest slightly apart
-
-btVector3 toBt(const Eigen::Vector3d& p_mm) {
-  return {static_cast<btScalar>(p_mm.x() / kMmPerUnit),
-          static_cast<btScalar>(p_mm.y() / kMmPerUnit),
-          static_cast<btScalar>(p_mm.z() / kMmPerUnit)};
-}
-
-Eigen::Isometry3d fromBt(const btTransform& t) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  const btMatrix3x3& b = t.getBasis();
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-      T.linear()(r, c) = b[r][c];
-  // Bullet keeps single-precision matrices: re-orthonormalize so poses are exact rotations.
-  T.linear() = Eigen::Quaterniond(T.linear()).normalized().toRotationMatrix();
-  T.translation() =
-      Eigen::Vector3d(t.getOrigin().x(), t.getOrigin().y(), t.getOrigin().z()) * kMmPerUnit;
-  return T;
-}
-
-btTransform toBt(const Eigen::Isometry3d& T) {
-  btMatrix3x3 b;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-      b[r][c] = static_cast<btScalar>(T.linear()(r, c));
-  return btTransform(b, toBt(Eigen::Vector3d(T.translation())));
-}
-
-/// The dynamics world with every object it owns.
-struct World {
-  btDefaultCollisionConfiguration config;
-  btCollisionDispatcher dispatcher{&config};
-  btDbvtBroadphase broadphase;
-  btSequentialImpulseConstraintSolver solver;
-  btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
-  std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<btMotionState>> states;
-  std::vector<std::unique_ptr<btRigidBody>> bodies;
-
-  World() {
-    world.setGravity(btVector3(0, 0, static_cast<btScalar>(-kGravity_mm_s2 / kMmPerUnit)));
-  }
-  ~World() {
-    for (auto& b : bodies)
-      world.removeRigidBody(b.get());
-  }
-  World(const World&) = delete;
-  World& operator=(const World&) = delete;
-
-  btRigidBody* addBody(btCollisionShape* shape, double mass, const btTransform& pose) {
-    btVector3 inertia(0, 0, 0);
-    if (mass > 0)
-      shape->calculateLocalInertia(static_cast<btScalar>(mass), inertia);
-    states.push_back(std::make_unique<btDefaultMotionState>(pose));
-    btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(mass), states.back().get(),
-                                                  shape, inertia);
-    info.m_friction = 0.6f;
-    info.m_restitution = 0.05f;
-    info.m_linearDamping = 0.05f;
-    info.m_angularDamping = 0.2f;
-    bodies.push_back(std::make_unique<btRigidBody>(info));
-    world.addRigidBody(bodies.back().get());
-    return bodies.back().get();
-  }
-
-  void addStaticBox(const Eigen::Vector3d& lo_mm, const Eigen::Vector3d& hi_mm) {
-    shapes.push_back(std::make_unique<btBoxShape>(toBt(Eigen::Vector3d((hi_mm - lo_mm) / 2))));
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.translation() = (lo_mm + hi_mm) / 2;
-    addBody(shapes.back().get(), 0, toBt(T));
-  }
-};
-
-/// A part's compound of convex hulls, in a body frame centred on the part's bounding box.
-btCollisionShape* partShape(World& w, const Part& part, float margin) {
-  const Eigen::Vector3d c = part.center_mm();
-  auto compound = std::make_unique<btCompoundShape>();
-  for (const auto& comp : part.components) {
-    auto hull = std::make_unique<btConvexHullShape>();
-    for (const auto& v : comp.vertices_mm)
-      hull->addPoint(toBt(Eigen::Vector3d(v - c)), false);
-    hull->recalcLocalAabb();
-    hull->optimizeConvexHull();
-    hull->setMargin(margin);
-    compound->addChildShape(btTransform::getIdentity(), hull.get());
-    w.shapes.push_back(std::move(hull));
-  }
-  w.shapes.push_back(std::move(compound));
-  return w.shapes.back().get();
-}
-
-double partVolume_mm3(const Part& part) {
-  double v = 0;
-  for (const auto& c : part.components)
-    v += std::abs(signedVolume(c));
-  return v;
-}
-
-Eigen::Matrix3d randomRotation(std::mt19937_64& rng) {
-  // Uniform on SO(3): a normalized 4D Gaussian quaternion.
-  std::normal_distribution<double> n(0.0, 1.0);
-  Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
-  q.normalize();
-  return q.toRotationMatrix();
-}
-
-/// Highest point of the dynamic bodies (mm), or 0 on an empty floor.
-double pileTop_mm(const World& w, std::size_t first_dynamic) {
-  double top = 0;
-  for (std::size_t i = first_dynamic; i < w.bodies.size(); ++i) {
-    btVector3 lo, hi;
-    w.bodies[i]->getAabb(lo, hi);
-    top = std::max(top, static_cast<double>(hi.z()) * kMmPerUnit);
-  }
-  return top;
-}
-
-bool allResting(const World& w, std::size_t first_dynamic) {
-  for (std::size_t i = first_dynamic; i < w.bodies.size(); ++i) {
-    const btRigidBody& b = *w.bodies[i];
-    if (b.getLinearVelocity().length() * kMmPerUnit > 2.0 || b.getAngularVelocity().length() > 0.05)
-      return false;
-  }
-  return true;
-}
-
-void simulate(World& w, double seconds, std::size_t first_dynamic, bool stop_when_resting) {
-  const int steps = static_cast<int>(seconds / kStep_s);
-  for (int s = 0; s < steps; ++s) {
-    w.world.stepSimulation(static_cast<btScalar>(kStep_s), 1, static_cast<btScalar>(kStep_s));
-    if (stop_when_resting && s % 30 == 29 && allResting(w, first_dynamic))
-      return;
-  }
-}
-
-/// The static bodies of a layout: the bin's floor and walls, or a table.
-void addEnvironment(World& w, LayoutKind layout, const BinGeometry& b) {
-  if (layout == LayoutKind::Bin) {
-    // Walls go well above the rendered rim so that nothing bounces out of the bin.
-    const double hx = b.inner_x_mm / 2, hy = b.inner_y_mm / 2, t = b.wall_thickness_mm, h = 2000;
-    w.addStaticBox({-hx - t, -hy - t, -t}, {hx + t, hy + t, 0});
-    w.addStaticBox({-hx - t, -hy - t, 0}, {-hx, hy + t, h});
-    w.addStaticBox({hx, -hy - t, 0}, {hx + t, hy + t, h});
-    w.addStaticBox({-hx, -hy - t, 0}, {hx, -hy, h});
-    w.addStaticBox({-hx, hy, 0}, {hx, hy + t, h});
-  } else {
-    w.addStaticBox({-600, -600, -20}, {600, 600, 0});
-  }
-}
-
-/// Adds a part as a dynamic body whose frame is centred on the part's bounding box, at
-/// T_world_body, with the damping and CCD settings of every dropped part.
-void addPartBody(World& w, btCollisionShape* shape, const Part& part,
-                 const Eigen::Isometry3d& T_world_body) {
-  const double mass = partVolume_mm3(part) * 1e-3; // grams at 1 g/cm³
-  btRigidBody* body = w.addBody(shape, mass, toBt(T_world_body));
-  body->setCcdMotionThreshold(static_cast<btScalar>(2.0 / kMmPerUnit));
-  body->setCcdSweptSphereRadius(static_cast<btScalar>(1.5 / kMmPerUnit));
-  body->setSleepingThresholds(0.05f, 0.05f);
-}
-
-} // namespace
+using namespace physics;
 
 TriangleMesh environmentMesh(LayoutKind layout, const BinGeometry& bin) {
   TriangleMesh env;
@@ -245,6 +78,25 @@ double defaultCameraHeight_mm(const SensorModel& sensor, LayoutKind layout) {
   return kinect ? 1000.0 : 700.0;
 }
 
+namespace {
+
+/// The turn of a teach scene's part before its random yaw: the teach side's, or the resting pose's
+/// that spec.resting_side names (its drops take the first 90 % of `progress`).
+Eigen::Matrix3d teachRotation(const SceneSpec& spec, const Part& part, const ProgressFn& progress) {
+  if (!spec.resting_side)
+    return teachSideTurn(spec.teach_side) * part.R_table_part;
+  const int side = *spec.resting_side;
+  const auto poses = restingPoses(part, RestingPoseParams{}, subProgress(progress, 0.0, 0.9));
+  if (side < 0 || static_cast<std::size_t>(side) >= poses.size())
+    throw Error(
+        "resting side " + std::to_string(side) + " does not exist: part '" + part.name + "' has " +
+        std::to_string(poses.size()) + " distinct resting side" + (poses.size() == 1 ? "" : "s") +
+        (poses.empty() ? std::string() : " (0 to " + std::to_string(poses.size() - 1) + ")"));
+  return poses[static_cast<std::size_t>(side)].R_table_part;
+}
+
+} // namespace
+
 Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const ProgressFn& progress) {
   if (spec.parts.empty())
     throw Error("no part to place: give a built-in part name or a mesh file");
@@ -254,6 +106,14 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
   if (spec.teach_side < 0 || spec.teach_side > kTeachSides - 1)
     throw Error("teach side " + std::to_string(spec.teach_side) + " does not exist: use 0 to " +
                 std::to_string(kTeachSides - 1));
+  if (spec.resting_side && spec.layout != LayoutKind::Teach)
+    throw Error("a resting side applies to a teach scene only (layout is " +
+                layoutName(spec.layout) + ")");
+  if (spec.resting_side && spec.teach_side != 0)
+    throw Error("give either a teach side or a resting side, not both");
+  if (spec.resting_side && *spec.resting_side < 0)
+    throw Error("resting side " + std::to_string(*spec.resting_side) +
+                " does not exist: sides are numbered from 0 (most probable first)");
   if (spec.layout == LayoutKind::Teach && spec.count != 1)
     throw Error("a teach scene holds exactly one part (count is " + std::to_string(spec.count) +
                 ")");
@@ -320,7 +180,7 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
     const Part& part = scene.parts.front();
     const double yaw = unit(rng) * 2 * 3.14159265358979323846;
     const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-                              teachSideTurn(spec.teach_side) * part.R_table_part;
+                              teachRotation(spec, part, progress);
     // Lowest point of the part in this orientation, relative to its centre.
     double low = 0;
     for (const auto& c : part.components)

@@ -47,6 +47,12 @@ void validateRequest(const SynthRequest& r) {
     throw Error("a teach scene holds exactly one part: use --count 1");
   if (r.teach_side < 0 || r.teach_side >= kTeachSides)
     throw Error("--teach-side must be between 0 and " + std::to_string(kTeachSides - 1));
+  if (r.resting_side && r.layout != LayoutKind::Teach)
+    throw Error("--resting-side applies to --layout teach only");
+  if (r.resting_side && r.teach_side != 0)
+    throw Error("give either --teach-side or --resting-side, not both");
+  if (r.resting_side && *r.resting_side < 0)
+    throw Error("--resting-side must be 0 or more (0 = the most probable resting side)");
   if (!(r.deformation >= 0 && r.deformation <= kMaxDeformation))
     throw Error("--deform must be between 0 and 0.3 (a fraction of the part's size), got " +
                 std::to_string(r.deformation));
@@ -86,6 +92,7 @@ SynthScene synthesize(const SynthRequest& request, const ProgressFn& progress) {
   spec.seed = hashMix(request.seed, 0, 100); // physics and rendering draw from separate streams
   spec.camera_height_mm = request.camera_height_mm;
   spec.teach_side = request.teach_side;
+  spec.resting_side = request.resting_side;
   spec.bin = request.bin;
   out.scene = buildScene(spec, out.sensor, subProgress(progress, 0.0, 0.4));
   out.render = renderScene(out.scene, out.sensor, out.noise, hashMix(request.seed, 0, 101),

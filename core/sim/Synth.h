@@ -29,7 +29,10 @@ struct SynthRequest {
   bool noiseless = false;      ///< exact geometry (SensorNoise::none), for checks
   double camera_height_mm = 0; ///< 0 = default for the sensor and layout
   int teach_side = 0;          ///< teach layout: the side it rests on (SceneSpec)
-  BinGeometry bin;             ///< bin layout: the bin's size
+  /// Teach layout: rest on the N-th most probable distinct resting pose instead (SceneSpec,
+  /// core/sim/RestingPoses.h); teach_side must then be 0.
+  std::optional<int> resting_side;
+  BinGeometry bin; ///< bin layout: the bin's size
   /// Each instance's shape varies by up to this fraction (deformedPart: stretched, sheared and
   /// bent, like pears of one kind); 0 = every instance exactly as designed.
   double deformation = 0.0;
@@ -46,8 +49,9 @@ struct SynthScene {
   RenderResult render;
 };
 
-/// Checks the request (sensor, parts, mesh, count) and throws Error with what to fix, before any
-/// work is done.
+/// Checks the request (sensor, parts, mesh, count, sides) and throws Error with what to fix, before
+/// any work is done. Whether a resting side exists is known only once the part's resting poses
+/// are computed: synthesize throws Error naming how many there are.
 void validateRequest(const SynthRequest& request);
 
 /// Builds and renders the scene (deterministic for a given request). Throws Error for bad input
