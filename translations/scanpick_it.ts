@@ -281,11 +281,6 @@
         <translation>Mostra i punti del pavimento (arancione) che Rimuovi pavimento eliminerebbe</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="239"/>
-        <source>&amp;Language (applies at next start)</source>
-        <translation>&amp;Lingua (vale dal prossimo avvio)</translation>
-    </message>
-    <message>
         <location filename="../ui/MainWindow.cpp" line="397"/>
         <location filename="../ui/MainWindow.cpp" line="414"/>
         <location filename="../ui/MainWindowRecognize.cpp" line="144"/>
@@ -403,7 +398,7 @@
     </message>
     <message>
         <source>&amp;Language</source>
-        <translation type="vanished">&amp;Lingua</translation>
+        <translation>&amp;Lingua</translation>
     </message>
     <message>
         <location filename="../ui/MainWindow.cpp" line="250"/>
@@ -450,11 +445,6 @@
         <translation type="vanished">Lingua</translation>
     </message>
     <message>
-        <location filename="../ui/MainWindow.cpp" line="466"/>
-        <source>The language changes when scanpick is started again.</source>
-        <translation>La lingua cambia al prossimo avvio di scanpick.</translation>
-    </message>
-    <message>
         <location filename="../ui/MainWindow.cpp" line="474"/>
         <source>Screenshot</source>
         <translation>Schermata</translation>
@@ -463,11 +453,6 @@
         <location filename="../ui/MainWindow.cpp" line="474"/>
         <source>Could not write %1: check the folder exists and is writable.</source>
         <translation>Impossibile scrivere %1: verifica che la cartella esista e sia scrivibile.</translation>
-    </message>
-    <message>
-        <location filename="../ui/MainWindowRecognize.cpp" line="39"/>
-        <source>preprocess %1 · clustering %2 · keypoints %3 · features %4 · matching %5 · total %6 ms</source>
-        <translation>preelaborazione %1 · clustering %2 · keypoint %3 · feature %4 · matching %5 · totale %6 ms</translation>
     </message>
     <message>
         <location filename="../ui/MainWindowRecognize.cpp" line="53"/>
@@ -806,6 +791,18 @@
         <source>Model taught: %1 features, with parameters derived from the part. Save it with Ctrl+S.</source>
         <translation>Modello appreso: %1 feature, con parametri derivati dal pezzo. Salvalo con Ctrl+S.</translation>
     </message>
+    <message>
+        <source>Depth image</source>
+        <translation>Immagine di profondità</translation>
+    </message>
+    <message>
+        <source>&amp;Undo %1</source>
+        <translation>&amp;Annulla %1</translation>
+    </message>
+    <message>
+        <source>&amp;Redo %1</source>
+        <translation>&amp;Ripeti %1</translation>
+    </message>
 </context>
 <context>
     <name>scanpick::ui::ParameterPanel</name>
@@ -940,6 +937,21 @@
     <message>
         <source>Detection %1: drawn in this colour, labelled %1 in the view</source>
         <translation>Rilevamento %1: disegnato in questo colore, etichettato %1 nella vista</translation>
+    </message>
+</context>
+<context>
+    <name>scanpick::ui::DepthView</name>
+    <message>
+        <source>Open or capture a scan to see its depth image.</source>
+        <translation>Apri o acquisisci una scansione per vederne l’immagine di profondità.</translation>
+    </message>
+    <message>
+        <source>No depth image: this scan is a list of points without the sensor&apos;s grid (an unorganized cloud). Scans saved by a PhoXi or a Kinect keep the grid; clouds that were filtered, merged or converted from a mesh lose it.</source>
+        <translation>Nessuna immagine di profondità: questa scansione è un elenco di punti senza la griglia del sensore (una nuvola non organizzata). Le scansioni salvate da un PhoXi o da un Kinect conservano la griglia; le nuvole filtrate, unite o convertite da una mesh la perdono.</translation>
+    </message>
+    <message>
+        <source>Drawing the depth image…</source>
+        <translation>Disegno dell’immagine di profondità…</translation>
     </message>
 </context>
 <context>
@@ -1218,6 +1230,294 @@
     <message>
         <source>deg</source>
         <translation>gradi</translation>
+    </message>
+    <message>
+        <source>Remove the dominant planes (bin floor, table) with RANSAC before anything else.</source>
+        <translation>Rimuove con RANSAC i piani dominanti (fondo del cassone, tavolo) prima di ogni altra cosa.</translation>
+    </message>
+    <message>
+        <source>Points closer than this to the fitted plane are floor and are removed.</source>
+        <translation>I punti più vicini di così al piano stimato sono pavimento e vengono rimossi.</translation>
+    </message>
+    <message>
+        <source>How many dominant planes to remove (1: floor; 5: floor and four bin walls).</source>
+        <translation>Quanti piani dominanti rimuovere (1: pavimento; 5: pavimento e le quattro pareti del cassone).</translation>
+    </message>
+    <message>
+        <source>A plane is removed only if it holds at least this fraction of the scene&apos;s points.</source>
+        <translation>Un piano viene rimosso solo se contiene almeno questa frazione dei punti della scena.</translation>
+    </message>
+    <message>
+        <source>Beyond the thesis, for a bin standing on the ground: also remove the plane parallel to the first removed one that holds at least this fraction of the scene&apos;s points and has (almost) nothing behind it, the bin&apos;s floor; 0 = off.</source>
+        <translation>Oltre la tesi, per un cassone appoggiato a terra: rimuove anche il piano parallelo al primo rimosso che contiene almeno questa frazione dei punti della scena e non ha (quasi) nulla dietro di sé, il fondo del cassone; 0 = disattivato.</translation>
+    </message>
+    <message>
+        <source>Voxel-grid downsampling of the scene before keypoints; 0 keeps every point.</source>
+        <translation>Sottocampionamento a griglia di voxel della scena prima dei punti chiave; 0 mantiene ogni punto.</translation>
+    </message>
+    <message>
+        <source>Count the objects and split the scene with k-means; off treats the scene as one object.</source>
+        <translation>Conta gli oggetti e divide la scena con k-means; disattivato tratta la scena come un solo oggetto.</translation>
+    </message>
+    <message>
+        <source>Single-linkage distance r on the scene projected along the line to the farther source (Algorithm 7); the thesis suggests 1-1.5 mm for PhoXi.</source>
+        <translation>Distanza di collegamento singolo r sulla scena proiettata lungo la linea verso la sorgente più lontana (Algoritmo 7); la tesi suggerisce 1-1,5 mm per PhoXi.</translation>
+    </message>
+    <message>
+        <source>Projected clusters with at least this many points are counted as objects (min_cluster_size of Algorithm 7).</source>
+        <translation>I cluster proiettati con almeno questo numero di punti sono contati come oggetti (min_cluster_size dell&apos;Algoritmo 7).</translation>
+    </message>
+    <message>
+        <source>Initial centres of Lloyd&apos;s k-means: farthest-first traversal (the thesis&apos;s choice, deterministic) or k-means++ (seeded).</source>
+        <translation>Centri iniziali del k-means di Lloyd: attraversamento del più lontano (la scelta della tesi, deterministico) o k-means++ (con seme).</translation>
+    </message>
+    <message>
+        <source>Upper bound on Lloyd iterations; it stops earlier when the objective stops decreasing.</source>
+        <translation>Limite superiore alle iterazioni di Lloyd; si ferma prima quando l&apos;obiettivo smette di diminuire.</translation>
+    </message>
+    <message>
+        <source>k-means clusters smaller than this are outliers: their points are removed and k-means is re-run (the thesis uses 3).</source>
+        <translation>I cluster k-means più piccoli di così sono anomali: i loro punti vengono rimossi e k-means viene rieseguito (la tesi usa 3).</translation>
+    </message>
+    <message>
+        <source>k-means with k = the object count (the thesis), or the projected clusters of the count used directly as objects (keeps touching parts apart; small fragments join the nearest object).</source>
+        <translation>k-means con k = il numero di oggetti (la tesi), oppure i cluster proiettati del conteggio usati direttamente come oggetti (tiene separati i pezzi che si toccano; i piccoli frammenti si uniscono all&apos;oggetto più vicino).</translation>
+    </message>
+    <message>
+        <source>Neighbourhood analysis (edges, Algorithm 2), normals gradient analysis (curvature peaks, Algorithm 1), or both together.</source>
+        <translation>Analisi del vicinato (spigoli, Algoritmo 2), analisi del gradiente delle normali (picchi di curvatura, Algoritmo 1), o entrambe insieme.</translation>
+    </message>
+    <message>
+        <source>Radius of the neighbourhood whose centroid is examined.</source>
+        <translation>Raggio del vicinato di cui si esamina il baricentro.</translation>
+    </message>
+    <message>
+        <source>A point is an edge keypoint when its neighbourhood centroid is at least this far away; a negative value keeps every point (the thesis&apos;s ideal test uses -1).</source>
+        <translation>Un punto è un punto chiave di spigolo quando il baricentro del suo vicinato dista almeno così; un valore negativo mantiene ogni punto (il test ideale della tesi usa -1).</translation>
+    </message>
+    <message>
+        <source>Normals gradient analysis: a point whose neighbours&apos; normals all turn less than s is in a flat region and yields no keypoint.</source>
+        <translation>Analisi del gradiente delle normali: un punto le cui normali vicine ruotano tutte meno di s è in una regione piana e non dà alcun punto chiave.</translation>
+    </message>
+    <message>
+        <source>Normals gradient analysis: neighbours examined at each step of the walk.</source>
+        <translation>Analisi del gradiente delle normali: vicini esaminati a ogni passo del percorso.</translation>
+    </message>
+    <message>
+        <source>Radius of the neighbourhood used to estimate surface normals.</source>
+        <translation>Raggio del vicinato usato per stimare le normali della superficie.</translation>
+    </message>
+    <message>
+        <source>Sample-consensus estimator for lines and circles; the thesis keeps RANSAC, which finds more features than MLESAC and PROSAC.</source>
+        <translation>Stimatore a consenso di campioni per linee e cerchi; la tesi mantiene RANSAC, che trova più feature di MLESAC e PROSAC.</translation>
+    </message>
+    <message>
+        <source>Minimum inliers of an accepted line or circle.</source>
+        <translation>Inlier minimi di una linea o di un cerchio accettati.</translation>
+    </message>
+    <message>
+        <source>Distance within which a keypoint is an inlier of a line.</source>
+        <translation>Distanza entro la quale un punto chiave è un inlier di una linea.</translation>
+    </message>
+    <message>
+        <source>Distance within which a keypoint is an inlier of a circle.</source>
+        <translation>Distanza entro la quale un punto chiave è un inlier di un cerchio.</translation>
+    </message>
+    <message>
+        <source>Random samples drawn per line or circle search.</source>
+        <translation>Campioni casuali estratti per ogni ricerca di linea o cerchio.</translation>
+    </message>
+    <message>
+        <source>Stop extracting after this many lines and circles per cloud.</source>
+        <translation>Interrompe l&apos;estrazione dopo questo numero di linee e cerchi per nuvola.</translation>
+    </message>
+    <message>
+        <source>Circles with a smaller radius are rejected.</source>
+        <translation>I cerchi con raggio minore vengono scartati.</translation>
+    </message>
+    <message>
+        <source>Circles with a larger radius are rejected.</source>
+        <translation>I cerchi con raggio maggiore vengono scartati.</translation>
+    </message>
+    <message>
+        <source>Search 3D lines.</source>
+        <translation>Cerca linee 3D.</translation>
+    </message>
+    <message>
+        <source>Search 3D circles.</source>
+        <translation>Cerca cerchi 3D.</translation>
+    </message>
+    <message>
+        <source>A line&apos;s or circle&apos;s inliers are cut where neighbours along it are farther apart than this and only the largest connected run is kept, so collinear edges of different objects do not merge; 0 = automatic.</source>
+        <translation>Gli inlier di una linea o di un cerchio vengono interrotti dove i vicini lungo di essa distano più di così e si mantiene solo il tratto connesso più lungo, così gli spigoli allineati di oggetti diversi non si fondono; 0 = automatico.</translation>
+    </message>
+    <message>
+        <source>Beyond the thesis: the other points of a RANSAC sample are drawn within this distance of its first point, so features are found in far fewer trials; 0 = uniform sampling (the thesis).</source>
+        <translation>Oltre la tesi: gli altri punti di un campione RANSAC sono estratti entro questa distanza dal primo, così le feature si trovano con molti meno tentativi; 0 = campionamento uniforme (la tesi).</translation>
+    </message>
+    <message>
+        <source>Two lines may match when their lengths differ by at most this.</source>
+        <translation>Due linee possono corrispondere quando le loro lunghezze differiscono al massimo di così.</translation>
+    </message>
+    <message>
+        <source>Two circles may match when their radii differ by at most this.</source>
+        <translation>Due cerchi possono corrispondere quando i loro raggi differiscono al massimo di così.</translation>
+    </message>
+    <message>
+        <source>Radius around the predicted position (on the roll toroid, and after the transform when scoring) within which a scene feature is accepted.</source>
+        <translation>Raggio attorno alla posizione prevista (sul toroide di rollio, e dopo la trasformazione nel calcolo del punteggio) entro il quale una feature della scena è accettata.</translation>
+    </message>
+    <message>
+        <source>Largest angle between predicted and found feature directions (line axis or circle normal).</source>
+        <translation>Angolo massimo tra la direzione prevista e quella trovata di una feature (asse della linea o normale del cerchio).</translation>
+    </message>
+    <message>
+        <source>Angular step of the search around T1&apos;s axis (the toroid of Figure 3.5).</source>
+        <translation>Passo angolare della ricerca attorno all&apos;asse di T1 (il toroide della Figura 3.5).</translation>
+    </message>
+    <message>
+        <source>Detections whose share of confirmed model features is below this are rejected.</source>
+        <translation>I rilevamenti la cui quota di feature del modello confermate è inferiore a questa vengono scartati.</translation>
+    </message>
+    <message>
+        <source>Report at most this many detections, best first; 0 = all.</source>
+        <translation>Riporta al massimo questo numero di rilevamenti, i migliori per primi; 0 = tutti.</translation>
+    </message>
+    <message>
+        <source>Searches per scene cluster: after a detection its features are removed and the cluster is searched again, since clustering may merge touching parts.</source>
+        <translation>Ricerche per cluster della scena: dopo un rilevamento le sue feature vengono rimosse e il cluster viene cercato di nuovo, poiché il clustering può unire pezzi che si toccano.</translation>
+    </message>
+    <message>
+        <source>Beyond the thesis: a pose is verified by the share of model points with a scene point within this distance, less those the camera sees through (organized scans); 0 = off (the thesis&apos;s feature score only).</source>
+        <translation>Oltre la tesi: una posa è verificata dalla quota di punti del modello con un punto della scena entro questa distanza, meno quelli attraverso cui la camera vede (scansioni organizzate); 0 = disattivato (solo il punteggio delle feature della tesi).</translation>
+    </message>
+    <message>
+        <source>With verification on: detections confirming a smaller share of their visible model points are rejected.</source>
+        <translation>Con la verifica attiva: i rilevamenti che confermano una quota minore dei loro punti visibili del modello vengono scartati.</translation>
+    </message>
+    <message>
+        <source>Beyond the thesis: with verification on, the coverage is also weighed by the share of the model&apos;s keypoints (edges) lying on confirmed surface that have a scene keypoint within this distance, so a plate turned on another plate scores low; 0 = off.</source>
+        <translation>Oltre la tesi: con la verifica attiva, la copertura è pesata anche dalla quota di punti chiave (spigoli) del modello che giacciono su superficie confermata e hanno un punto chiave della scena entro questa distanza, così una piastra ruotata su un&apos;altra piastra ottiene un punteggio basso; 0 = disattivato.</translation>
+    </message>
+    <message>
+        <source>Distinct poses per search re-ranked by verification; 1 = the thesis (the best feature score alone decides).</source>
+        <translation>Pose distinte per ricerca riordinate dalla verifica; 1 = la tesi (decide solo il miglior punteggio delle feature).</translation>
+    </message>
+    <message>
+        <source>Beyond the thesis, for bins of touching parts: with verification on, one search keeps up to this many distinct poses from all seed pairs, verifies each and reports every one reaching the min coverage (instead of repeated best-first searches); 0 = off.</source>
+        <translation>Oltre la tesi, per cassoni di pezzi che si toccano: con la verifica attiva, una ricerca conserva fino a questo numero di pose distinte da tutte le coppie iniziali, verifica ciascuna e riporta ognuna che raggiunge la copertura minima (invece di ricerche ripetute del migliore); 0 = disattivato.</translation>
+    </message>
+    <message>
+        <source>Beyond the thesis: with verification on, surface point pair voting adds pose hypotheses that need no line or circle pairs (parts whose edges are hidden by their neighbours); model and scene are sampled with voxels of this edge, about 4 % of the part&apos;s diameter; 0 = off.</source>
+        <translation>Oltre la tesi: con la verifica attiva, il voto su coppie di punti di superficie aggiunge ipotesi di posa che non richiedono coppie di linee o cerchi (pezzi i cui spigoli sono nascosti dai vicini); modello e scena sono campionati con voxel di questo lato, circa il 4 % del diametro del pezzo; 0 = disattivato.</translation>
+    </message>
+    <message>
+        <source>Surface voting: every n-th sampled scene point votes as a reference; lower finds more (partly hidden) parts, higher is faster.</source>
+        <translation>Voto di superficie: ogni n-esimo punto campionato della scena vota come riferimento; più basso trova più pezzi (in parte nascosti), più alto è più veloce.</translation>
+    </message>
+    <message>
+        <source>Surface voting: at most this many voted poses (most votes first) are refined and verified.</source>
+        <translation>Voto di superficie: al massimo questo numero di pose votate (le più votate per prime) viene rifinito e verificato.</translation>
+    </message>
+    <message>
+        <source>Beyond the thesis, for nearly symmetric parts (a plate whose hook differs only at its lip): a turn of the view, found by voting the view against itself, that puts this share of its points back on its own surface is a near symmetry; each detection is compared with its turned pose on the points that differ, and the pose the scan contradicts clearly less is kept, or both are reported when it cannot tell. Needs verification; 0 = off.</source>
+        <translation>Oltre la tesi, per pezzi quasi simmetrici (una piastra il cui gancio differisce solo al bordo): una rotazione della vista, trovata facendo votare la vista contro se stessa, che riporta questa quota dei suoi punti sulla propria superficie è una quasi-simmetria; ogni rilevamento è confrontato con la sua posa ruotata sui punti che differiscono, e si mantiene la posa che la scansione contraddice chiaramente meno, oppure si riportano entrambe quando non si può decidere. Richiede la verifica; 0 = disattivato.</translation>
+    </message>
+    <message>
+        <source>Refine each detection&apos;s pose with ICP against the scene points; views that know their place in the part fit the other views&apos; points too, and several views&apos; detections are refined after they are merged.</source>
+        <translation>Rifinisce la posa di ogni rilevamento con ICP sui punti della scena; le viste che conoscono la propria posizione nel pezzo adattano anche i punti delle altre viste, e i rilevamenti di più viste vengono rifiniti dopo essere stati uniti.</translation>
+    </message>
+    <message>
+        <source>Upper bound on ICP iterations.</source>
+        <translation>Limite superiore alle iterazioni ICP.</translation>
+    </message>
+    <message>
+        <source>Model-scene point pairs farther apart than this are ignored by ICP.</source>
+        <translation>Le coppie di punti modello-scena più distanti di così sono ignorate da ICP.</translation>
+    </message>
+    <message>
+        <source>The pair distance shrinks from the ICP distance towards 3x the residual, but not below this; about 5-10x the sensor noise (PhoXi 1 mm, Kinect 10 mm).</source>
+        <translation>La distanza delle coppie si riduce dalla distanza ICP verso 3 volte il residuo, ma non sotto questo valore; circa 5-10 volte il rumore del sensore (PhoXi 1 mm, Kinect 10 mm).</translation>
+    </message>
+    <message>
+        <source>A visible model point with a scene point this close confirms the refined pose.</source>
+        <translation>Un punto visibile del modello con un punto della scena così vicino conferma la posa rifinita.</translation>
+    </message>
+    <message>
+        <source>ICP stops when an iteration moves no model point by more than this.</source>
+        <translation>ICP si ferma quando un&apos;iterazione non sposta alcun punto del modello di più di così.</translation>
+    </message>
+    <message>
+        <source>Model points used by ICP (an even voxel subsample); more is slower, rarely better.</source>
+        <translation>Punti del modello usati da ICP (un sottocampionamento uniforme a voxel); di più è più lento, raramente migliore.</translation>
+    </message>
+    <message>
+        <source>Minimise point-to-plane distances (fast, sub-sample accurate); off: point-to-point.</source>
+        <translation>Minimizza le distanze punto-piano (veloce, precisione inferiore al passo di campionamento); disattivato: punto-punto.</translation>
+    </message>
+    <message>
+        <source>A refined pose counts as converged only if this share of the visible model points has a scene point within the inlier distance.</source>
+        <translation>Una posa rifinita conta come convergente solo se questa quota dei punti visibili del modello ha un punto della scena entro la distanza inlier.</translation>
+    </message>
+    <message>
+        <source>After ICP, a view that is a surface of revolution (a cup or pipe on its side) is slid along its axis to where the scan shows its wall&apos;s two ends, which ICP hardly pins; the middle between the ends is where the part&apos;s middle is, whatever the pixel size.</source>
+        <translation>Dopo ICP, una vista che è una superficie di rivoluzione (una tazza o un tubo coricati) viene fatta scorrere lungo il suo asse fino a dove la scansione mostra le due estremità della parete, che ICP vincola appena; il punto medio tra le estremità è dove sta il centro del pezzo, qualunque sia la dimensione del pixel.</translation>
+    </message>
+    <message>
+        <source>After ICP, a view that is no surface of revolution is moved along each direction ICP hardly pins (a plate seen face-on, in its own plane), or pins loosely where both sides agree within 0.1 mm (a plate seen edge-on, along its length), to where the scan&apos;s points end as the view&apos;s do, both sides of the outline together; other views of the part tell where this view&apos;s ends were hidden when it was taught. ICP then leaves the directions it hardly pins as they came, for the outline to place. Helps plates; a view cut from a cluttered scan can lose by it.</source>
+        <translation>Dopo ICP, una vista che non è una superficie di rivoluzione viene spostata lungo ogni direzione che ICP vincola appena (una piastra vista di fronte, nel proprio piano), o vincola debolmente dove i due lati concordano entro 0,1 mm (una piastra vista di taglio, lungo la sua lunghezza), fino a dove i punti della scansione finiscono come quelli della vista, entrambi i lati del contorno insieme; le altre viste del pezzo dicono dove le estremità di questa vista erano nascoste quando è stata insegnata. ICP lascia poi le direzioni che vincola appena come sono arrivate, perché le collochi il contorno. Aiuta le piastre; una vista ritagliata da una scansione affollata può perderci.</translation>
+    </message>
+    <message>
+        <source>Seed of every random choice; the same input and seed give the same output.</source>
+        <translation>Seme di ogni scelta casuale; lo stesso ingresso e lo stesso seme danno lo stesso risultato.</translation>
+    </message>
+    <message>
+        <source>mm</source>
+        <translation>mm</translation>
+    </message>
+    <message>
+        <source>rad</source>
+        <translation>rad</translation>
+    </message>
+    <message>
+        <source>farthest_first</source>
+        <translation>più lontano prima</translation>
+    </message>
+    <message>
+        <source>kmeans++</source>
+        <translation>k-means++</translation>
+    </message>
+    <message>
+        <source>kmeans</source>
+        <translation>k-means</translation>
+    </message>
+    <message>
+        <source>projected_clusters</source>
+        <translation>cluster proiettati</translation>
+    </message>
+    <message>
+        <source>neighbourhood</source>
+        <translation>vicinato</translation>
+    </message>
+    <message>
+        <source>normals_gradient</source>
+        <translation>gradiente delle normali</translation>
+    </message>
+    <message>
+        <source>both</source>
+        <translation>entrambi</translation>
+    </message>
+    <message>
+        <source>ransac</source>
+        <translation>RANSAC</translation>
+    </message>
+    <message>
+        <source>mlesac</source>
+        <translation>MLESAC</translation>
+    </message>
+    <message>
+        <source>prosac</source>
+        <translation>PROSAC</translation>
     </message>
 </context>
 </TS>

@@ -1,11 +1,14 @@
 #include "ui/MainWindow.h"
 
 #include "core/cloud/CloudIo.h"
+#include "core/common/Error.h"
 #include "core/common/Log.h"
 #include "core/model/ModelFile.h"
 #include "ui/FileDialogs.h"
+#include "ui/Language.h"
 #include "ui/Settings.h"
 #include "ui/jobs/JobRunner.h"
+#include "ui/panels/DepthView.h"
 #include "ui/panels/DevicePanel.h"
 #include "ui/panels/LogDock.h"
 #include "ui/panels/ParameterPanel.h"
@@ -18,6 +21,7 @@
 #include <QCloseEvent>
 #include <QDesktopServices>
 #include <QDockWidget>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QHeaderView>
@@ -35,6 +39,9 @@
 #include <QToolBar>
 #include <QUndoStack>
 #include <QUrl>
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <vtkBoxWidget2.h>
 #include <vtkCamera.h>
 #include <vtkProp.h>
@@ -45,7 +52,7 @@ namespace scanpick::ui {
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setObjectName(QStringLiteral("MainWindow"));
-  setWindowTitle(tr("scanpick"));
+  m_texts.bind(this, "windowTitle", [] { return tr("scanpick"); });
   setAcceptDrops(true);
   setDockNestingEnabled(true);
   m_view = new QtVtkViewport(this);
@@ -55,6 +62,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   m_preview_jobs = new JobRunner(m_pool.get(), this);
   m_recognize_jobs = new JobRunner(m_pool.get(), this);
   m_prepare_jobs = new JobRunner(m_pool.get(), this);
+  m_depth_jobs = new JobRunner(m_pool.get(), this);
   m_undo = new QUndoStack(this);
   m_recognizer = std::make_shared<core::Recognizer>();
   m_preview_timer = new QTimer(this);
@@ -70,22 +78,24 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   m_progress->setRange(0, 1000);
   m_progress->setMaximumWidth(180);
   m_progress->setVisible(false);
-  m_cancel = new QPushButton(tr("Cancel"), this);
+  m_cancel = new QPushButton(this);
+  m_texts.bind(m_cancel, "text", [] { return tr("Cancel"); });
   m_cancel->setObjectName(QStringLiteral("cancelButton"));
   m_cancel->setVisible(false);
   statusBar()->addPermanentWidget(m_status_counts);
   statusBar()->addPermanentWidget(m_status_timings);
   statusBar()->addPermanentWidget(m_progress);
   statusBar()->addPermanentWidget(m_cancel);
+  m_progress->setObjectName(QStringLiteral("jobProgress"));
   // One progress bar for the long jobs (loading, teaching, recognizing); previews stay quiet. It
-  // starts as a moving busy indicator and shows a percentage once the job reports one (file
-  // reading reports none).
+  // starts as a moving busy indicator and shows the percentage the job reports (loading reports
+  // the bytes read and the decoding); it is hidden when the job ends.
   for (JobRunner* runner : {m_jobs, m_recognize_jobs}) {
     connect(runner, &JobRunner::progress, this, [this](double f) {
       if (f <= 0)
         return;
       m_progress->setRange(0, 1000);
-      m_progress->setValue(static_cast<int>(f * 1000));
+      m_progress->setValue(static_cast<int>(std::min(f, 1.0) * 1000));
     });
     connect(runner, &JobRunner::busyChanged, this, [this] {
       const bool busy = m_jobs->busy() || m_recognize_jobs->busy();
@@ -108,7 +118,27 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   buildTeachDock();
   addPanelsToViewMenu();
   restoreSettings();
-  statusBar()->showMessage(tr("Open a scan (Ctrl+O) or drop a PCD/PLY file here"));
+  m_welcome_shown = welcomeText();
+  statusBar()->showMessage(m_welcome_shown);
+}
+
+QString MainWindow::welcomeText() {
+  return tr("Open a scan (Ctrl+O) or drop a PCD/PLY file here");
+}
+
+void MainWindow::changeEvent(QEvent* event) {
+  if (event->type() == QEvent::LanguageChange)
+    retranslateUi();
+  QMainWindow::changeEvent(event);
+}
+
+void MainWindow::retranslateUi() {
+  // The welcome message stays until something else is shown; it follows the language too.
+  const bool welcome = statusBar()->currentMessage() == m_welcome_shown;
+  m_texts.apply();
+  m_welcome_shown = welcomeText();
+  if (welcome)
+    statusBar()->showMessage(m_welcome_shown);
 }
 
 MainWindow::~MainWindow() {
@@ -116,6 +146,7 @@ MainWindow::~MainWindow() {
   m_preview_jobs->cancel();
   m_recognize_jobs->cancel();
   m_prepare_jobs->cancel();
+  m_depth_jobs->cancel();
   m_jobs->cancel();
   if (m_box_widget)
     m_box_widget->Off();
@@ -127,7 +158,8 @@ double MainWindow::ratio() const {
 
 void MainWindow::buildDocks() {
   m_params = new ParameterPanel(this);
-  auto* params_dock = new QDockWidget(tr("Parameters"), this);
+  auto* params_dock = new QDockWidget(this);
+  m_texts.bind(params_dock, "windowTitle", [] { return tr("Parameters"); });
   params_dock->setObjectName(QStringLiteral("ParametersDock"));
   params_dock->setWidget(m_params);
   addDockWidget(Qt::RightDockWidgetArea, params_dock);
@@ -137,14 +169,16 @@ void MainWindow::buildDocks() {
           [](const QString& path) { QSettings().setValue(settings::kLastPreset, path); });
 
   m_results = new ResultsTable(this);
-  auto* results_dock = new QDockWidget(tr("Results"), this);
+  auto* results_dock = new QDockWidget(this);
+  m_texts.bind(results_dock, "windowTitle", [] { return tr("Results"); });
   results_dock->setObjectName(QStringLiteral("ResultsDock"));
   results_dock->setWidget(m_results);
   addDockWidget(Qt::BottomDockWidgetArea, results_dock);
   connect(m_results, &ResultsTable::detectionSelected, this, &MainWindow::onResultSelected);
 
   m_devices = new DevicePanel(this);
-  auto* devices_dock = new QDockWidget(tr("Capture"), this);
+  auto* devices_dock = new QDockWidget(this);
+  m_texts.bind(devices_dock, "windowTitle", [] { return tr("Capture"); });
   devices_dock->setObjectName(QStringLiteral("CaptureDock"));
   auto* devices_scroll = new QScrollArea(devices_dock);
   devices_scroll->setWidgetResizable(true);
@@ -160,6 +194,19 @@ void MainWindow::buildDocks() {
   connect(m_devices, &DevicePanel::deviceError, this,
           [this](const QString& message) { showError(tr("Camera"), message); });
 
+  // The depth image shares the left side with Capture and Teach, as a tab.
+  m_depth_view = new DepthView(this);
+  auto* depth_dock = new QDockWidget(this);
+  depth_dock->setObjectName(QStringLiteral("DepthDock"));
+  m_texts.bind(depth_dock, "windowTitle", [] { return tr("Depth image"); });
+  depth_dock->setWidget(m_depth_view);
+  addDockWidget(Qt::LeftDockWidgetArea, depth_dock);
+  tabifyDockWidget(devices_dock, depth_dock);
+  connect(depth_dock, &QDockWidget::visibilityChanged, this, [this](bool visible) {
+    if (visible)
+      updateDepthView();
+  });
+
   m_log = new LogDock(this);
   addDockWidget(Qt::BottomDockWidgetArea, m_log);
   tabifyDockWidget(results_dock, m_log);
@@ -172,113 +219,178 @@ void MainWindow::buildDocks() {
 }
 
 void MainWindow::buildActions() {
-  QMenu* file = menuBar()->addMenu(tr("&File"));
-  QAction* open = file->addAction(tr("&Open scan or model…"), this, [this] {
-    // Several models chosen together are the views of one part.
-    const QStringList paths = QFileDialog::getOpenFileNames(
-        this, tr("Open"), QSettings().value(settings::kLastDirectory).toString(),
-        tr("Scans and models (*.pcd *.ply *.spmodel);;All files (*)"));
-    openFiles(paths);
-  });
+  // Every text is bound (m_texts), so that it follows a language switch (retranslateUi).
+  const auto menu = [this](std::function<QString()> title) {
+    QMenu* m = menuBar()->addMenu(QString());
+    m_texts.bind(m->menuAction(), "text", std::move(title));
+    return m;
+  };
+  const auto named = [this](QAction* a, std::function<QString()> text) {
+    m_texts.bind(a, "text", std::move(text));
+    return a;
+  };
+  // An entry of `m` named `text()` that calls `slot` of `receiver` (a member function, or a
+  // lambda with `receiver` as context).
+  const auto add = [named](QMenu* m, std::function<QString()> text, auto* receiver, auto slot) {
+    return named(m->addAction(QString(), receiver, slot), std::move(text));
+  };
+  QMenu* file = menu([] { return tr("&File"); });
+  QAction* open = add(
+      file, [] { return tr("&Open scan or model…"); }, this,
+      [this] {
+        // Several models chosen together are the views of one part.
+        const QStringList paths = QFileDialog::getOpenFileNames(
+            this, tr("Open"), QSettings().value(settings::kLastDirectory).toString(),
+            tr("Scans and models (*.pcd *.ply *.spmodel);;All files (*)"));
+        openFiles(paths);
+      });
   open->setShortcut(QKeySequence::Open);
-  QAction* add_view = file->addAction(tr("&Add model view…"), this, [this] {
-    const QStringList paths = QFileDialog::getOpenFileNames(
-        this, tr("Add model view"), QSettings().value(settings::kLastDirectory).toString(),
-        tr("Models (*.spmodel)"));
-    if (!paths.isEmpty())
-      addModelViews(paths);
+  QAction* add_view = add(
+      file, [] { return tr("&Add model view…"); }, this,
+      [this] {
+        const QStringList paths = QFileDialog::getOpenFileNames(
+            this, tr("Add model view"), QSettings().value(settings::kLastDirectory).toString(),
+            tr("Models (*.spmodel)"));
+        if (!paths.isEmpty())
+          addModelViews(paths);
+      });
+  m_texts.bind(add_view, "toolTip", [] {
+    return tr("Add views of the same part, taught from scans of its other sides: "
+              "Recognize searches them all");
   });
-  add_view->setToolTip(tr("Add views of the same part, taught from scans of its other sides: "
-                          "Recognize searches them all"));
-  m_recent_menu = file->addMenu(tr("Open &recent"));
+  m_recent_menu = file->addMenu(QString());
+  m_texts.bind(m_recent_menu->menuAction(), "text", [] { return tr("Open &recent"); });
   rebuildRecentMenu();
   file->addSeparator();
-  QAction* save_model = file->addAction(tr("&Save model…"), this, [this] {
-    if (!model())
-      return showError(tr("Save model"), tr("Teach or open a model first."));
-    const QString path = askSaveFileName(this, tr("Save model"), m_view_paths.value(0),
-                                         tr("Models (*.spmodel)"), QStringLiteral("spmodel"));
-    if (!path.isEmpty())
-      saveModel(path);
-  });
+  QAction* save_model = add(
+      file, [] { return tr("&Save model…"); }, this,
+      [this] {
+        if (!model())
+          return showError(tr("Save model"), tr("Teach or open a model first."));
+        const QString path = askSaveFileName(this, tr("Save model"), m_view_paths.value(0),
+                                             tr("Models (*.spmodel)"), QStringLiteral("spmodel"));
+        if (!path.isEmpty())
+          saveModel(path);
+      });
   save_model->setShortcut(QKeySequence::Save);
-  file->addAction(tr("Save &scan…"), this, [this] {
-    if (!m_scan)
-      return showError(tr("Save scan"), tr("Open or capture a scan first."));
-    const QString path = askSaveFileName(this, tr("Save scan"), QString(),
-                                         tr("Scans (*.pcd *.ply)"), QStringLiteral("pcd"));
-    if (!path.isEmpty())
-      saveScan(path);
-  });
-  file->addAction(tr("&Export results…"), this, [this] {
-    const QString path = askSaveFileName(this, tr("Export results"), QString(),
-                                         tr("Results (*.json)"), QStringLiteral("json"));
-    if (!path.isEmpty())
-      exportResults(path);
-  });
-  QAction* shot = file->addAction(tr("Save screens&hot…"), this, [this] {
-    const QString path = askSaveFileName(this, tr("Save screenshot"), QString(),
-                                         tr("Images (*.png)"), QStringLiteral("png"));
-    if (!path.isEmpty())
-      saveScreenshot(path);
-  });
+  add(
+      file, [] { return tr("Save &scan…"); }, this,
+      [this] {
+        if (!m_scan)
+          return showError(tr("Save scan"), tr("Open or capture a scan first."));
+        const QString path = askSaveFileName(this, tr("Save scan"), QString(),
+                                             tr("Scans (*.pcd *.ply)"), QStringLiteral("pcd"));
+        if (!path.isEmpty())
+          saveScan(path);
+      });
+  add(
+      file, [] { return tr("&Export results…"); }, this,
+      [this] {
+        const QString path = askSaveFileName(this, tr("Export results"), QString(),
+                                             tr("Results (*.json)"), QStringLiteral("json"));
+        if (!path.isEmpty())
+          exportResults(path);
+      });
+  QAction* shot = add(
+      file, [] { return tr("Save screens&hot…"); }, this,
+      [this] {
+        const QString path = askSaveFileName(this, tr("Save screenshot"), QString(),
+                                             tr("Images (*.png)"), QStringLiteral("png"));
+        if (!path.isEmpty())
+          saveScreenshot(path);
+      });
   shot->setShortcut(Qt::Key_F12);
   file->addSeparator();
-  file->addAction(tr("&Quit"), this, &QWidget::close)->setShortcut(QKeySequence::Quit);
+  add(
+      file, [] { return tr("&Quit"); }, this, &QWidget::close)
+      ->setShortcut(QKeySequence::Quit);
 
-  QMenu* edit = menuBar()->addMenu(tr("&Edit"));
-  QAction* undo = m_undo->createUndoAction(this, tr("&Undo"));
+  QMenu* edit = menu([] { return tr("&Edit"); });
+  // Undo and redo name the step they undo ("Undo Crop"), in the language of the moment.
+  auto* undo = new QAction(this);
+  auto* redo = new QAction(this);
+  undo->setObjectName(QStringLiteral("undoAction"));
+  redo->setObjectName(QStringLiteral("redoAction"));
+  connect(undo, &QAction::triggered, m_undo, &QUndoStack::undo);
+  connect(redo, &QAction::triggered, m_undo, &QUndoStack::redo);
+  undo->setEnabled(false);
+  redo->setEnabled(false);
+  connect(m_undo, &QUndoStack::canUndoChanged, undo, &QAction::setEnabled);
+  connect(m_undo, &QUndoStack::canRedoChanged, redo, &QAction::setEnabled);
+  const auto undo_text = [this] {
+    const QString step = m_undo->undoText();
+    return step.isEmpty() ? tr("&Undo") : tr("&Undo %1").arg(step);
+  };
+  const auto redo_text = [this] {
+    const QString step = m_undo->redoText();
+    return step.isEmpty() ? tr("&Redo") : tr("&Redo %1").arg(step);
+  };
+  named(undo, undo_text);
+  named(redo, redo_text);
+  connect(m_undo, &QUndoStack::undoTextChanged, undo,
+          [undo, undo_text] { undo->setText(undo_text()); });
+  connect(m_undo, &QUndoStack::redoTextChanged, redo,
+          [redo, redo_text] { redo->setText(redo_text()); });
   undo->setShortcut(QKeySequence::Undo);
-  QAction* redo = m_undo->createRedoAction(this, tr("&Redo"));
   redo->setShortcut(QKeySequence::Redo);
   edit->addAction(undo);
   edit->addAction(redo);
 
-  QMenu* teach_menu = menuBar()->addMenu(tr("&Teach"));
-  m_crop_action = teach_menu->addAction(tr("Crop &box"));
+  QMenu* teach_menu = menu([] { return tr("&Teach"); });
+  m_crop_action = named(teach_menu->addAction(QString()), [] { return tr("Crop &box"); });
   m_crop_action->setCheckable(true);
   m_crop_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_B));
   connect(m_crop_action, &QAction::toggled, this, &MainWindow::setCropBoxVisible);
-  teach_menu->addAction(tr("&Apply crop"), this, [this] { applyCrop(); })
+  add(
+      teach_menu, [] { return tr("&Apply crop"); }, this, [this] { applyCrop(); })
       ->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Return));
-  m_lasso_action = teach_menu->addAction(tr("&Lasso crop"));
+  m_lasso_action = named(teach_menu->addAction(QString()), [] { return tr("&Lasso crop"); });
   m_lasso_action->setCheckable(true);
   m_lasso_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_L));
-  m_lasso_action->setToolTip(tr("Draw around the part with the left button: the points inside "
-                                "are kept (undo with Ctrl+Z)"));
+  m_texts.bind(m_lasso_action, "toolTip", [] {
+    return tr("Draw around the part with the left button: the points inside "
+              "are kept (undo with Ctrl+Z)");
+  });
   connect(m_lasso_action, &QAction::toggled, this, &MainWindow::setLassoActive);
-  m_floor_preview_action =
-      teach_menu->addAction(tr("&Preview floor"), this, &MainWindow::previewFloor);
+  m_floor_preview_action = add(
+      teach_menu, [] { return tr("&Preview floor"); }, this, &MainWindow::previewFloor);
   m_floor_preview_action->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_F));
-  m_floor_preview_action->setToolTip(
-      tr("Show the floor points (orange) that Remove floor would take away"));
-  m_floor_remove_action =
-      teach_menu->addAction(tr("Remove &floor"), this, &MainWindow::removeFloorFromPart);
+  m_texts.bind(m_floor_preview_action, "toolTip", [] {
+    return tr("Show the floor points (orange) that Remove floor would take away");
+  });
+  m_floor_remove_action = add(
+      teach_menu, [] { return tr("Remove &floor"); }, this, &MainWindow::removeFloorFromPart);
   m_floor_remove_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_F));
-  m_grip_action = teach_menu->addAction(tr("Place &grip points"));
+  m_grip_action = named(teach_menu->addAction(QString()), [] { return tr("Place &grip points"); });
   m_grip_action->setCheckable(true);
   m_grip_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_G));
-  teach_menu->addAction(tr("&Teach model"), this, &MainWindow::teach)
-      ->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_T));
+  QAction* teach_action = add(
+      teach_menu, [] { return tr("&Teach model"); }, this, &MainWindow::teach);
+  teach_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_T));
 
-  QMenu* run = menuBar()->addMenu(tr("&Recognize"));
-  run->addAction(tr("&Recognize"), this, &MainWindow::recognize)->setShortcut(Qt::Key_F5);
-  run->addAction(tr("&Cancel"), this, &MainWindow::cancelRecognition)->setShortcut(Qt::Key_Escape);
-  m_live_action = run->addAction(tr("&Live"));
+  QMenu* run = menu([] { return tr("&Recognize"); });
+  QAction* recognize_action = add(
+      run, [] { return tr("&Recognize"); }, this, &MainWindow::recognize);
+  recognize_action->setShortcut(Qt::Key_F5);
+  add(
+      run, [] { return tr("&Cancel"); }, this, &MainWindow::cancelRecognition)
+      ->setShortcut(Qt::Key_Escape);
+  m_live_action = named(run->addAction(QString()), [] { return tr("&Live"); });
   m_live_action->setCheckable(true);
   m_live_action->setShortcut(Qt::Key_F6);
   connect(m_live_action, &QAction::toggled, this, &MainWindow::setLiveRunning);
 
-  QMenu* view = menuBar()->addMenu(tr("&View"));
+  QMenu* view = menu([] { return tr("&View"); });
   m_view_menu = view;
-  view->addAction(tr("&Reset camera"), m_view, &QtVtkViewport::resetCamera)
+  add(
+      view, [] { return tr("&Reset camera"); }, m_view, &QtVtkViewport::resetCamera)
       ->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_0));
   // Overlays: on while there are no detections, then off (setResult) so that they do not hide
   // them; the operator turns them on again here.
-  m_show_keypoints_action = view->addAction(tr("Show &keypoints"));
+  m_show_keypoints_action = named(view->addAction(QString()), [] { return tr("Show &keypoints"); });
   m_show_keypoints_action->setObjectName(QStringLiteral("showKeypointsAction"));
   m_show_keypoints_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_K));
-  m_show_features_action = view->addAction(tr("Show f&eatures"));
+  m_show_features_action = named(view->addAction(QString()), [] { return tr("Show f&eatures"); });
   m_show_features_action->setObjectName(QStringLiteral("showFeaturesAction"));
   m_show_features_action->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_E));
   for (QAction* a : {m_show_keypoints_action, m_show_features_action}) {
@@ -290,23 +402,30 @@ void MainWindow::buildActions() {
   // The panels' entries go here once every panel exists (addPanelsToViewMenu).
   m_panels_separator = view->addSeparator();
   view->addSeparator();
-  QMenu* language = view->addMenu(tr("&Language (applies at next start)"));
+  // The switch applies at once (ui/Language.h); each language is named in its own tongue.
+  QMenu* language = view->addMenu(QString());
+  language->setObjectName(QStringLiteral("languageMenu"));
+  m_texts.bind(language->menuAction(), "text", [] { return tr("&Language"); });
   auto* group = new QActionGroup(this);
-  const QString current = QSettings().value(settings::kLanguage, QStringLiteral("en")).toString();
+  const QString current = currentLanguage();
   for (const auto& [code, name] : {std::pair{QStringLiteral("en"), QStringLiteral("English")},
                                    std::pair{QStringLiteral("it"), QStringLiteral("Italiano")}}) {
     QAction* a = language->addAction(name, this, [this, code = code] { setLanguage(code); });
+    a->setObjectName(QStringLiteral("language_") + code);
     a->setCheckable(true);
     a->setChecked(code == current);
     group->addAction(a);
   }
 
-  QMenu* help = menuBar()->addMenu(tr("&Help"));
-  help->addAction(tr("&User guide"), this, &MainWindow::openUserGuide)
+  QMenu* help = menu([] { return tr("&Help"); });
+  add(
+      help, [] { return tr("&User guide"); }, this, &MainWindow::openUserGuide)
       ->setShortcut(QKeySequence::HelpContents);
-  help->addAction(tr("&About scanpick"), this, &MainWindow::showAbout);
+  add(
+      help, [] { return tr("&About scanpick"); }, this, &MainWindow::showAbout);
 
-  QToolBar* tools = addToolBar(tr("Main"));
+  QToolBar* tools = addToolBar(QString());
+  m_texts.bind(tools, "windowTitle", [] { return tr("Main"); });
   tools->setObjectName(QStringLiteral("MainToolBar"));
   tools->addAction(open);
   tools->addAction(m_crop_action);
@@ -315,10 +434,8 @@ void MainWindow::buildActions() {
   tools->addAction(undo);
   tools->addAction(redo);
   tools->addSeparator();
-  for (QAction* a : teach_menu->actions())
-    if (a->text() == tr("&Teach model"))
-      tools->addAction(a);
-  tools->addAction(run->actions().first());
+  tools->addAction(teach_action);
+  tools->addAction(recognize_action);
   tools->addAction(m_live_action);
 }
 
@@ -415,33 +532,25 @@ void MainWindow::openFiles(const QStringList& paths) {
     openModels(models);
 }
 
-core::LoadedCloud MainWindow::loadScanFile(const std::string& file) {
-  core::LoadedCloud loaded = core::loadCloud(file, core::LengthUnit::Millimetres);
-  // Files in metres are common (PCL samples, ROS); the extent tells, and the log says so.
-  if (!loaded.units_warning.empty() &&
-      core::guessLengthUnit(loaded.cloud) == core::LengthUnit::Metres) {
-    core::logger()->warn("{} looks like metres; converted to millimetres", file);
-    loaded = core::loadCloud(file, core::LengthUnit::Metres);
-  }
-  return loaded;
-}
-
 void MainWindow::openScan(const QString& path) {
   statusBar()->showMessage(tr("Loading %1…").arg(path));
   const std::string file = path.toStdString();
-  m_jobs->run<core::LoadedCloud>([file](const core::ProgressFn&) { return loadScanFile(file); },
-                                 [this, path](std::shared_ptr<const core::LoadedCloud> loaded) {
-                                   m_scan_path = path;
-                                   addRecentFile(path);
-                                   setScan(std::make_shared<const core::PointCloud>(loaded->cloud),
-                                           QFileInfo(path).fileName());
-                                   emit scanLoaded();
-                                 },
-                                 [this, path](const QString& error) {
-                                   showError(tr("Open scan"), error);
-                                   statusBar()->showMessage(tr("Could not open %1").arg(path),
-                                                            5000);
-                                 });
+  m_jobs->run<core::LoadedCloud>(
+      [file](const core::ProgressFn& progress) {
+        // Files in metres are common (PCL samples, ROS): with no units given, the extent tells.
+        return core::loadCloud(file, std::nullopt, progress);
+      },
+      [this, path](std::shared_ptr<const core::LoadedCloud> loaded) {
+        m_scan_path = path;
+        addRecentFile(path);
+        setScan(std::make_shared<const core::PointCloud>(loaded->cloud),
+                QFileInfo(path).fileName());
+        emit scanLoaded();
+      },
+      [this, path](const QString& error) {
+        showError(tr("Open scan"), error);
+        statusBar()->showMessage(tr("Could not open %1").arg(path), 5000);
+      });
 }
 
 void MainWindow::setScan(std::shared_ptr<const core::PointCloud> scan_mm, const QString& name) {
@@ -463,7 +572,9 @@ void MainWindow::setScan(std::shared_ptr<const core::PointCloud> scan_mm, const 
   m_show_features_action->setChecked(true);
   setPart(m_scan);
   lookFromSensor();
-  setWindowTitle(tr("scanpick — %1").arg(name));
+  m_selected_detection = -1;
+  updateDepthView();
+  m_texts.bind(this, "windowTitle", [name] { return tr("scanpick — %1").arg(name); });
   core::logger()->info("scan {}: {} valid points", name.toStdString(), m_scan->validCount());
   statusBar()->showMessage(tr("%1: %2 points").arg(name).arg(m_scan->validCount()), 5000);
 }
@@ -661,11 +772,13 @@ void MainWindow::clearLayers(const QStringList& names) {
 
 void MainWindow::setLanguage(const QString& code) {
   QSettings().setValue(settings::kLanguage, code);
-  // Menus and panels are built once with their translated texts, so a switch applies at the next
-  // start; the menu entry says so too.
-  core::logger()->info("language set to '{}': applies when scanpick is started again",
-                       code.toStdString());
-  statusBar()->showMessage(tr("The language changes when scanpick is started again."), 8000);
+  // Installing the translators sends QEvent::LanguageChange to every widget (retranslateUi).
+  if (!applyLanguage(code))
+    core::logger()->warn("the '{}' translation could not be loaded: English is shown",
+                         code.toStdString());
+  for (QAction* a : findChildren<QAction*>(QStringLiteral("language_") + currentLanguage()))
+    a->setChecked(true);
+  core::logger()->info("language set to '{}'", currentLanguage().toStdString());
 }
 
 QImage MainWindow::screenshot() {

@@ -12,6 +12,7 @@
 #include "core/model/TaughtModel.h"
 #include "core/params/ParameterTable.h"
 #include "core/pipeline/Recognizer.h"
+#include "ui/TranslatedTexts.h"
 
 #include <QColor>
 #include <QMainWindow>
@@ -38,6 +39,7 @@ class vtkProp;
 
 namespace scanpick::ui {
 
+class DepthView;
 class DevicePanel;
 class JobPool;
 class JobRunner;
@@ -64,9 +66,6 @@ public:
   ~MainWindow() override;
 
   // --- files (all asynchronous ones report through signals) ---
-  /// Loads a PCD/PLY scan (synchronously, any thread), in millimetres; a file whose extent says
-  /// metres is converted (with a warning in the log). Throws core::Error.
-  static core::LoadedCloud loadScanFile(const std::string& path);
   /// Loads a PCD/PLY scan in the background; emits scanLoaded or shows the error.
   void openScan(const QString& path);
   /// Shows `scan` as the current scan (teach source and recognition scene).
@@ -167,6 +166,9 @@ public:
   [[nodiscard]] ResultsTable* resultsTable() const { return m_results; }
   [[nodiscard]] LogDock* logDock() const { return m_log; }
   [[nodiscard]] DevicePanel* devicePanel() const { return m_devices; }
+  /// The depth image view (View → Depth image).
+  [[nodiscard]] DepthView* depthView() const { return m_depth_view; }
+  [[nodiscard]] JobRunner* depthJobs() const { return m_depth_jobs; }
   [[nodiscard]] JobRunner* jobs() const { return m_jobs; }
   [[nodiscard]] bool liveRunning() const { return m_live; }
   [[nodiscard]] JobRunner* previewJobs() const { return m_preview_jobs; }
@@ -208,8 +210,11 @@ signals:
   void previewUpdated();
   void modelTaught();
   void recognitionFinished(bool ok);
+  /// The depth image view shows a new image (of the current scan and result).
+  void depthViewUpdated();
 
 protected:
+  void changeEvent(QEvent* event) override;
   void closeEvent(QCloseEvent* event) override;
   void dragEnterEvent(QDragEnterEvent* event) override;
   void dropEvent(QDropEvent* event) override;
@@ -228,7 +233,12 @@ private:
   void showError(const QString& title, const QString& message);
   void setLayer(const QString& name, vtkSmartPointer<vtkProp> prop);
   void clearLayers(const QStringList& names);
+  /// Makes `code` ("en", "it") the language, at once and at the next start.
   void setLanguage(const QString& code);
+  /// Sets every text again in the language now installed (QEvent::LanguageChange).
+  void retranslateUi();
+  /// The status bar's message before anything happened.
+  static QString welcomeText();
   [[nodiscard]] double ratio() const;
   // MainWindowTeach.cpp
   void buildTeachDock();
@@ -270,12 +280,22 @@ private:
   void lookFromSensor(const Eigen::AlignedBox3f& frame = {});
   /// Shows or hides the keypoint and feature layers as the View menu's toggles say.
   void applyOverlayVisibility();
+  /// Brings the depth image view up to date with the scan and the result: in the background,
+  /// and only while the view is visible (otherwise when it is shown).
+  void updateDepthView();
 
   QtVtkViewport* m_view = nullptr;
   ParameterPanel* m_params = nullptr;
   LogDock* m_log = nullptr;
   ResultsTable* m_results = nullptr;
   DevicePanel* m_devices = nullptr;
+  DepthView* m_depth_view = nullptr;
+  // What the depth view shows or is drawing: of this scan, with this result.
+  std::shared_ptr<const core::PointCloud> m_depth_scan;
+  std::shared_ptr<const core::RecognitionResult> m_depth_result;
+  int m_selected_detection = -1;
+  TranslatedTexts m_texts; // every text of the window that follows the language
+  QString m_welcome_shown; // the welcome message as shown, to tell whether it still is
   // The threads every job below runs on (bounded, isolated from the GUI thread); destroyed after
   // the destructor cancelled the jobs, waiting for them to end.
   std::unique_ptr<JobPool> m_pool;
@@ -283,6 +303,7 @@ private:
   JobRunner* m_preview_jobs = nullptr;   // keypoint/feature preview
   JobRunner* m_recognize_jobs = nullptr; // recognition (single and live)
   JobRunner* m_prepare_jobs = nullptr;   // preparing a new model for matching
+  JobRunner* m_depth_jobs = nullptr;     // the depth image
   QTimer* m_preview_timer = nullptr;
   QUndoStack* m_undo = nullptr;
   QMenu* m_recent_menu = nullptr;

@@ -1,10 +1,12 @@
 // Recognize and live: background recognition with progress and cancel, the detections drawn in
 // distinct colours over the grey scene, the results table, export, and capture → recognize loops.
 #include "core/common/Log.h"
+#include "core/pipeline/DepthOverlay.h"
 #include "core/pipeline/ResultsJson.h"
 #include "ui/FileDialogs.h"
 #include "ui/MainWindow.h"
 #include "ui/jobs/JobRunner.h"
+#include "ui/panels/DepthView.h"
 #include "ui/panels/DevicePanel.h"
 #include "ui/panels/ParameterPanel.h"
 #include "ui/panels/ResultsTable.h"
@@ -70,9 +72,12 @@ void MainWindow::recognize() {
       },
       [this, views, paths](std::shared_ptr<const core::RecognitionResult> result) {
         setResult(std::move(result), views, paths);
-        m_status_counts->setText(
-            tr("%n detection(s)", nullptr, static_cast<int>(m_result->detections.size())));
-        m_status_timings->setText(timingsText(m_result->timings));
+        // The status bar's texts follow a language switch (m_texts).
+        const int found = static_cast<int>(m_result->detections.size());
+        m_texts.bind(m_status_counts, "text",
+                     [found] { return tr("%n detection(s)", nullptr, found); });
+        m_texts.bind(m_status_timings, "text",
+                     [timings = m_result->timings] { return timingsText(timings); });
         core::logger()->info("recognized {} instance(s) in {:.0f} ms", m_result->detections.size(),
                              m_result->timings.total_ms);
         statusBar()->showMessage(
@@ -120,6 +125,8 @@ void MainWindow::setResult(std::shared_ptr<const core::RecognitionResult> result
     m_show_features_action->setChecked(false);
   }
   showResult(-1);
+  m_selected_detection = -1;
+  updateDepthView();
   // Live keeps the camera where the operator put it after the first cycle.
   if (m_framed_scan != m_scan && !(m_live && m_live_cycles > 0)) {
     // The camera frames the bin: the scene without its floor (the parts and the bin's walls).
@@ -180,10 +187,71 @@ void MainWindow::showResult(int selected) {
 
 void MainWindow::onResultSelected(int row) {
   showResult(row);
+  m_selected_detection = row;
+  m_depth_view->setSelected(row);
   if (m_result && row >= 0 && row < static_cast<int>(m_result->detections.size()))
     statusBar()->showMessage(
         tr("Detection %1: score %2").arg(row + 1).arg(m_result->detections[row].score, 0, 'f', 3),
         5000);
+}
+
+void MainWindow::updateDepthView() {
+  using State = DepthView::State;
+  if (!m_scan) {
+    m_depth_jobs->cancel();
+    m_depth_scan.reset();
+    m_depth_result.reset();
+    return m_depth_view->setState(State::NoScan);
+  }
+  if (!m_scan->isOrganized()) {
+    m_depth_jobs->cancel();
+    m_depth_scan = m_scan;
+    m_depth_result.reset();
+    return m_depth_view->setState(State::Unorganized);
+  }
+  // Drawn when seen: a hidden view costs nothing, also in Live.
+  if (!m_depth_view->isVisible() || (m_depth_scan == m_scan && m_depth_result == m_result))
+    return;
+  m_depth_scan = m_scan;
+  m_depth_result = m_result;
+  // An image of the same grid stays until the new one is ready (Live); otherwise say it comes.
+  if (m_depth_view->image().size() != QSize(int(m_scan->width), int(m_scan->height)))
+    m_depth_view->setState(State::Rendering);
+  const auto scan = m_scan;
+  const auto result = m_result;
+  const auto views = m_result_views;
+  std::vector<QColor> colours;
+  std::vector<core::Rgb8> rgb;
+  for (int i = 0; result && i < static_cast<int>(result->detections.size()); ++i) {
+    const QColor c = detectionColour(i);
+    colours.push_back(c);
+    rgb.push_back({static_cast<std::uint8_t>(c.red()), static_cast<std::uint8_t>(c.green()),
+                   static_cast<std::uint8_t>(c.blue())});
+  }
+  // A scan point is one of a detection's visible points when the posed model has a point as
+  // close as the pose verification asks; never finer than the scan's own spacing allows.
+  const core::RecognitionParams& params = m_params->params();
+  const double tolerance_mm =
+      std::max({params.matching.verify_tolerance_mm, params.refine.inlier_distance_mm, 1.0});
+  m_depth_jobs->run<core::DepthOverlay>(
+      [scan, result, views, rgb, tolerance_mm](const core::ProgressFn& progress) {
+        std::vector<const core::PointCloud*> clouds;
+        for (const auto& view : views)
+          clouds.push_back(view ? &view->cloud_mm : nullptr);
+        static const std::vector<core::Detection> kNone;
+        return core::renderDepthOverlay(*scan, clouds, result ? result->detections : kNone, rgb,
+                                        tolerance_mm, progress);
+      },
+      [this, colours](std::shared_ptr<const core::DepthOverlay> overlay) {
+        m_depth_view->setOverlay(*overlay, colours);
+        m_depth_view->setSelected(m_selected_detection);
+        emit depthViewUpdated();
+      },
+      [this](const QString& error) {
+        core::logger()->warn("depth image: {}", error.toStdString());
+        m_depth_scan.reset();
+        m_depth_view->setState(DepthView::State::NoScan);
+      });
 }
 
 bool MainWindow::exportResults(const QString& file) {
@@ -261,9 +329,11 @@ void MainWindow::runLiveCycle() {
         m_scan = c->scene;
         setResult(std::shared_ptr<const core::RecognitionResult>(c, &c->result), views, paths);
         m_live_cycles++;
-        m_status_counts->setText(
-            tr("%n detection(s)", nullptr, static_cast<int>(m_result->detections.size())));
-        m_status_timings->setText(tr("cycle %1 ms").arg(c->cycle_ms, 0, 'f', 0));
+        const int found = static_cast<int>(m_result->detections.size());
+        m_texts.bind(m_status_counts, "text",
+                     [found] { return tr("%n detection(s)", nullptr, found); });
+        m_texts.bind(m_status_timings, "text",
+                     [ms = c->cycle_ms] { return tr("cycle %1 ms").arg(ms, 0, 'f', 0); });
         statusBar()->showMessage(tr("Live: %n instance(s), cycle %1 ms", nullptr,
                                     static_cast<int>(m_result->detections.size()))
                                      .arg(c->cycle_ms, 0, 'f', 0));

@@ -112,22 +112,31 @@ void MainWindow::buildTeachDock() {
   // The part's name (views of one part share it) and, optionally, its pose in the scan (so that
   // views taught from scans of its other sides are joined).
   auto* part_form = new QFormLayout();
-  const auto field = [&](const char* object_name, const QString& label, const QString& placeholder,
-                         const QString& tip) {
+  const auto field = [&](const char* object_name, std::function<QString()> label,
+                         std::function<QString()> placeholder, std::function<QString()> tip) {
     auto* edit = new QLineEdit(panel);
     edit->setObjectName(QString::fromLatin1(object_name));
-    edit->setPlaceholderText(placeholder);
-    edit->setToolTip(tip);
-    part_form->addRow(label, edit);
+    m_texts.bind(edit, "placeholderText", std::move(placeholder));
+    m_texts.bind(edit, "toolTip", std::move(tip));
+    auto* caption = new QLabel(panel);
+    caption->setBuddy(edit);
+    m_texts.bind(caption, "text", std::move(label));
+    part_form->addRow(caption, edit);
     return edit;
   };
-  m_part_name = field("partNameEdit", tr("Part name:"), tr("the scan's file name"),
-                      tr("Give every view of one part the same name: only views of one part are "
-                         "searched together"));
-  m_part_pose =
-      field("partPoseEdit", tr("Part pose:"), tr("x, y, z (mm), qw, qx, qy, qz (optional)"),
-            tr("Where the part lies in this scan (from a fixture, or the robot that placed it): "
-               "views that know it are joined, each knowing the others"));
+  m_part_name = field(
+      "partNameEdit", [] { return tr("Part name:"); }, [] { return tr("the scan's file name"); },
+      [] {
+        return tr("Give every view of one part the same name: only views of one part are "
+                  "searched together");
+      });
+  m_part_pose = field(
+      "partPoseEdit", [] { return tr("Part pose:"); },
+      [] { return tr("x, y, z (mm), qw, qx, qy, qz (optional)"); },
+      [] {
+        return tr("Where the part lies in this scan (from a fixture, or the robot that placed "
+                  "it): views that know it are joined, each knowing the others");
+      });
   layout->addLayout(part_form);
   // After a derived teach: what the parameters were derived from.
   m_teach_measures = new QLabel(panel);
@@ -135,17 +144,22 @@ void MainWindow::buildTeachDock() {
   m_teach_measures->setWordWrap(true);
   m_teach_measures->setVisible(false);
   layout->addWidget(m_teach_measures);
-  layout->addWidget(new QLabel(tr("Grip points (double-click to rename):"), panel));
+  auto* grips_caption = new QLabel(panel);
+  m_texts.bind(grips_caption, "text", [] { return tr("Grip points (double-click to rename):"); });
+  layout->addWidget(grips_caption);
   m_grip_list = new QListWidget(panel);
   m_grip_list->setObjectName(QStringLiteral("gripList"));
-  m_grip_list->setToolTip(tr("Del removes the selected grip point; Ctrl+Z undoes"));
+  m_texts.bind(m_grip_list, "toolTip",
+               [] { return tr("Del removes the selected grip point; Ctrl+Z undoes"); });
   layout->addWidget(m_grip_list, 1);
   auto* grip_buttons = new QHBoxLayout;
-  m_grip_move_action = new QAction(tr("Move grip point"), this);
+  m_grip_move_action = new QAction(this);
+  m_texts.bind(m_grip_move_action, "text", [] { return tr("Move grip point"); });
   m_grip_move_action->setObjectName(QStringLiteral("moveGripAction"));
   m_grip_move_action->setCheckable(true);
-  m_grip_move_action->setToolTip(
-      tr("Select a grip point in the list, then click on the part where it should be"));
+  m_texts.bind(m_grip_move_action, "toolTip", [] {
+    return tr("Select a grip point in the list, then click on the part where it should be");
+  });
   connect(m_grip_move_action, &QAction::toggled, this, [this](bool on) {
     if (on && m_grip_list->currentRow() < 0) {
       statusBar()->showMessage(tr("Select the grip point to move in the list first"), 5000);
@@ -162,7 +176,8 @@ void MainWindow::buildTeachDock() {
   move->setDefaultAction(m_grip_move_action);
   move->setToolButtonStyle(Qt::ToolButtonTextOnly);
   grip_buttons->addWidget(move);
-  auto* remove = new QPushButton(tr("Remove grip point"), panel);
+  auto* remove = new QPushButton(panel);
+  m_texts.bind(remove, "text", [] { return tr("Remove grip point"); });
   remove->setObjectName(QStringLiteral("removeGripButton"));
   grip_buttons->addWidget(remove);
   layout->addLayout(grip_buttons);
@@ -173,7 +188,8 @@ void MainWindow::buildTeachDock() {
   connect(del, &QShortcut::activated, this, remove_selected);
   connect(m_grip_list, &QListWidget::itemChanged, this,
           [this](QListWidgetItem* item) { renameGripPoint(m_grip_list->row(item), item->text()); });
-  auto* dock = new QDockWidget(tr("Teach"), this);
+  auto* dock = new QDockWidget(this);
+  m_texts.bind(dock, "windowTitle", [] { return tr("Teach"); });
   dock->setObjectName(QStringLiteral("TeachDock"));
   // Scrolls rather than making the window taller than a 700-pixel screen.
   auto* scroll = new QScrollArea(dock);
@@ -474,16 +490,20 @@ void MainWindow::showPreview() {
   // Once the scan has a recognition, the status bar keeps its stage timings.
   if (m_result)
     return;
-  m_status_counts->setText(tr("keypoints %1 · lines %2 · circles %3")
-                               .arg(m_preview->keypoints->points_mm.size())
-                               .arg(lines)
-                               .arg(circles));
-  m_status_timings->setText(
-      m_preview->keypoints_ms > 0
-          ? tr("keypoints %1 ms · features %2 ms")
-                .arg(m_preview->keypoints_ms, 0, 'f', 0)
-                .arg(m_preview->features_ms, 0, 'f', 0)
-          : tr("keypoints cached · features %1 ms").arg(m_preview->features_ms, 0, 'f', 0));
+  // The status bar's texts follow a language switch (m_texts).
+  m_texts.bind(
+      m_status_counts, "text",
+      [keypoints = m_preview->keypoints->points_mm.size(), lines, circles] {
+        return tr("keypoints %1 · lines %2 · circles %3").arg(keypoints).arg(lines).arg(circles);
+      });
+  m_texts.bind(m_status_timings, "text",
+               [keypoints_ms = m_preview->keypoints_ms, features_ms = m_preview->features_ms] {
+                 return keypoints_ms > 0
+                            ? tr("keypoints %1 ms · features %2 ms")
+                                  .arg(keypoints_ms, 0, 'f', 0)
+                                  .arg(features_ms, 0, 'f', 0)
+                            : tr("keypoints cached · features %1 ms").arg(features_ms, 0, 'f', 0);
+               });
 }
 
 void MainWindow::teach() {
@@ -548,14 +568,17 @@ void MainWindow::showTeachMeasures(const core::AutoParams* derived, std::size_t 
                              8000);
     return;
   }
-  const auto mm = [](double v) { return QString::number(v, 'f', v < 10 ? 2 : 1); };
-  const QString measures = tr("point spacing %1 mm, depth noise %2 mm, part diameter %3 mm")
-                               .arg(mm(derived->scan.spacing_mm), mm(derived->scan.noise_mm),
-                                    mm(derived->part.diameter_mm));
-  m_teach_measures->setText(
-      tr("Parameters derived from the part: %1 (the values marked “derived” in the Parameters "
-         "panel).")
-          .arg(measures));
+  m_texts.bind(
+      m_teach_measures, "text",
+      [spacing = derived->scan.spacing_mm, noise = derived->scan.noise_mm,
+       diameter = derived->part.diameter_mm] {
+        const auto mm = [](double v) { return QString::number(v, 'f', v < 10 ? 2 : 1); };
+        const QString measures = tr("point spacing %1 mm, depth noise %2 mm, part diameter %3 mm")
+                                     .arg(mm(spacing), mm(noise), mm(diameter));
+        return tr("Parameters derived from the part: %1 (the values marked “derived” in the "
+                  "Parameters panel).")
+            .arg(measures);
+      });
   core::logger()->info("parameters derived from the part: point spacing {:.3f} mm, depth noise "
                        "{:.3f} mm, part diameter {:.1f} mm, {} values",
                        derived->scan.spacing_mm, derived->scan.noise_mm, derived->part.diameter_mm,

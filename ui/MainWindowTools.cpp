@@ -41,12 +41,15 @@ QToolButton* actionButton(QAction* action, QWidget* parent) {
 void MainWindow::buildToolButtons(QVBoxLayout* layout) {
   QWidget* panel = layout->parentWidget();
   auto* sensor_row = new QHBoxLayout;
-  sensor_row->addWidget(new QLabel(tr("Sensor:"), panel));
+  auto* sensor_caption = new QLabel(panel);
+  m_texts.bind(sensor_caption, "text", [] { return tr("Sensor:"); });
+  sensor_row->addWidget(sensor_caption);
   m_sensor_combo = new QComboBox(panel);
   m_sensor_combo->setObjectName(QStringLiteral("sensorCombo"));
-  m_sensor_combo->setToolTip(
-      tr("Sensor of scans that do not tell (unorganized clouds). An organized "
-         "scan whose grid matches a sensor uses that sensor."));
+  m_texts.bind(m_sensor_combo, "toolTip", [] {
+    return tr("Sensor of scans that do not tell (unorganized clouds). An organized "
+              "scan whose grid matches a sensor uses that sensor.");
+  });
   for (const std::string& name : core::sensorPresetNames())
     m_sensor_combo->addItem(QString::fromStdString(name));
   m_sensor_combo->setCurrentText(
@@ -65,7 +68,8 @@ void MainWindow::buildToolButtons(QVBoxLayout* layout) {
   grid->addWidget(actionButton(m_floor_remove_action, panel), 1, 1);
   grid->addWidget(actionButton(m_grip_action, panel), 2, 0, 1, 2);
   layout->addLayout(grid);
-  auto* apply = new QPushButton(tr("Apply crop box"), panel);
+  auto* apply = new QPushButton(panel);
+  m_texts.bind(apply, "text", [] { return tr("Apply crop box"); });
   connect(apply, &QPushButton::clicked, this, [this] { applyCrop(); });
   layout->addWidget(apply);
 }

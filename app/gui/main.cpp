@@ -4,8 +4,10 @@
 // `./cmake/setup.sh demo` opens the demo this way:
 //   scanpick --scan demo-output/demo-bin.pcd --model demo-output/support.spmodel
 //            --model demo-output/support-table.spmodel --recognize
+#include "core/cloud/CloudIo.h"
 #include "core/common/Log.h"
 #include "core/common/Memory.h"
+#include "ui/Language.h"
 #include "ui/MainWindow.h"
 #include "ui/Settings.h"
 #include "ui/panels/ParameterPanel.h"
@@ -13,11 +15,9 @@
 
 #include <QApplication>
 #include <QCommandLineParser>
-#include <QLibraryInfo>
 #include <QLocale>
 #include <QSettings>
 #include <QTimer>
-#include <QTranslator>
 #include <cstdio>
 
 using scanpick::ui::MainWindow;
@@ -31,16 +31,9 @@ int main(int argc, char** argv) {
   QApplication::setOrganizationName(QStringLiteral("scanpick"));
   QApplication::setApplicationName(QStringLiteral("scanpick"));
 
-  QTranslator translator, qt_translator;
-  const QString language =
-      QSettings().value(scanpick::ui::settings::kLanguage, QStringLiteral("en")).toString();
-  if (language == QLatin1String("it")) {
-    if (translator.load(QStringLiteral(":/i18n/scanpick_it.qm")))
-      QApplication::installTranslator(&translator);
-    if (qt_translator.load(QStringLiteral("qtbase_it"),
-                           QLibraryInfo::path(QLibraryInfo::TranslationsPath)))
-      QApplication::installTranslator(&qt_translator);
-  }
+  // The language can also be switched later from View → Language (ui/Language.h).
+  scanpick::ui::applyLanguage(
+      QSettings().value(scanpick::ui::settings::kLanguage, QStringLiteral("en")).toString());
 
   QCommandLineParser parser;
   parser.setApplicationDescription(
@@ -70,7 +63,8 @@ int main(int argc, char** argv) {
       exit_code = 1;
     if (parser.isSet(scene)) {
       // Synchronous on purpose: scripted runs want the scene before anything else.
-      const auto loaded = MainWindow::loadScanFile(parser.value(scene).toStdString());
+      const auto loaded =
+          scanpick::core::loadCloud(parser.value(scene).toStdString(), std::nullopt);
       window.setScan(std::make_shared<const scanpick::core::PointCloud>(loaded.cloud),
                      parser.value(scene));
     }

@@ -4,6 +4,7 @@
 #include "core/cloud/PlyFile.h"
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
+#include "core/common/Log.h"
 
 #include <algorithm>
 #include <cmath>
@@ -94,7 +95,8 @@ PointCloud decodeCloud(std::string_view bytes, const std::string& extension,
               "', expected .pcd or .ply");
 }
 
-LoadedCloud loadCloud(const fs::path& path, LengthUnit units) {
+LoadedCloud loadCloud(const fs::path& path, std::optional<LengthUnit> units,
+                      const ProgressFn& progress) {
   if (!fs::exists(path))
     throw Error("cannot read '" + path.string() + "': no such file");
   if (fs::is_directory(path))
@@ -108,7 +110,9 @@ LoadedCloud loadCloud(const fs::path& path, LengthUnit units) {
                 "', expected .pcd or .ply");
   std::size_t implausible = 0;
   LoadedCloud loaded;
-  PointCloud in_file_units = decodeCloud(readFile(path), ext, path.string(), implausible);
+  PointCloud in_file_units =
+      decodeCloud(readFile(path, subProgress(progress, 0.0, 0.6)), ext, path.string(), implausible);
+  reportProgress(progress, 0.9);
   if (!in_file_units.hasValidPoint())
     throw Error("'" + path.string() +
                 "' has no valid point (empty or all NaN): capture again or "
@@ -117,13 +121,18 @@ LoadedCloud loadCloud(const fs::path& path, LengthUnit units) {
     loaded.units_warning = std::to_string(implausible) +
                            " point(s) lie farther than 1e7 units from the origin (not "
                            "measurements): read as invalid points. ";
-  loaded.units_warning += unitsSanityWarning(in_file_units, units);
+  const LengthUnit unit =
+      units ? *units : guessLengthUnit(in_file_units).value_or(LengthUnit::Millimetres);
+  if (!units && unit == LengthUnit::Metres)
+    logger()->warn("{} looks like metres; converted to millimetres", path.string());
+  loaded.units_warning += unitsSanityWarning(in_file_units, unit);
   loaded.cloud = std::move(in_file_units);
-  const float scale = millimetresPer(units);
+  const float scale = millimetresPer(unit);
   if (scale != 1.0f) {
     for (auto& p : loaded.cloud.points_mm)
       p *= scale;
   }
+  reportProgress(progress, 1.0);
   return loaded;
 }
 

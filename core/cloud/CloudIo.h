@@ -4,8 +4,10 @@
 
 #include "core/cloud/PointCloud.h"
 #include "core/cloud/Units.h"
+#include "core/common/Progress.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -18,10 +20,14 @@ struct LoadedCloud {
 };
 
 /// Loads a .pcd or .ply file whose coordinates are in `units`, converting to millimetres.
-/// Reads XYZ and, when present, normals (normal_x/y/z) and colour (rgb/rgba).
+/// Reads XYZ and, when present, normals (normal_x/y/z) and colour (rgb/rgba), in the file's
+/// `units`, or with no `units` in metres when the extent says so (guessLengthUnit; logged) and
+/// millimetres otherwise. `progress` moves with the bytes read (to 0.6), then after decoding
+/// (0.9) and at the end; it may cancel.
 /// Throws Error for a missing, unreadable, truncated or empty file, an unknown extension, or a
 /// cloud with no valid point.
-LoadedCloud loadCloud(const std::filesystem::path& path, LengthUnit units);
+LoadedCloud loadCloud(const std::filesystem::path& path, std::optional<LengthUnit> units,
+                      const ProgressFn& progress = {});
 
 /// Decodes the bytes of a .pcd or .ply file (`extension` ".pcd" or ".ply") in the file's own
 /// units. Non-finite or implausible coordinates (core/cloud/PcdFile.h) become invalid points,

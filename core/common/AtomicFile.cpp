@@ -2,6 +2,7 @@
 
 #include "core/common/Error.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -63,14 +64,31 @@ void checkWritable(const fs::path& path) {
                 "' is not writable (" + std::strerror(errno) + ")");
 }
 
-std::string readFile(const fs::path& path) {
+std::string readFile(const fs::path& path, const ProgressFn& progress) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw Error("cannot read '" + path.string() +
                 "': " + (fs::exists(path) ? std::string(std::strerror(errno)) : "no such file"));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size < 0 || !in) {
+    std::ostringstream ss; // not seekable (a pipe, a device): read it whole
+    in.clear();
+    ss << in.rdbuf();
+    return ss.str();
+  }
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  constexpr std::streamoff kBlock = std::streamoff{1} << 20;
+  for (std::streamoff done = 0; done < size;) {
+    const std::streamoff n = std::min(kBlock, size - done);
+    if (!in.read(bytes.data() + done, n))
+      throw Error("cannot read '" + path.string() + "': it ended after " +
+                  std::to_string(done + in.gcount()) + " of " + std::to_string(size) + " bytes");
+    done += n;
+    reportProgress(progress, static_cast<double>(done) / static_cast<double>(size));
+  }
+  return bytes;
 }
 
 } // namespace scanpick::core

@@ -3,6 +3,8 @@
 /// Atomic file writes: data go to a temporary file in the destination folder, which is renamed
 /// over the destination only when complete, so readers never see a partial file.
 
+#include "core/common/Progress.h"
+
 #include <filesystem>
 #include <functional>
 #include <string_view>
@@ -22,7 +24,8 @@ void writeFileAtomicWith(const std::filesystem::path& path,
 /// and `path` is not a folder. Throws Error saying which.
 void checkWritable(const std::filesystem::path& path);
 
-/// Reads a whole file; throws Error if it is missing or unreadable.
-std::string readFile(const std::filesystem::path& path);
+/// Reads a whole file, reporting the share of its bytes read to `progress` (1 MB at a time; it
+/// may cancel); throws Error if it is missing or unreadable.
+std::string readFile(const std::filesystem::path& path, const ProgressFn& progress = {});
 
 } // namespace scanpick::core

@@ -329,23 +329,52 @@ TEST_F(DayOne, UsableAt1024x700WithFiveResultRowsVisible) {
   EXPECT_GT(window.viewport()->height(), 250) << "the 3D view shrank to nothing";
 }
 
-TEST_F(DayOne, LoadingShowsItIsWorking) {
-  // A scan big enough to take a moment: the demo-sized ideal bin.
+TEST_F(DayOne, LoadingShowsProgressThatMoves) {
+  // A file big enough to take a moment: an organized grid of 3000 × 1500 cells (about 54 MB as
+  // binary PCD), so that reading and decoding it span several progress updates (Qt passes at
+  // most one every 40 ms on). One cell in a hundred holds a point, the rest NaN, so that what
+  // follows the load (drawing, the keypoint preview) stays small.
   const QString path = test::screenshotDir() + "/day-one-load.pcd";
-  core::saveCloud(path.toStdString(),
-                  test::idealScene(test::idealPartPoints(), test::idealCopyPoses(), 0.0, 3));
-  auto* bar = window.findChild<QProgressBar*>();
+  {
+    core::PointCloud big;
+    big.width = 3000;
+    big.height = 1500;
+    big.points_mm.resize(std::size_t(big.width) * big.height);
+    for (std::uint32_t r = 0; r < big.height; ++r)
+      for (std::uint32_t c = 0; c < big.width; ++c)
+        big.points_mm[std::size_t(r) * big.width + c] =
+            r % 10 == 0 && c % 10 == 0
+                ? Eigen::Vector3f(0.5f * float(c), 0.5f * float(r), 700.0f + 0.01f * float(c))
+                : core::invalidPoint();
+    core::saveCloud(path.toStdString(), big);
+  }
+  auto* bar = window.findChild<QProgressBar*>(QStringLiteral("jobProgress"));
   ASSERT_NE(bar, nullptr);
+  QList<int> values; // what the bar showed, in order
+  QObject watching;  // the connection ends with it, before `values`
+  QObject::connect(bar, &QProgressBar::valueChanged, &watching, [&values, bar](int v) {
+    if (bar->maximum() > 0 && v >= 0)
+      values << v;
+  });
   QSignalSpy loaded(&window, &MainWindow::scanLoaded);
   window.openScan(path);
   ASSERT_TRUE(window.jobs()->busy());
   EXPECT_TRUE(bar->isVisible());
-  // Either a moving busy indicator (the reader reports no progress) or a value that moves: never
-  // a bar standing at 0 %.
-  EXPECT_TRUE(bar->maximum() == 0 || bar->value() > 0)
-      << "range " << bar->minimum() << "–" << bar->maximum() << ", value " << bar->value();
-  ASSERT_TRUE(loaded.wait(30000)) << window.logDock()->text().toStdString();
+  ASSERT_TRUE(loaded.wait(60000)) << window.logDock()->text().toStdString();
+  ASSERT_EQ(window.scan()->size(), std::size_t(3000) * 1500);
+  QStringList shown;
+  for (int v : values)
+    shown << QString::number(v);
+  // It moved: at least one value strictly between 0 and 100 %, never backwards, and 100 % last.
+  ASSERT_FALSE(values.isEmpty()) << "the bar never showed a value";
+  EXPECT_TRUE(std::any_of(values.begin(), values.end(), [bar](int v) {
+    return v > 0 && v < bar->maximum();
+  })) << shown.join(' ').toStdString();
+  EXPECT_TRUE(std::is_sorted(values.begin(), values.end())) << shown.join(' ').toStdString();
+  EXPECT_EQ(values.last(), bar->maximum()) << shown.join(' ').toStdString();
+  // Hidden once the job has ended.
   EXPECT_TRUE(QTest::qWaitFor([&] { return !bar->isVisible(); }, 5000));
+  QFile::remove(path);
 }
 
 // After a recognition the detections are what the view shows: the whole-scene keypoints and

@@ -4,6 +4,7 @@
 #include "ui/Settings.h"
 #include "ui/jobs/JobRunner.h"
 
+#include <QEvent>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
@@ -34,14 +35,18 @@ DevicePanel::DevicePanel(QWidget* parent) : QWidget(parent) {
   layout->addWidget(m_list, 1);
   m_id = new QLineEdit(this);
   m_id->setObjectName(QStringLiteral("deviceId"));
-  m_id->setPlaceholderText(tr("device id, e.g. kinect:0 or file:/path/scan.pcd"));
+  m_texts.bind(m_id, "placeholderText",
+               [] { return tr("device id, e.g. kinect:0 or file:/path/scan.pcd"); });
   m_id->setText(QSettings().value(settings::kLastDevice).toString());
   layout->addWidget(m_id);
   auto* row = new QHBoxLayout;
-  auto* refresh_button = new QPushButton(tr("Refresh"), this);
-  m_open = new QPushButton(tr("Open"), this);
-  m_capture = new QPushButton(tr("Capture"), this);
-  m_stream = new QPushButton(tr("Stream"), this);
+  auto* refresh_button = new QPushButton(this);
+  m_open = new QPushButton(this);
+  m_capture = new QPushButton(this);
+  m_stream = new QPushButton(this);
+  m_texts.bind(refresh_button, "text", [] { return tr("Refresh"); });
+  m_texts.bind(m_capture, "text", [] { return tr("Capture"); });
+  m_texts.bind(m_stream, "text", [] { return tr("Stream"); });
   m_stream->setCheckable(true);
   m_open->setObjectName(QStringLiteral("openDeviceButton"));
   m_capture->setObjectName(QStringLiteral("captureButton"));
@@ -80,7 +85,7 @@ DevicePanel::DevicePanel(QWidget* parent) : QWidget(parent) {
   }
   refresh();
 #else
-  m_state->setText(tr("This build has no camera support (SCANPICK_BUILD_DEVICES=OFF)."));
+  setStateText([] { return tr("This build has no camera support (SCANPICK_BUILD_DEVICES=OFF)."); });
   setEnabled(false);
 #endif
   updateButtons();
@@ -98,15 +103,26 @@ QString DevicePanel::stateText() const {
   return m_state->text();
 }
 
+void DevicePanel::setStateText(std::function<QString()> text) {
+  m_texts.bind(m_state, "text", std::move(text));
+}
+
+void DevicePanel::changeEvent(QEvent* event) {
+  if (event->type() == QEvent::LanguageChange)
+    m_texts.apply();
+  QWidget::changeEvent(event);
+}
+
 void DevicePanel::updateButtons() {
-  m_open->setText(m_camera ? tr("Close") : tr("Open"));
+  m_texts.bind(m_open, "text",
+               [open = m_camera != nullptr] { return open ? tr("Close") : tr("Open"); });
   m_capture->setEnabled(m_camera != nullptr && !m_stream->isChecked());
   m_stream->setEnabled(m_camera != nullptr);
 }
 
 void DevicePanel::refresh() {
 #ifdef SCANPICK_UI_WITH_DEVICES
-  m_state->setText(tr("Looking for cameras…"));
+  setStateText([] { return tr("Looking for cameras…"); });
   m_enumerate->run<std::pair<DeviceList, std::vector<std::string>>>(
       [](const core::ProgressFn&) {
         std::vector<std::string> warnings;
@@ -127,12 +143,13 @@ void DevicePanel::refresh() {
         }
         for (const std::string& w : found->second)
           core::logger()->info("camera search: {}", w);
-        m_state->setText(found->first.empty() ? tr("No camera attached. A file:<path> id replays "
-                                                   "saved scans.")
-                                              : tr("%1 camera(s) found").arg(found->first.size()));
+        setStateText([n = found->first.size()] {
+          return n == 0 ? tr("No camera attached. A file:<path> id replays saved scans.")
+                        : tr("%1 camera(s) found").arg(n);
+        });
         emit devicesListed(static_cast<int>(found->first.size()));
       },
-      [this](const QString& e) { m_state->setText(e); });
+      [this](const QString& e) { setStateText([e] { return e; }); });
 #endif
 }
 
@@ -142,7 +159,7 @@ void DevicePanel::openDevice(const QString& id) {
     emit deviceError(tr("Choose a camera in the list or type its id."));
     return;
   }
-  m_state->setText(tr("Opening %1…").arg(id));
+  setStateText([id] { return tr("Opening %1…").arg(id); });
   const std::string sid = id.toStdString();
   m_jobs->run<std::shared_ptr<devices::Camera>>(
       [sid](const core::ProgressFn&) {
@@ -151,13 +168,15 @@ void DevicePanel::openDevice(const QString& id) {
       [this, id](std::shared_ptr<const std::shared_ptr<devices::Camera>> camera) {
         m_camera = *camera;
         QSettings().setValue(settings::kLastDevice, id);
-        m_state->setText(tr("Open: %1").arg(QString::fromStdString(m_camera->info().model)));
+        setStateText([model = QString::fromStdString(m_camera->info().model)] {
+          return tr("Open: %1").arg(model);
+        });
         core::logger()->info("camera {} open", id.toStdString());
         updateButtons();
         emit cameraOpened(id);
       },
       [this](const QString& e) {
-        m_state->setText(e);
+        setStateText([e] { return e; });
         emit deviceError(e);
       });
 #else
@@ -170,7 +189,7 @@ void DevicePanel::closeDevice() {
   if (m_stream->isChecked())
     m_stream->setChecked(false);
   m_camera.reset();
-  m_state->setText(tr("Closed"));
+  setStateText([] { return tr("Closed"); });
   updateButtons();
 #endif
 }
@@ -187,7 +206,7 @@ void DevicePanel::captureOne() {
                            tr("capture %1").arg(frame->metadata.frame_index));
       },
       [this](const QString& e) {
-        m_state->setText(e);
+        setStateText([e] { return e; });
         emit deviceError(e);
       });
 #endif
@@ -216,7 +235,7 @@ void DevicePanel::setStreaming(bool on) {
                 this,
                 [this, message] {
                   m_stream->setChecked(false);
-                  m_state->setText(message);
+                  setStateText([message] { return message; });
                   emit deviceError(message);
                 },
                 Qt::QueuedConnection);

@@ -5,6 +5,7 @@
 /// frames and errors come back through queued invocations. Errors are shown, never fatal.
 
 #include "core/cloud/PointCloud.h"
+#include "ui/TranslatedTexts.h"
 
 #include <QWidget>
 #include <memory>
@@ -49,8 +50,14 @@ signals:
   /// The device list was refreshed (`count` cameras found).
   void devicesListed(int count);
 
+protected:
+  /// Texts follow a language switch.
+  void changeEvent(QEvent* event) override;
+
 private:
   void updateButtons();
+  /// Shows `text()` as the panel's state, in the language of the moment.
+  void setStateText(std::function<QString()> text);
 
   QListWidget* m_list = nullptr;
   QLineEdit* m_id = nullptr;
@@ -62,6 +69,7 @@ private:
   JobRunner* m_enumerate = nullptr;
   std::shared_ptr<devices::Camera> m_camera;
   std::unique_ptr<devices::UsbMonitor> m_usb;
+  TranslatedTexts m_texts;
 };
 
 } // namespace scanpick::ui

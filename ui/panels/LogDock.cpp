@@ -2,6 +2,7 @@
 
 #include "core/common/Log.h"
 
+#include <QEvent>
 #include <QPlainTextEdit>
 #include <QPointer>
 #include <QScrollBar>
@@ -53,6 +54,12 @@ LogDock::LogDock(QWidget* parent)
   m_sink = std::make_shared<QtLogSink>(this);
   m_sink->set_pattern("%H:%M:%S.%e %l %v");
   core::logger()->sinks().push_back(m_sink);
+}
+
+void LogDock::changeEvent(QEvent* event) {
+  if (event->type() == QEvent::LanguageChange)
+    setWindowTitle(tr("Log"));
+  QDockWidget::changeEvent(event);
 }
 
 LogDock::~LogDock() {

@@ -24,6 +24,10 @@ public:
   [[nodiscard]] int lineCount() const;
   [[nodiscard]] QString text() const;
 
+protected:
+  /// The title follows a language switch.
+  void changeEvent(QEvent* event) override;
+
 private:
   QPlainTextEdit* m_view;
   std::shared_ptr<QtLogSink> m_sink;

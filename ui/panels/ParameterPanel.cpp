@@ -42,10 +42,12 @@ QString qs(const std::string& s) {
   return QString::fromStdString(s);
 }
 
-/// A parameter's label or unit from the core's table, in the application's language
-/// (translations/scanpick_it.ts, context "scanpick::core::params").
 QString translated(const std::string& s) {
-  return QCoreApplication::translate("scanpick::core::params", s.c_str());
+  return ParameterPanel::translatedParamText(s);
+}
+
+QString translatedStage(core::Stage stage) {
+  return QCoreApplication::translate("scanpick::core", core::stageName(stage).c_str());
 }
 
 /// Keeps the mouse wheel from changing an editor the operator has not clicked into: over an
@@ -66,6 +68,15 @@ public:
   }
 };
 
+/// The tooltip of the preset list's first entry.
+QString derivedEntryTip() {
+  return ParameterPanel::tr(
+      "Teach derives every parameter from the part and the scan (point spacing, depth noise, "
+      "the part's size) and shows each here with its reason. Values you change by hand before "
+      "teaching override the derived ones, as --set does on the command line. A preset below "
+      "is used as it is, with nothing derived.");
+}
+
 } // namespace
 
 ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
@@ -75,9 +86,8 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   auto* preset_row = new QHBoxLayout;
   m_presets = new QComboBox(this);
   m_presets->setObjectName(QStringLiteral("presetCombo"));
-  m_presets->setToolTip(tr("Bundled parameter presets"));
-  auto* load = new QPushButton(tr("Load…"), this);
-  auto* save = new QPushButton(tr("Save…"), this);
+  auto* load = m_load = new QPushButton(this);
+  auto* save = m_save = new QPushButton(this);
   preset_row->addWidget(m_presets, 1);
   preset_row->addWidget(load);
   preset_row->addWidget(save);
@@ -89,10 +99,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   m_preset_description->setVisible(false);
   outer->addWidget(m_preset_description);
   // Which values teach derived from the part (marked "derived" below).
-  m_derived_note = new QLabel(tr("Values marked “derived” come from the part and the scan at "
-                                 "teach: hover one for its reason. Values you change override "
-                                 "them at the next teach."),
-                              this);
+  m_derived_note = new QLabel(this);
   m_derived_note->setObjectName(QStringLiteral("derivedNote"));
   m_derived_note->setWordWrap(true);
   m_derived_note->setVisible(false);
@@ -129,8 +136,8 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   for (const core::ParamInfo& info : core::parameterTable()) {
     auto& form = forms[info.stage];
     if (!form) {
-      auto* group = new QGroupBox(
-          QCoreApplication::translate("scanpick::core", core::stageName(info.stage).c_str()), body);
+      auto* group = new QGroupBox(body);
+      m_groups.emplace_back(group, info.stage);
       form = new QFormLayout(group);
       form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
       body_layout->addWidget(group);
@@ -140,14 +147,13 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
     editor->setFocusPolicy(Qt::StrongFocus);
     editor->installEventFilter(wheel_guard);
     editor->setObjectName(qs(info.key));
-    editor->setToolTip(qs(info.description));
     m_editors[info.key] = editor;
     // The editor and, when teach derived its value, a small "derived" marker beside it.
     auto* row = new QWidget(body);
     auto* row_layout = new QHBoxLayout(row);
     row_layout->setContentsMargins(0, 0, 0, 0);
     row_layout->addWidget(editor, 1);
-    auto* marker = new QLabel(tr("derived"), row);
+    auto* marker = new QLabel(row);
     marker->setObjectName(qs(info.key + ".derived"));
     marker->setForegroundRole(QPalette::Link);
     QFont small = marker->font();
@@ -161,20 +167,21 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
     marker->setVisible(false);
     row_layout->addWidget(marker);
     m_markers[info.key] = marker;
-    auto* label = new QLabel(translated(info.label), row);
+    auto* label = new QLabel(row);
     label->setBuddy(editor);
+    m_labels[info.key] = label;
     form->addRow(label, row);
   }
-  auto* misc = new QGroupBox(tr("Random"), body);
+  auto* misc = m_misc_group = new QGroupBox(body);
   auto* misc_form = new QFormLayout(misc);
   m_seed = new QSpinBox(misc);
   m_seed->setObjectName(QStringLiteral("seed"));
   m_seed->setRange(0, std::numeric_limits<int>::max());
   m_seed->setFocusPolicy(Qt::StrongFocus);
   m_seed->installEventFilter(wheel_guard);
-  m_seed->setToolTip(tr("Seed of every random choice: the same scan, parameters and seed give "
-                        "the same result."));
-  misc_form->addRow(tr("Seed"), m_seed);
+  m_seed_label = new QLabel(misc);
+  m_seed_label->setBuddy(m_seed);
+  misc_form->addRow(m_seed_label, m_seed);
   body_layout->addWidget(misc);
   body_layout->addStretch(1);
   connect(m_seed, &QSpinBox::valueChanged, this, [this](int value) {
@@ -189,6 +196,49 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   scroll->setWidget(body);
   outer->addWidget(scroll, 1);
   refreshEditors();
+  retranslateUi();
+}
+
+QString ParameterPanel::translatedParamText(const std::string& english) {
+  return QCoreApplication::translate("scanpick::core::params", english.c_str());
+}
+
+void ParameterPanel::changeEvent(QEvent* event) {
+  if (event->type() == QEvent::LanguageChange)
+    retranslateUi();
+  QWidget::changeEvent(event);
+}
+
+void ParameterPanel::retranslateUi() {
+  m_load->setText(tr("Load…"));
+  m_save->setText(tr("Save…"));
+  m_derived_note->setText(tr("Values marked “derived” come from the part and the scan at "
+                             "teach: hover one for its reason. Values you change override "
+                             "them at the next teach."));
+  for (const auto& [group, stage] : m_groups)
+    group->setTitle(translatedStage(stage));
+  for (const core::ParamInfo& info : core::parameterTable()) {
+    m_labels.at(info.key)->setText(translated(info.label));
+    m_markers.at(info.key)->setText(tr("derived"));
+    QWidget* editor = m_editors.at(info.key);
+    const QString suffix =
+        info.unit.empty() ? QString() : QStringLiteral(" ") + translated(info.unit);
+    if (auto* ispin = qobject_cast<QSpinBox*>(editor))
+      ispin->setSuffix(suffix);
+    else if (auto* dspin = qobject_cast<QDoubleSpinBox*>(editor))
+      dspin->setSuffix(suffix);
+    else if (auto* combo = qobject_cast<QComboBox*>(editor))
+      for (int i = 0; i < combo->count() && i < static_cast<int>(info.choices.size()); ++i)
+        combo->setItemText(i, translated(info.choices[std::size_t(i)]));
+  }
+  m_misc_group->setTitle(tr("Random"));
+  m_seed_label->setText(tr("Seed"));
+  m_seed->setToolTip(tr("Seed of every random choice: the same scan, parameters and seed give "
+                        "the same result."));
+  m_presets->setItemText(0, tr("Derived from the part (default)"));
+  m_presets->setItemData(0, derivedEntryTip(), Qt::ToolTipRole);
+  setChoice(m_choice); // the list's tooltip
+  refreshReasons();    // the editors' tooltips: descriptions and reasons
 }
 
 QWidget* ParameterPanel::makeEditor(const core::ParamInfo& info) {
@@ -202,7 +252,7 @@ QWidget* ParameterPanel::makeEditor(const core::ParamInfo& info) {
   case core::ParamType::Enum: {
     auto* combo = new QComboBox(this);
     for (const std::string& choice : info.choices)
-      combo->addItem(qs(choice));
+      combo->addItem(translated(choice));
     connect(combo, &QComboBox::currentIndexChanged, this,
             [this, &info](int index) { editorChanged(info, index); });
     return combo;
@@ -211,8 +261,6 @@ QWidget* ParameterPanel::makeEditor(const core::ParamInfo& info) {
     auto* spin = new QSpinBox(this);
     spin->setRange(static_cast<int>(info.min_value), static_cast<int>(info.max_value));
     spin->setSingleStep(std::max(1, static_cast<int>(info.step)));
-    if (!info.unit.empty())
-      spin->setSuffix(QStringLiteral(" ") + translated(info.unit));
     spin->setKeyboardTracking(false);
     connect(spin, &QSpinBox::valueChanged, this, [this, &info](int v) { editorChanged(info, v); });
     return spin;
@@ -223,8 +271,6 @@ QWidget* ParameterPanel::makeEditor(const core::ParamInfo& info) {
     spin->setDecimals(decimalsFor(info.step));
     spin->setRange(info.min_value, info.max_value);
     spin->setSingleStep(info.step);
-    if (!info.unit.empty())
-      spin->setSuffix(QStringLiteral(" ") + translated(info.unit));
     spin->setKeyboardTracking(false);
     connect(spin, &QDoubleSpinBox::valueChanged, this,
             [this, &info](double v) { editorChanged(info, v); });
@@ -267,10 +313,11 @@ void ParameterPanel::refreshReasons() {
   for (const core::ParamInfo& info : core::parameterTable()) {
     const auto reason = m_reasons.find(info.key);
     const bool derived = reason != m_reasons.end();
+    const QString description = translated(info.description);
     m_editors.at(info.key)->setToolTip(
-        derived ? qs(info.description) + "\n\n" +
+        derived ? description + QStringLiteral("\n\n") +
                       tr("Derived from the part: %1").arg(qs(reason->second))
-                : qs(info.description));
+                : description);
     QLabel* marker = m_markers.at(info.key);
     marker->setToolTip(derived ? qs(reason->second) : QString());
     marker->setVisible(derived);
@@ -381,13 +428,7 @@ QString ParameterPanel::presetsDirectory() {
 void ParameterPanel::fillPresetList() {
   m_presets->clear();
   m_presets->addItem(tr("Derived from the part (default)"), QString());
-  m_presets->setItemData(
-      0,
-      tr("Teach derives every parameter from the part and the scan (point spacing, depth noise, "
-         "the part's size) and shows each here with its reason. Values you change by hand before "
-         "teaching override the derived ones, as --set does on the command line. A preset below "
-         "is used as it is, with nothing derived."),
-      Qt::ToolTipRole);
+  m_presets->setItemData(0, derivedEntryTip(), Qt::ToolTipRole);
   const QDir dir(presetsDirectory());
   for (const QFileInfo& file :
        dir.entryInfoList({QStringLiteral("*.json")}, QDir::Files, QDir::Name)) {

@@ -7,7 +7,9 @@
 /// first entry, "Derived from the part (default)", has Teach derive the parameters from the part
 /// and the scan instead (core::autoTeachParams); values derived so are marked "derived" beside
 /// their editor, with the reason in its tooltip. The mouse wheel changes an editor only once it
-/// has the focus; otherwise it scrolls the panel.
+/// has the focus; otherwise it scrolls the panel. Every text (labels, units, descriptions, the
+/// stages' titles) follows a language switch: the table's English texts are translated in the
+/// contexts "scanpick::core::params" and "scanpick::core" (translations/scanpick_it.ts).
 
 #include "core/params/ParameterTable.h"
 
@@ -15,9 +17,13 @@
 #include <map>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 class QComboBox;
+class QGroupBox;
 class QLabel;
+class QPushButton;
 class QSpinBox;
 
 namespace scanpick::ui {
@@ -60,6 +66,9 @@ public:
   /// Folder with the bundled presets (resources/presets).
   static QString presetsDirectory();
 
+  /// A parameter table text (label, unit, description, choice) in the current language.
+  static QString translatedParamText(const std::string& english);
+
 signals:
   /// The operator changed a value; `first_stage` is the earliest stage to re-run.
   void paramsChanged(const scanpick::core::RecognitionParams& params,
@@ -67,7 +76,12 @@ signals:
   /// A preset was loaded from `path`, or (`path` empty) the derived entry was chosen.
   void presetLoaded(const QString& path);
 
+protected:
+  void changeEvent(QEvent* event) override;
+
 private:
+  /// Sets every text again in the language now installed.
+  void retranslateUi();
   /// loadPresetFile, a message box instead of an exception; nothing for an empty path.
   void loadPresetOrWarn(const QString& path);
   QWidget* makeEditor(const core::ParamInfo& info);
@@ -82,6 +96,12 @@ private:
   core::RecognitionParams m_params;
   std::map<std::string, QWidget*> m_editors;
   std::map<std::string, QLabel*> m_markers; // "derived", beside each editor
+  std::map<std::string, QLabel*> m_labels;  // each editor's label
+  std::vector<std::pair<QGroupBox*, core::Stage>> m_groups;
+  QGroupBox* m_misc_group = nullptr;
+  QLabel* m_seed_label = nullptr;
+  QPushButton* m_load = nullptr;
+  QPushButton* m_save = nullptr;
   std::map<std::string, std::string> m_reasons;
   std::set<std::string> m_hand_edits;
   QComboBox* m_presets = nullptr;

@@ -2,6 +2,7 @@
 
 #include "ui/viewport/Presenters.h"
 
+#include <QEvent>
 #include <QHeaderView>
 #include <QIcon>
 #include <QPixmap>
@@ -12,9 +13,7 @@ namespace scanpick::ui {
 ResultsTable::ResultsTable(QWidget* parent) : QTableWidget(parent) {
   setObjectName(QStringLiteral("resultsTable"));
   setColumnCount(6);
-  setHorizontalHeaderLabels({tr("Score"), tr("Position x, y, z (mm)"),
-                             tr("Orientation r, p, y (°)"), tr("Cluster"), tr("Grip points (mm)"),
-                             tr("View")});
+  setHeaderTexts();
   setColumnHidden(5, true);
   setSelectionBehavior(QAbstractItemView::SelectRows);
   setSelectionMode(QAbstractItemView::SingleSelection);
@@ -27,9 +26,35 @@ ResultsTable::ResultsTable(QWidget* parent) : QTableWidget(parent) {
   });
 }
 
+void ResultsTable::setHeaderTexts() {
+  setHorizontalHeaderLabels({tr("Score"), tr("Position x, y, z (mm)"),
+                             tr("Orientation r, p, y (°)"), tr("Cluster"), tr("Grip points (mm)"),
+                             tr("View")});
+}
+
+void ResultsTable::changeEvent(QEvent* event) {
+  if (event->type() == QEvent::LanguageChange) {
+    setHeaderTexts();
+    // The rows' notes ("turn free", …) are made in setDetections; the selection stays.
+    const int selected = currentRow();
+    const auto detections = m_detections;
+    const auto names = m_view_names;
+    setDetections(detections, names);
+    if (selected >= 0 && selected < rowCount()) {
+      const QSignalBlocker block(this);
+      selectRow(selected);
+    }
+  }
+  QTableWidget::changeEvent(event);
+}
+
 void ResultsTable::setDetections(const std::vector<core::Detection>& detections,
                                  const QStringList& view_names) {
   const QSignalBlocker block(this);
+  if (&detections != &m_detections) {
+    m_detections = detections;
+    m_view_names = view_names;
+  }
   clearContents();
   setColumnHidden(5, view_names.size() < 2);
   setRowCount(static_cast<int>(detections.size()));

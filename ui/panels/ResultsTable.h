@@ -25,6 +25,16 @@ public:
 signals:
   /// Row selected (-1 when the selection was cleared).
   void detectionSelected(int row);
+
+protected:
+  /// Headers and rows follow a language switch.
+  void changeEvent(QEvent* event) override;
+
+private:
+  void setHeaderTexts();
+
+  std::vector<core::Detection> m_detections;
+  QStringList m_view_names;
 };
 
 } // namespace scanpick::ui

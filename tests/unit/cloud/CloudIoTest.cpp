@@ -4,6 +4,7 @@
 #include "core/common/Error.h"
 #include "tests/support/TempDir.h"
 
+#include <algorithm>
 #include <gtest/gtest.h>
 
 using namespace scanpick;
@@ -61,6 +62,38 @@ TEST(CloudIo, MetresAreConvertedAndWrongUnitsWarned) {
   // m.
   const auto as_mm = core::loadCloud(dir / "grid_m.ply", core::LengthUnit::Millimetres);
   EXPECT_NE(as_mm.units_warning.find("--units m"), std::string::npos) << as_mm.units_warning;
+  // With no units given, the extent tells: the same file is read as metres, without a warning.
+  const auto guessed = core::loadCloud(dir / "grid_m.ply", std::nullopt);
+  EXPECT_EQ(guessed.cloud.points_mm[6], as_m.cloud.points_mm[6]);
+  EXPECT_TRUE(guessed.units_warning.empty()) << guessed.units_warning;
+  core::saveCloudPly(dir / "grid_mm.ply", organizedGrid());
+  EXPECT_EQ(core::loadCloud(dir / "grid_mm.ply", std::nullopt).cloud.points_mm[6],
+            organizedGrid().points_mm[6]);
+}
+
+TEST(CloudIo, LoadingReportsProgressAndCanBeCancelled) {
+  test::TempDir dir;
+  core::PointCloud big;
+  big.width = 1000;
+  big.height = 800; // 9.6 MB of binary PCD: ten blocks read
+  for (std::uint32_t i = 0; i < big.width * big.height; ++i)
+    big.points_mm.emplace_back(float(i % 1000), float(i / 1000), 500.0f);
+  core::saveCloudPcd(dir / "big.pcd", big);
+  std::vector<double> seen;
+  const auto loaded =
+      core::loadCloud(dir / "big.pcd", core::LengthUnit::Millimetres, [&](double f) {
+        seen.push_back(f);
+        return true;
+      });
+  EXPECT_EQ(loaded.cloud.size(), big.size());
+  ASSERT_GE(seen.size(), 10u);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_TRUE(std::any_of(seen.begin(), seen.end(), [](double f) { return f > 0 && f < 0.6; }));
+  EXPECT_DOUBLE_EQ(seen.back(), 1.0);
+  int calls = 0;
+  EXPECT_THROW(core::loadCloud(dir / "big.pcd", core::LengthUnit::Millimetres,
+                               [&](double) { return ++calls < 3; }),
+               core::Cancelled);
 }
 
 TEST(CloudIo, BadFilesGiveClearErrors) {
