@@ -3,6 +3,7 @@
 #include "app/cli/Commands.h"
 #include "app/cli/ModelViews.h"
 #include "app/cli/RecipeOptions.h"
+#include "core/calib/BaseFrame.h"
 #include "core/common/AtomicFile.h"
 #include "core/common/JsonText.h"
 #include "core/model/ModelFile.h"
@@ -22,7 +23,66 @@ struct Options {
   RecipeOptions recipe;
   std::vector<std::string> models;
   std::string scene, out, picture, suite;
+  std::string calibration; ///< hand-eye calibration file: poses also in the robot base frame
+  std::string flange_pose; ///< eye-in-hand: the flange pose of the scan
 };
+
+/// Where the robot base frame comes from, checked before any work: the calibration, and for
+/// eye-in-hand the flange pose of the (single) scene.
+struct BaseFrameSource {
+  std::optional<core::calib::CameraCalibration> calibration;
+  std::optional<Eigen::Isometry3d> T_base_flange;
+};
+
+BaseFrameSource baseFrameSource(const Options& o) {
+  BaseFrameSource out;
+  if (!o.flange_pose.empty()) {
+    if (o.calibration.empty())
+      throw core::Error("--flange-pose needs --calibration (the eye-in-hand calibration file "
+                        "written by scanpick-cli calibrate)");
+    out.T_base_flange = core::calib::parseFlangePose(o.flange_pose, "--flange-pose");
+  }
+  if (o.calibration.empty())
+    return out;
+  out.calibration = core::calib::loadCameraCalibration(o.calibration);
+  if (out.calibration->needsFlangePose() && !o.suite.empty())
+    throw core::Error("'" + o.calibration +
+                      "' is an eye-in-hand calibration: each scan needs the flange pose it was "
+                      "taken at; recognize the scans one at a time with --scene and --flange-pose");
+  (void)core::calib::baseFromCamera(*out.calibration, out.T_base_flange); // refuses a mismatch
+  return out;
+}
+
+/// resultsToJson(...) with, when a calibration is given, each detection's pose and grip points in
+/// the robot base frame ("pose_base", "position_base_mm") and the calibration used.
+nlohmann::json resultsDocument(const core::RecognitionResult& result, const ModelViews& loaded,
+                               const std::string& scene_path, const BaseFrameSource& base) {
+  nlohmann::json doc = core::resultsToJson(result, loaded.sources, scene_path);
+  if (!base.calibration)
+    return doc;
+  const Eigen::Isometry3d T_base_camera =
+      core::calib::baseFromCamera(*base.calibration, base.T_base_flange);
+  nlohmann::json calibration = {{"file", base.calibration->file},
+                                {"mode", core::calib::modeName(base.calibration->mode)},
+                                {"T_base_camera", core::calib::basePoseJson(T_base_camera)}};
+  if (base.T_base_flange)
+    calibration["T_base_flange"] = core::calib::basePoseJson(*base.T_base_flange);
+  doc["calibration"] = calibration;
+  for (std::size_t i = 0; i < result.detections.size(); ++i) {
+    const core::Detection& d = result.detections[i];
+    nlohmann::json& out = doc["detections"][i];
+    out["pose_base"] = core::calib::basePoseJson(T_base_camera * d.T_scene_model);
+    for (std::size_t g = 0; g < d.grip_points_scene.size(); ++g) {
+      const Eigen::Vector3d p = T_base_camera * d.grip_points_scene[g].position_mm;
+      out["grip_points"][g]["position_base_mm"] = {p.x(), p.y(), p.z()};
+    }
+  }
+  return doc;
+}
+
+void saveResultsDocument(const fs::path& path, const nlohmann::json& doc) {
+  core::writeFileAtomic(path, core::dumpJsonText(doc, 2) + "\n");
+}
 
 /// The suite scene's sensor preset and kind from its ground truth, when there is one.
 std::pair<std::string, std::string> truthInfo(const fs::path& scene_path) {
@@ -58,6 +118,8 @@ void printSummary(const std::string& scene, const core::RecognitionResult& r) {
 }
 
 int run(const Options& o) {
+  // The calibration is checked first: a refused one leaves no results file behind.
+  const BaseFrameSource base = baseFrameSource(o);
   if (o.suite.empty()) {
     // Both outputs are checked before the work, so that neither is written when one cannot be.
     core::checkWritable(o.out);
@@ -89,7 +151,7 @@ int run(const Options& o) {
         core::sensorPreset(o.recipe.sensor.empty() ? default_sensor : o.recipe.sensor);
     const core::PointCloud scene = loadWithUnitsCheck(o.scene, o.recipe.units);
     const auto result = recognize(scene, sensor);
-    core::saveResults(o.out, result, loaded.sources, o.scene);
+    saveResultsDocument(o.out, resultsDocument(result, loaded, o.scene, base));
     if (!o.picture.empty())
       core::writeOverlayPng(o.picture, scene, loaded.clouds, result.detections, sensor);
     printSummary(o.scene, result);
@@ -119,7 +181,7 @@ int run(const Options& o) {
     const core::PointCloud scene = loadWithUnitsCheck(path.string(), o.recipe.units);
     const auto result = recognize(scene, sensor);
     const fs::path out = fs::path(o.out) / (path.stem().string() + ".json");
-    core::saveResults(out, result, loaded.sources, path.string());
+    saveResultsDocument(out, resultsDocument(result, loaded, path.string(), base));
     if (!o.picture.empty())
       core::writeOverlayPng(fs::path(o.out) / (path.stem().string() + ".png"), scene, loaded.clouds,
                             result.detections, sensor);
@@ -145,6 +207,12 @@ void registerRecognizeCommand(CLI::App& app) {
   sub->add_option("--picture", o->picture,
                   "Overlay PNG: scene grey, detections red (with --suite: any value writes "
                   "RESULTS_DIR/scene-XXX.png)");
+  sub->add_option("--calibration", o->calibration,
+                  "Hand-eye calibration file (scanpick-cli calibrate): also write each "
+                  "detection's pose and grip points in the robot base frame (\"pose_base\")");
+  sub->add_option("--flange-pose", o->flange_pose,
+                  "Eye-in-hand: the flange pose at which the scan was taken, in the robot base: "
+                  "x,y,z,rx,ry,rz (mm; rotation vector in degrees) or x,y,z,qw,qx,qy,qz");
   o->recipe.add(sub);
 }
 

@@ -4,6 +4,7 @@
 #include "app/cli/Commands.h"
 #include "app/cli/ModelViews.h"
 #include "app/cli/RecipeOptions.h"
+#include "core/calib/BaseFrame.h"
 #include "core/common/AtomicFile.h"
 #include "core/common/JsonText.h"
 #include "core/grasp/GraspJson.h"
@@ -30,6 +31,7 @@ using nlohmann::json;
 struct Options {
   std::vector<std::string> recipes;
   std::string camera;
+  std::string calibration; ///< hand-eye calibration: picks also in the robot base frame
   std::string host = "0.0.0.0";
   int port = 50020;
   int max_clients = 32;
@@ -159,6 +161,10 @@ int run(const Options& o) {
   (void)o;
   throw core::Error("this scanpick-cli was built without the devices layer: no camera to serve");
 #else
+  // The calibration first: a refused one fails before the recipes' models are prepared.
+  std::optional<core::calib::CameraCalibration> calibration;
+  if (!o.calibration.empty())
+    calibration = core::calib::loadCameraCalibration(o.calibration);
   std::vector<core::link::CellRecipe> recipes;
   std::set<std::string> names;
   for (const auto& r : o.recipes) {
@@ -168,7 +174,11 @@ int run(const Options& o) {
                         "': give each a distinct \"name\"");
   }
   auto cell = std::make_shared<core::link::PlanningCell>(openSource(o.camera, o.capture_timeout_ms),
-                                                         std::move(recipes));
+                                                         std::move(recipes), calibration);
+  if (calibration)
+    std::printf("calibration %s (%s): picks also in the robot base frame%s\n",
+                calibration->file.c_str(), core::calib::modeName(calibration->mode).c_str(),
+                calibration->needsFlangePose() ? "; triggers must carry the flange pose" : "");
   core::link::ServerOptions options;
   options.host = o.host;
   options.port = o.port;
@@ -212,6 +222,9 @@ void registerServeCommand(CLI::App& app) {
                   "Camera id: phoxi:<serial|ip>, kinect:<index>, oni:<file.oni>, file:<cloud or "
                   "folder> (replayed in a loop)")
       ->required();
+  sub->add_option("--calibration", o->calibration,
+                  "Hand-eye calibration file (scanpick-cli calibrate): picks also in the robot "
+                  "base frame (eye-in-hand: each trigger carries the flange pose)");
   sub->add_option("--host", o->host, "IPv4 address to listen on (127.0.0.1: this machine only)")
       ->capture_default_str();
   sub->add_option("--port", o->port, "TCP port (0: any free port, printed)")

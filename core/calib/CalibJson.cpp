@@ -20,6 +20,16 @@ bool isNumberArray(const json& j, std::size_t size) {
   return true;
 }
 
+/// An array of `size` numbers, some of which may be too large for a double (1e999 reads as inf).
+bool isAnyNumberArray(const json& j, std::size_t size) {
+  if (!j.is_array() || j.size() != size)
+    return false;
+  for (const auto& v : j)
+    if (!v.is_number())
+      return false;
+  return true;
+}
+
 Eigen::Vector3d vec3(const json& j, const std::string& what) {
   if (!isNumberArray(j, 3))
     throw Error(std::string(what).append(" must be three numbers [x, y, z]"));
@@ -34,8 +44,13 @@ Eigen::Isometry3d fromMatrix(const json& j, double mm_per_unit, const std::strin
     throw Error(shape);
   Eigen::Matrix4d M;
   for (int r = 0; r < 4; ++r) {
-    if (!isNumberArray(j[std::size_t(r)], 4))
+    if (!isAnyNumberArray(j[std::size_t(r)], 4))
       throw Error(shape);
+    if (!isNumberArray(j[std::size_t(r)], 4))
+      throw Error(std::string(what)
+                      .append(": row ")
+                      .append(std::to_string(r + 1))
+                      .append(" holds a number that is not finite"));
     for (int c = 0; c < 4; ++c)
       M(r, c) = j[std::size_t(r)][std::size_t(c)].get<double>();
   }
@@ -150,14 +165,14 @@ json toJson(const TargetLayout& layout) {
 TargetLayout loadTarget(const std::filesystem::path& path, double min_gap_mm) {
   const std::string source = std::string("'").append(path.string()).append("'");
   return targetFromJson(
-      parseJsonText(readFile(path), source, "(a calibration target file, docs/calibration.md)"),
+      parseJsonText(readFile(path), source, " (a calibration target file, docs/calibration.md)"),
       source, min_gap_mm);
 }
 
 std::vector<PoseEntry> loadPoseList(const std::filesystem::path& path, double mm_per_unit) {
   const std::string source = std::string("'").append(path.string()).append("'");
   const json doc =
-      parseJsonText(readFile(path), source, "(a calibration poses file, docs/calibration.md)");
+      parseJsonText(readFile(path), source, " (a calibration poses file, docs/calibration.md)");
   return withJsonErrors(source, [&] {
     const json& list = doc.is_object() && doc.contains("poses") ? doc["poses"] : doc;
     if (!list.is_array())
@@ -216,7 +231,8 @@ void saveCalibration(const std::filesystem::path& path, const HandEyeResult& res
 
 HandEyeResult loadCalibration(const std::filesystem::path& path) {
   const std::string source = std::string("'").append(path.string()).append("'");
-  const json doc = parseJsonText(readFile(path), source, "(a hand-eye calibration file)");
+  const json doc = parseJsonText(
+      readFile(path), source, " (a hand-eye calibration file written by scanpick-cli calibrate)");
   return withJsonErrors(source, [&] {
     if (!doc.is_object() || doc.value("format", "") != "scanpick-handeye")
       throw Error(source + " is not a hand-eye calibration (\"format\": \"scanpick-handeye\")");
@@ -224,7 +240,13 @@ HandEyeResult loadCalibration(const std::filesystem::path& path) {
       throw Error(source + " was written by a newer scanpick (version " +
                   std::to_string(doc.at("version").get<int>()) + "): update scanpick");
     HandEyeResult r;
-    r.mode = modeFromName(doc.at("mode").get<std::string>());
+    if (!doc.contains("mode") || !doc["mode"].is_string())
+      throw Error(source + ": \"mode\" (eye-to-hand or eye-in-hand) is missing");
+    try {
+      r.mode = modeFromName(doc["mode"].get<std::string>());
+    } catch (const Error& e) {
+      throw Error(source + ": " + e.what());
+    }
     for (const std::string& key : {r.cameraName(), r.targetName()})
       if (!doc.contains(key))
         throw Error(source + ": \"" + key + "\" is missing");

@@ -9,6 +9,8 @@ CellService::CellService(std::shared_ptr<CellBackend> backend) : m_backend(std::
     throw Error("a cell service needs a cell");
   m_recipes = m_backend->recipes();
   m_recipe = m_backend->recipe();
+  m_calibration = m_backend->calibration();
+  m_needs_flange_pose = m_backend->needsFlangePose();
 }
 
 Response CellService::status(std::int32_t id) const {
@@ -25,6 +27,9 @@ Response CellService::status(std::int32_t id) const {
   r.detections = m_cycle.detections;
   r.last_error = m_last_error;
   r.elapsed_ms = m_elapsed_ms;
+  r.calibration = m_calibration;
+  r.base_frame = !m_calibration.empty();
+  r.needs_flange_pose = m_needs_flange_pose;
   return r;
 }
 
@@ -44,7 +49,8 @@ Response CellService::handle(const Request& request) {
   };
   try {
     switch (request.command) {
-    case Command::Trigger: {
+    case Command::Trigger:
+    case Command::TriggerAt: {
       {
         // The old list is void from here on: the bin is being scanned anew.
         const std::lock_guard lock(m_mutex);
@@ -52,7 +58,10 @@ Response CellService::handle(const Request& request) {
         m_triggered = true;
         m_next = 0;
       }
-      CycleResult cycle = m_backend->runCycle();
+      CycleInput input;
+      if (request.flange_pose)
+        input.T_base_flange = flangePose(*request.flange_pose);
+      CycleResult cycle = m_backend->runCycle(input);
       const std::lock_guard lock(m_mutex);
       m_cycle = std::move(cycle);
       ++m_cycles;

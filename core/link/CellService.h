@@ -38,6 +38,8 @@ private:
   std::vector<std::string> m_recipes;
   std::size_t m_recipe = 0;
   double m_elapsed_ms = 0.0;
+  std::string m_calibration; ///< the backend's, read once
+  bool m_needs_flange_pose = false;
   std::atomic<bool> m_busy{false};
 };
 

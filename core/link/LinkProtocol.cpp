@@ -1,5 +1,7 @@
 #include "core/link/LinkProtocol.h"
 
+#include "core/calib/BaseFrame.h"
+#include "core/common/Error.h"
 #include "core/grasp/GraspJson.h"
 
 #include <cmath>
@@ -32,8 +34,39 @@ std::optional<std::int32_t> scaled(double value, double scale) {
   return static_cast<std::int32_t>(v);
 }
 
+constexpr double kPi = 3.14159265358979323846;
+
 bool knownCommand(std::int32_t c) {
-  return c >= 1 && c <= 5;
+  return c >= 1 && c <= 6;
+}
+
+/// x, y, z, qw, qx, qy, qz of a pose.
+std::array<double, 7> poseArray(const Eigen::Isometry3d& T) {
+  const Eigen::Quaterniond q(T.linear());
+  const Eigen::Vector3d t = T.translation();
+  return {t.x(), t.y(), t.z(), q.w(), q.x(), q.y(), q.z()};
+}
+
+/// The rotation vector (axis × angle) of a unit quaternion, degrees.
+Eigen::Vector3d rotationVectorDeg(const Eigen::Quaterniond& q) {
+  const Eigen::AngleAxisd aa(q.normalized());
+  return aa.axis() * aa.angle() * 180.0 / kPi;
+}
+
+json poseJson(const Eigen::Isometry3d& T) {
+  const Eigen::Quaterniond q(T.linear());
+  const Eigen::Vector3d t = T.translation();
+  return {{"position_mm", {t.x(), t.y(), t.z()}},
+          {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
+json toolJson(const Eigen::Isometry3d& T, double approach_length_mm) {
+  json j = poseJson(T);
+  const Eigen::Vector3d e = eulerZyxDeg(T.linear());
+  const Eigen::Vector3d pre = T * Eigen::Vector3d(0.0, 0.0, -approach_length_mm);
+  j["euler_zyx_deg"] = {e.x(), e.y(), e.z()};
+  j["pregrasp_position_mm"] = {pre.x(), pre.y(), pre.z()};
+  return j;
 }
 
 Command commandFromName(const std::string& name) {
@@ -49,18 +82,26 @@ json pickJson(const Pick& p) {
   const Eigen::Vector3d t = p.T_tool.translation();
   const Eigen::Vector3d e = eulerZyxDeg(p.T_tool.linear());
   const Eigen::Vector3d pre = p.T_tool * Eigen::Vector3d(0.0, 0.0, -p.approach_length_mm);
-  return {{"rank", p.rank},
-          {"detection", p.detection},
-          {"grasp", p.grasp},
-          {"grip", p.grip},
-          {"position_mm", {t.x(), t.y(), t.z()}},
-          {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}},
-          {"euler_zyx_deg", {e.x(), e.y(), e.z()}},
-          {"pregrasp_position_mm", {pre.x(), pre.y(), pre.z()}},
-          {"approach_length_mm", p.approach_length_mm},
-          {"score", p.score},
-          {"tilt_deg", p.tilt_deg},
-          {"occlusion", p.occlusion}};
+  json j = {{"rank", p.rank},
+            {"detection", p.detection},
+            {"grasp", p.grasp},
+            {"grip", p.grip},
+            {"position_mm", {t.x(), t.y(), t.z()}},
+            {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}},
+            {"euler_zyx_deg", {e.x(), e.y(), e.z()}},
+            {"pregrasp_position_mm", {pre.x(), pre.y(), pre.z()}},
+            {"approach_length_mm", p.approach_length_mm},
+            {"score", p.score},
+            {"tilt_deg", p.tilt_deg},
+            {"occlusion", p.occlusion},
+            {"part", poseJson(p.T_part)}};
+  if (p.T_base_tool) {
+    json base = toolJson(*p.T_base_tool, p.approach_length_mm);
+    if (p.T_base_part)
+      base["part"] = poseJson(*p.T_base_part);
+    j["pose_base"] = base;
+  }
+  return j;
 }
 
 /// The 24 fields of one binary answer for `r`, with `pick` (or none) in it.
@@ -86,12 +127,14 @@ std::string binaryMessage(const Response& r, const Pick* pick) {
     f[5] = pick->rank;
     f[6] = pick->detection;
     f[7] = pick->grasp;
-    const Eigen::Vector3d t = pick->T_tool.translation();
-    Eigen::Quaterniond q(pick->T_tool.linear());
+    // A robot controller wants the base frame: with a calibration the binary pose is that one.
+    const Eigen::Isometry3d& T = pick->T_base_tool ? *pick->T_base_tool : pick->T_tool;
+    const Eigen::Vector3d t = T.translation();
+    Eigen::Quaterniond q(T.linear());
     q.normalize();
     if (q.w() < 0.0) // one sign for one rotation: w >= 0
       q.coeffs() = -q.coeffs();
-    const Eigen::Vector3d e = eulerZyxDeg(pick->T_tool.linear());
+    const Eigen::Vector3d e = eulerZyxDeg(T.linear());
     for (int a = 0; a < 3; ++a) {
       put(f[std::size_t(8 + a)], t[a], kPositionScale);
       put(f[std::size_t(15 + a)], e[a], kAngleScale);
@@ -106,7 +149,7 @@ std::string binaryMessage(const Response& r, const Pick* pick) {
   }
   f[21] = static_cast<std::int32_t>(r.cycle & 0x7FFFFFFFu);
   put(f[22], r.elapsed_ms, 1.0);
-  f[23] = (r.busy ? 1 : 0);
+  f[23] = (r.busy ? 1 : 0) | (r.base_frame ? 2 : 0) | (r.needs_flange_pose ? 4 : 0);
   if (!fits && f[3] == 0)
     f[3] = static_cast<std::int32_t>(Status::OutOfRange);
   std::string out;
@@ -132,8 +175,23 @@ const char* toString(Command command) {
     return "set_recipe";
   case Command::Status:
     return "status";
+  case Command::TriggerAt:
+    return "trigger";
   }
   return "none";
+}
+
+std::size_t binaryRequestSize(std::int32_t command) {
+  return command == static_cast<std::int32_t>(Command::TriggerAt) ? kBinaryTriggerAtSize
+                                                                  : kBinaryRequestSize;
+}
+
+Eigen::Isometry3d flangePose(const std::array<double, 7>& pose) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() =
+      Eigen::Quaterniond(pose[3], pose[4], pose[5], pose[6]).normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(pose[0], pose[1], pose[2]);
+  return T;
 }
 
 const char* toString(Status status) {
@@ -160,6 +218,8 @@ const char* toString(Status status) {
     return "too-many-clients";
   case Status::OutOfRange:
     return "out-of-range";
+  case Status::NoFlangePose:
+    return "no-flange-pose";
   case Status::CaptureFailed:
     return "capture-failed";
   case Status::CellFailed:
@@ -174,25 +234,64 @@ const char* toString(Status status) {
 
 Decoded decodeBinaryRequest(std::string_view bytes) {
   Decoded d;
-  if (bytes.size() != kBinaryRequestSize) {
+  const auto wrongSize = [&](std::size_t expected) {
     d.error = Status::Malformed;
-    d.message = "a binary request is " + std::to_string(kBinaryRequestSize) + " bytes, not " +
+    d.message = "a binary request is " + std::to_string(expected) + " bytes (" +
+                std::to_string(kBinaryTriggerAtSize) + " for command 6), not " +
                 std::to_string(bytes.size());
     return d;
-  }
+  };
+  if (bytes.size() < 8)
+    return wrongSize(kBinaryRequestSize);
   if (getInt(bytes, 0) != kMagic) {
     d.error = Status::BadMagic;
     d.message = "not a scanpick message: it must begin with \"SPK1\"";
     return d;
   }
   const std::int32_t command = getInt(bytes, 1);
+  if (bytes.size() != binaryRequestSize(command))
+    return wrongSize(binaryRequestSize(command));
   d.id = getInt(bytes, 2);
   if (!knownCommand(command)) {
     d.error = Status::UnknownCommand;
-    d.message = "unknown command " + std::to_string(command) + ": use 1 to 5";
+    d.message = "unknown command " + std::to_string(command) + ": use 1 to 6";
     return d;
   }
   d.command = static_cast<Command>(command);
+  if (d.command == Command::TriggerAt) {
+    const std::int32_t convention = getInt(bytes, 3);
+    if (convention != 0 && convention != 1) {
+      d.error = Status::Malformed;
+      d.message = "field 3 of a trigger at a flange pose is the rotation convention: 0 rotation "
+                  "vector, 1 Euler angles Rz·Ry·Rx";
+      return d;
+    }
+    for (std::size_t f = 10; f < 12; ++f)
+      if (getInt(bytes, f) != 0) {
+        d.error = Status::Malformed;
+        d.message = "fields 10 and 11 of a trigger at a flange pose are reserved and must be 0";
+        return d;
+      }
+    const Eigen::Vector3d position(getInt(bytes, 4) / kPositionScale,
+                                   getInt(bytes, 5) / kPositionScale,
+                                   getInt(bytes, 6) / kPositionScale);
+    const Eigen::Vector3d r(getInt(bytes, 7) / kAngleScale, getInt(bytes, 8) / kAngleScale,
+                            getInt(bytes, 9) / kAngleScale);
+    Eigen::Isometry3d T =
+        calib::poseFromRotationVector(position, convention == 0 ? r : Eigen::Vector3d::Zero());
+    if (convention == 1)
+      T.linear() = (Eigen::AngleAxisd(r.z() * kPi / 180, Eigen::Vector3d::UnitZ()) *
+                    Eigen::AngleAxisd(r.y() * kPi / 180, Eigen::Vector3d::UnitY()) *
+                    Eigen::AngleAxisd(r.x() * kPi / 180, Eigen::Vector3d::UnitX()))
+                       .toRotationMatrix();
+    Request req;
+    req.command = d.command;
+    req.id = d.id;
+    req.binary = true;
+    req.flange_pose = poseArray(T);
+    d.request = req;
+    return d;
+  }
   for (std::size_t f = 4; f < 8; ++f)
     if (getInt(bytes, f) != 0) {
       d.error = Status::Malformed;
@@ -236,9 +335,11 @@ Decoded decodeJsonRequest(std::string_view line) {
     d.id = static_cast<std::int32_t>(id.get<long long>());
   }
   for (const auto& item : doc.items())
-    if (item.key() != "cmd" && item.key() != "id" && item.key() != "recipe") {
+    if (item.key() != "cmd" && item.key() != "id" && item.key() != "recipe" &&
+        item.key() != "flange_pose") {
       d.error = Status::Malformed;
-      d.message = "unknown key \"" + item.key() + "\": a request has \"cmd\", \"id\", \"recipe\"";
+      d.message = "unknown key \"" + item.key() +
+                  "\": a request has \"cmd\", \"id\", \"recipe\", \"flange_pose\"";
       return d;
     }
   if (!doc.contains("cmd") || !doc["cmd"].is_string()) {
@@ -264,6 +365,27 @@ Decoded decodeJsonRequest(std::string_view line) {
     }
     r.recipe = doc["recipe"].get<std::string>();
   }
+  if (doc.contains("flange_pose")) {
+    const json& pose = doc["flange_pose"];
+    std::vector<double> numbers;
+    if (pose.is_array())
+      for (const auto& v : pose)
+        if (v.is_number())
+          numbers.push_back(v.get<double>());
+    if (command != Command::Trigger || !pose.is_array() || numbers.size() != pose.size()) {
+      d.error = Status::Malformed;
+      d.message = "\"flange_pose\" is an array of numbers [x, y, z, rx, ry, rz] (mm, rotation "
+                  "vector in degrees), and only for trigger";
+      return d;
+    }
+    try {
+      r.flange_pose = poseArray(calib::flangePoseFromNumbers(numbers, "\"flange_pose\""));
+    } catch (const Error& e) {
+      d.error = Status::Malformed;
+      d.message = e.what();
+      return d;
+    }
+  }
   if (command == Command::SetRecipe && r.recipe.empty()) {
     d.error = Status::Malformed;
     d.message = "set_recipe needs \"recipe\": the name of a recipe the server was started with";
@@ -275,6 +397,22 @@ Decoded decodeJsonRequest(std::string_view line) {
 
 std::string encodeBinaryRequest(const Request& r) {
   std::string out;
+  if (r.flange_pose) {
+    const Eigen::Isometry3d T = flangePose(*r.flange_pose);
+    const Eigen::Vector3d rv = rotationVectorDeg(Eigen::Quaterniond(
+        (*r.flange_pose)[3], (*r.flange_pose)[4], (*r.flange_pose)[5], (*r.flange_pose)[6]));
+    putInt(out, kMagic);
+    putInt(out, static_cast<std::int32_t>(Command::TriggerAt));
+    putInt(out, r.id);
+    putInt(out, 0); // rotation vector
+    for (int a = 0; a < 3; ++a)
+      putInt(out, scaled(T.translation()[a], kPositionScale).value_or(0));
+    for (int a = 0; a < 3; ++a)
+      putInt(out, scaled(rv[a], kAngleScale).value_or(0));
+    putInt(out, 0);
+    putInt(out, 0);
+    return out;
+  }
   putInt(out, kMagic);
   putInt(out, static_cast<std::int32_t>(r.command));
   putInt(out, r.id);
@@ -288,6 +426,11 @@ std::string encodeJsonRequest(const Request& r) {
   json j = {{"cmd", toString(r.command)}, {"id", r.id}};
   if (r.command == Command::SetRecipe)
     j["recipe"] = r.recipe;
+  if (r.flange_pose) {
+    const auto& p = *r.flange_pose;
+    const Eigen::Vector3d rv = rotationVectorDeg(Eigen::Quaterniond(p[3], p[4], p[5], p[6]));
+    j["flange_pose"] = {p[0], p[1], p[2], rv.x(), rv.y(), rv.z()};
+  }
   return j.dump() + "\n";
 }
 
@@ -311,6 +454,7 @@ std::string encodeJsonResponse(const Response& r) {
   if (r.status == Status::Ok || r.status == Status::NoPicks) {
     switch (r.command) {
     case Command::Trigger:
+    case Command::TriggerAt:
       j["cycle"] = r.cycle;
       j["detections"] = r.detections;
       j["picks"] = r.count;
@@ -345,6 +489,9 @@ std::string encodeJsonResponse(const Response& r) {
       j["cycle"] = r.cycle;
       j["remaining"] = r.count;
       j["last_error"] = r.last_error;
+      j["calibration"] = r.calibration.empty() ? json(nullptr) : json(r.calibration);
+      j["base_frame"] = r.base_frame;
+      j["needs_flange_pose"] = r.needs_flange_pose;
       break;
     case Command::None:
       break;

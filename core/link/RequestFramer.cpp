@@ -60,12 +60,19 @@ std::optional<Frame> RequestFramer::next() {
     if (rest.substr(0, n) != kMagicText.substr(0, n))
       return fail(Status::BadMagic, "not a scanpick message: binary messages begin with \"SPK1\"",
                   true);
-    if (rest.size() < kBinaryRequestSize)
+    // The command (field 1) tells the message's size.
+    if (rest.size() < 8)
+      return std::nullopt;
+    std::uint32_t command = 0;
+    for (std::size_t b = 0; b < 4; ++b)
+      command |= std::uint32_t(static_cast<unsigned char>(rest[4 + b])) << (8 * b);
+    const std::size_t size = binaryRequestSize(static_cast<std::int32_t>(command));
+    if (rest.size() < size)
       return std::nullopt;
     Frame f;
     f.kind = Frame::Kind::Binary;
-    f.bytes = std::string(rest.substr(0, kBinaryRequestSize));
-    m_pos += kBinaryRequestSize;
+    f.bytes = std::string(rest.substr(0, size));
+    m_pos += size;
     m_saw_binary = true;
     return f;
   }

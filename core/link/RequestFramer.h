@@ -1,7 +1,7 @@
 #pragma once
 /// @file RequestFramer.h
 /// Cuts a connection's byte stream into requests: binary messages (they begin with "SPK1" and
-/// are kBinaryRequestSize bytes) and JSON lines (they begin with '{'), in any mix.
+/// are binaryRequestSize(command) bytes) and JSON lines (they begin with '{'), in any mix.
 
 #include "core/link/LinkProtocol.h"
 

@@ -285,7 +285,7 @@ TEST(RobotLink, EveryMalformedOrPartialMessageIsAnsweredWithAnErrorStatus) {
   }
   {
     Client c(port); // half a binary message: Incomplete after the request timeout
-    c.send(encodeBinaryRequest({Command::Trigger, 1, "", 0, true}).substr(0, 13));
+    c.send(encodeBinaryRequest({Command::Trigger, 1, "", 0, true, std::nullopt}).substr(0, 13));
     const auto a = decodeBinaryResponse(c.read(kBinaryResponseSize));
     ASSERT_TRUE(a);
     EXPECT_EQ(a->status(), int(Status::Incomplete));

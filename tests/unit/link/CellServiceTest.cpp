@@ -13,7 +13,7 @@ public:
   int picks = 2;
   std::optional<CellFailure> failure;
   std::size_t current = 0;
-  CycleResult runCycle() override {
+  CycleResult runCycle(const CycleInput&) override {
     if (failure)
       throw *failure;
     CycleResult r;

@@ -77,7 +77,7 @@ TEST(LinkProtocol, JsonRequests) {
   EXPECT_EQ(status(R"({"cmd": "set_recipe"})"), Status::Malformed);
   EXPECT_EQ(status(R"({"cmd": "status", "recipe": "x"})"), Status::Malformed);
   EXPECT_EQ(decodeJsonRequest(R"({"cmd": "dance", "id": 3})").id, 3);
-  const Request r{Command::SetRecipe, 9, "a", -1, false};
+  const Request r{Command::SetRecipe, 9, "a", -1, false, std::nullopt};
   EXPECT_EQ(*decodeJsonRequest(encodeJsonRequest(r)).request, r);
 }
 
