@@ -7,6 +7,7 @@
 #include "core/common/AtomicFile.h"
 #include "core/common/JsonText.h"
 #include "core/model/ModelFile.h"
+#include "core/model/ViewCoverage.h"
 #include "core/pipeline/OverlayPicture.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/pipeline/ResultsJson.h"
@@ -117,6 +118,27 @@ void printSummary(const std::string& scene, const core::RecognitionResult& r) {
   }
 }
 
+/// The taught views' coverage of the directions the part may be seen from in a bin, and which
+/// views to teach next.
+void printViewCoverage(const core::ViewCoverage& coverage) {
+  const core::ViewCoverageOptions defaults;
+  std::printf("view coverage: %.0f %% of the directions a part can be seen from lie within %.0f "
+              "deg of a taught view",
+              100.0 * coverage.covered, defaults.tolerance_deg);
+  if (coverage.unplaced > 0)
+    std::printf(" (%zu view(s) left out: they do not know their place in the part)",
+                coverage.unplaced);
+  if (!coverage.missing_part.empty()) {
+    std::printf("; to cover more, teach the part seen from");
+    for (std::size_t i = 0; i < coverage.missing_part.size(); ++i) {
+      const Eigen::Vector3d& d = coverage.missing_part[i];
+      std::printf("%s (%.2f, %.2f, %.2f)", i == 0 ? "" : ",", d.x(), d.y(), d.z());
+    }
+    std::printf(" (part frame, from the part towards the camera)");
+  }
+  std::printf("\n");
+}
+
 int run(const Options& o) {
   // The calibration is checked first: a refused one leaves no results file behind.
   const BaseFrameSource base = baseFrameSource(o);
@@ -140,6 +162,7 @@ int run(const Options& o) {
   if (joined > 0)
     std::printf(", %ld of them joined (they know their place in the part)", long(joined));
   std::printf("\n");
+  printViewCoverage(core::viewCoverage(loaded.models));
   const auto recognize = [&](const core::PointCloud& scene, const core::SensorModel& sensor) {
     return core::recognizeViews(recognizer, loaded.models, scene, sensor, params);
   };

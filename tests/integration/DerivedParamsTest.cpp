@@ -77,6 +77,9 @@ TEST(DerivedParams, ARandomPartIsTaughtAndFoundWithNoPreset) {
 
   fs::create_directories(d / "results");
   ASSERT_EQ(runCli(recognize, d / "recognize.txt"), 0) << test::readText(d / "recognize.txt");
+  // The table views, joined in the part, cover part of the sphere of viewing directions.
+  EXPECT_THAT(test::readText(d / "recognize.txt"),
+              testing::ContainsRegex("view coverage: [1-9][0-9] % of the directions"));
   ASSERT_EQ(runCli(eval, d / "eval.txt"), 0) << test::readText(d / "eval.txt");
   std::ifstream in(d / "eval.json");
   const auto report = nlohmann::json::parse(in);
