@@ -154,7 +154,7 @@ TEST(RobotLinkBaseFrame, EyeToHandPicksCarryBaseFramePoses) {
   const test::TempDir dir;
   Server s(calibrationFile(dir, calib::HandEyeMode::EyeToHand, kBaseCamera));
   test::soak::Conn c(s.port());
-  ASSERT_TRUE(c.ok());
+  ASSERT_TRUE(c.connected());
   const json st = ask(c, R"({"cmd":"status"})");
   EXPECT_EQ(st["calibration"], "eye-to-hand.json");
   EXPECT_EQ(st["base_frame"], true);
@@ -216,7 +216,7 @@ TEST(RobotLinkBaseFrame, EyeInHandTriggersCarryTheFlangePose) {
   const Eigen::Isometry3d F = calib::poseFromRotationVector(kFlangeAt, kFlangeTurn);
   const Eigen::Isometry3d T_base_camera = F * kFlangeCamera;
   test::soak::Conn c(s.port());
-  ASSERT_TRUE(c.ok());
+  ASSERT_TRUE(c.connected());
   EXPECT_EQ(ask(c, R"({"cmd":"status"})")["needs_flange_pose"], true);
   const json missing = ask(c, R"({"cmd":"trigger","id":1})");
   EXPECT_EQ(missing["code"], int(Status::NoFlangePose)) << missing.dump();

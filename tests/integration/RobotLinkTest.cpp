@@ -3,18 +3,14 @@
 // the real grasp planner).
 #include "core/link/LinkServer.h"
 #include "core/link/PlanningCell.h"
+#include "tests/support/LoopbackClient.h"
 
-#include <arpa/inet.h>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
 #include <nlohmann/json.hpp>
-#include <sys/socket.h>
 #include <thread>
-#include <unistd.h>
 
 using namespace scanpick::core;
 using namespace scanpick::core::link;
@@ -90,56 +86,10 @@ struct Server {
   ~Server() { server->stop(); }
 };
 
-/// A blocking loopback client with a receive timeout.
-class Client {
+/// A loopback client that asks the link in JSON lines and binary messages.
+class Client : public scanpick::test::LoopbackClient {
 public:
-  explicit Client(int port, int timeout_ms = 5000) {
-    m_fd = socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_port = htons(std::uint16_t(port));
-    inet_pton(AF_INET, "127.0.0.1", &addr.sin_addr);
-    timeval tv{timeout_ms / 1000, (timeout_ms % 1000) * 1000};
-    setsockopt(m_fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-    m_connected = connect(m_fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0;
-  }
-  ~Client() { closeNow(); }
-  Client(const Client&) = delete;
-  Client& operator=(const Client&) = delete;
-  [[nodiscard]] bool connected() const { return m_connected; }
-  void closeNow() {
-    if (m_fd >= 0)
-      close(m_fd);
-    m_fd = -1;
-  }
-  bool send(const std::string& bytes) {
-    return ::send(m_fd, bytes.data(), bytes.size(), MSG_NOSIGNAL) == ssize_t(bytes.size());
-  }
-  /// Exactly n bytes, or what came before the timeout / end of stream.
-  std::string read(std::size_t n) {
-    std::string out;
-    while (out.size() < n) {
-      if (m_buffer.empty() && !fill())
-        break;
-      const std::size_t take = std::min(n - out.size(), m_buffer.size());
-      out += m_buffer.substr(0, take);
-      m_buffer.erase(0, take);
-    }
-    return out;
-  }
-  /// One line (without '\n'), or "" on timeout / end of stream.
-  std::string line() {
-    for (;;) {
-      const auto nl = m_buffer.find('\n');
-      if (nl != std::string::npos) {
-        std::string l = m_buffer.substr(0, nl);
-        m_buffer.erase(0, nl + 1);
-        return l;
-      }
-      if (!fill())
-        return "";
-    }
-  }
+  using LoopbackClient::LoopbackClient;
   json ask(const std::string& request) {
     send(request + "\n");
     const std::string l = line();
@@ -153,38 +103,7 @@ public:
     send(encodeBinaryRequest(r));
     return decodeBinaryResponse(read(kBinaryResponseSize));
   }
-  /// True when the server closed the connection (end of stream) within the timeout.
-  bool closedByServer() {
-    char c;
-    for (;;) {
-      const ssize_t n = recv(m_fd, &c, 1, 0);
-      if (n == 0 || (n < 0 && errno == ECONNRESET))
-        return true;
-      if (n < 0)
-        return false;
-    }
-  }
-
-private:
-  bool fill() {
-    char buf[4096];
-    const ssize_t n = recv(m_fd, buf, sizeof buf, 0);
-    if (n <= 0)
-      return false;
-    m_buffer.append(buf, std::size_t(n));
-    return true;
-  }
-  int m_fd = -1;
-  bool m_connected = false;
-  std::string m_buffer;
 };
-
-long rssPages() {
-  std::ifstream statm("/proc/self/statm");
-  long size = 0, resident = 0;
-  statm >> size >> resident;
-  return resident;
-}
 
 } // namespace
 
@@ -401,40 +320,4 @@ TEST(RobotLink, SlowReadersAndIdleClientsAreDroppedWhileOthersAreServed) {
   EXPECT_TRUE(idle.closedByServer());
   Client later(port);
   EXPECT_EQ(later.ask(R"({"cmd":"status"})")["code"], 0);
-}
-
-TEST(RobotLink, SoakOfManyRequestsDoesNotGrowMemory) {
-  Server s;
-  const int port = s.server->port();
-  const auto batch = [&](int n) {
-    Client c(port);
-    int answered = 0;
-    for (int i = 0; i < n; ++i) {
-      const char* req = i % 10 == 0   ? R"({"cmd":"trigger"})"
-                        : i % 10 == 1 ? R"({"cmd":"picks"})"
-                        : i % 3 == 0  ? R"({"cmd":"status"})"
-                                      : R"({"cmd":"next"})";
-      if (i % 7 == 0) {
-        const auto a = c.askBinary(Command::NextPick, i);
-        answered += a ? 1 : 0;
-      } else {
-        answered += c.ask(req).is_object() ? 1 : 0;
-      }
-    }
-    return answered;
-  };
-  ASSERT_EQ(batch(2000), 2000); // warm-up: allocator pools, the grid's buckets
-  const long before = rssPages();
-  const auto start = std::chrono::steady_clock::now();
-  int total = 0;
-  for (int round = 0; round < 10; ++round)
-    total += batch(2000); // a fresh connection each round
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const long after = rssPages();
-  const long page_kb = sysconf(_SC_PAGESIZE) / 1024;
-  std::printf("soak: %d requests in %.1f s (%.0f requests/s), RSS %ld kB -> %ld kB\n", total,
-              seconds, total / seconds, before * page_kb, after * page_kb);
-  EXPECT_EQ(total, 20000);
-  EXPECT_LE(double(after), 1.05 * double(before) + 256.0); // within 5 % (+1 MB slack)
 }

@@ -1,6 +1,6 @@
 #pragma once
-// A soak of the robot link (issue 43: "24 h soak simulated as 100,000 requests with no memory
-// growth"): a LinkServer on 127.0.0.1 with a cheap cell (canned picks: the soak measures the
+// A soak of the robot link (a day of requests simulated as 100,000, memory read before and after):
+// a LinkServer on 127.0.0.1 with a cheap cell (canned picks: the soak measures the
 // server, not recognition), loopback clients sending a fixed-seed mix of valid and malformed
 // JSON lines and binary messages (and leaving mid-message, and bursts of 100 clients at once),
 // every answer checked, and the process's resident memory (the server runs in this process) read
@@ -8,22 +8,18 @@
 // (tests/benchmarks/LinkSoakTool.cpp: the long run, by hand) and by RobotLinkSoakTest (a short run
 // in CI).
 #include "core/link/LinkServer.h"
+#include "tests/support/LoopbackClient.h"
 
-#include <arpa/inet.h>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <fstream>
 #include <functional>
-#include <netinet/in.h>
-#include <netinet/tcp.h>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <set>
 #include <string>
-#include <sys/socket.h>
 #include <thread>
-#include <unistd.h>
 #include <vector>
 
 namespace scanpick::test {
@@ -109,69 +105,7 @@ namespace soak {
 using core::link::Command;
 using core::link::Status;
 
-/// A blocking loopback client; every read waits at most 5 s.
-class Conn {
-public:
-  explicit Conn(int port) {
-    m_fd = socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_port = htons(std::uint16_t(port));
-    inet_pton(AF_INET, "127.0.0.1", &addr.sin_addr);
-    timeval tv{5, 0};
-    setsockopt(m_fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-    const int one = 1;
-    setsockopt(m_fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-    m_ok = connect(m_fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0;
-  }
-  ~Conn() {
-    if (m_fd >= 0)
-      close(m_fd);
-  }
-  Conn(const Conn&) = delete;
-  Conn& operator=(const Conn&) = delete;
-  [[nodiscard]] bool ok() const { return m_ok; }
-  bool send(const std::string& bytes) {
-    return ::send(m_fd, bytes.data(), bytes.size(), MSG_NOSIGNAL) == ssize_t(bytes.size());
-  }
-  /// One answer: a 96-byte binary message when it begins with 'S', else a JSON line (without
-  /// '\n'); empty on timeout or end of stream.
-  std::string answer() {
-    if (m_buffer.empty() && !fill())
-      return {};
-    if (m_buffer.front() == 'S') {
-      while (m_buffer.size() < core::link::kBinaryResponseSize)
-        if (!fill())
-          return {};
-      std::string out = m_buffer.substr(0, core::link::kBinaryResponseSize);
-      m_buffer.erase(0, core::link::kBinaryResponseSize);
-      return out;
-    }
-    for (;;) {
-      const auto nl = m_buffer.find('\n');
-      if (nl != std::string::npos) {
-        std::string out = m_buffer.substr(0, nl);
-        m_buffer.erase(0, nl + 1);
-        return out;
-      }
-      if (!fill())
-        return {};
-    }
-  }
-
-private:
-  bool fill() {
-    char buf[8192];
-    const ssize_t n = recv(m_fd, buf, sizeof buf, 0);
-    if (n <= 0)
-      return false;
-    m_buffer.append(buf, std::size_t(n));
-    return true;
-  }
-  int m_fd = -1;
-  bool m_ok = false;
-  std::string m_buffer;
-};
+using Conn = LoopbackClient;
 
 /// One request of the mix: its bytes, how its answer comes and which statuses it may get.
 struct Message {
@@ -381,7 +315,7 @@ inline void clientRun(int port, long n, std::uint64_t seed, Tally& tally) {
   auto conn = std::make_unique<Conn>(port);
   for (long i = 0; i < n; ++i) {
     const Message m = makeMessage(rng, std::int32_t(i % 1000000));
-    if (!conn->ok())
+    if (!conn->connected())
       conn = std::make_unique<Conn>(port);
     conn->send(m.bytes);
     ++tally.sent;
