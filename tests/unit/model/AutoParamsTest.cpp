@@ -40,6 +40,14 @@ PointCloud tableScan(double noise_mm) {
   return scene.render(200, 150, 300.0, {0, 0, 0}, noise_mm, 3);
 }
 
+/// A 150 x 100 x 30 mm block on a table 1000 mm away, camera looking straight down.
+PointCloud blockOnTable() {
+  test::RaycastScene scene;
+  scene.floor_z_mm = 1000.0;
+  scene.boxes.emplace_back(Eigen::Vector3d(-75, -50, 970), Eigen::Vector3d(75, 50, 1000));
+  return scene.render(400, 300, 600.0, {300, 0, 0}, 0.1, 4);
+}
+
 } // namespace
 
 TEST(AutoParams, MeasuresTheSpacingAndNoiseOfAScan) {
@@ -137,11 +145,8 @@ TEST(AutoParams, ValuesFollowTheScanAndThePartWithAReasonEach) {
 }
 
 TEST(AutoParams, TeachMeasuresThePartWithoutItsTable) {
-  // A 150 x 100 x 30 mm block on a table 1000 mm away, cropped with the table inside the box.
-  test::RaycastScene scene;
-  scene.floor_z_mm = 1000.0;
-  scene.boxes.emplace_back(Eigen::Vector3d(-75, -50, 970), Eigen::Vector3d(75, 50, 1000));
-  const PointCloud scan = scene.render(400, 300, 600.0, {300, 0, 0}, 0.1, 4);
+  // The block cropped with the table inside the box.
+  const PointCloud scan = blockOnTable();
   TeachOptions options;
   options.crop_box_mm =
       Eigen::AlignedBox3f(Eigen::Vector3f(-90, -65, 900), Eigen::Vector3f(90, 65, 1010));
@@ -156,10 +161,7 @@ TEST(AutoParams, TeachMeasuresThePartWithoutItsTable) {
 TEST(AutoParams, TeachingOneScanTurnedInSteps) {
   // One scan of a block on a table, turned about the table's normal through the block in 15°
   // steps: teach derives the same diameter and the same values at every yaw.
-  test::RaycastScene scene;
-  scene.floor_z_mm = 1000.0;
-  scene.boxes.emplace_back(Eigen::Vector3d(-75, -50, 970), Eigen::Vector3d(75, 50, 1000));
-  const PointCloud scan = scene.render(400, 300, 600.0, {300, 0, 0}, 0.1, 4);
+  const PointCloud scan = blockOnTable();
   TeachOptions options;
   options.remove_floor = true;
   const Eigen::Vector3f centre(0, 0, 985);
