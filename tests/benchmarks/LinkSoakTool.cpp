@@ -1,5 +1,5 @@
-// soak_link: the robot link's soak (issue 43: "24 h soak simulated as 100,000 requests with no
-// memory growth (RSS within 5 %)"; docs/robot-link.md, "Soak"). Not run in CI (it takes minutes);
+// soak_link: the robot link's soak (a day of requests simulated as 100,000, resident memory within
+// 5 %; docs/robot-link.md, "Soak"). Not run in CI (it takes minutes);
 // RobotLinkSoakTest runs a short version. Prints the requests, the time, the resident memory after
 // the warm-up and at the end, and exits 1 when an answer was wrong or the memory grew by more than
 // 5 %.

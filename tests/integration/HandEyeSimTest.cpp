@@ -1,4 +1,4 @@
-// Hand-eye calibration with the virtual scanner (issue 43's target): a simulated robot moves the
+// Hand-eye calibration with the virtual scanner: a simulated robot moves the
 // calibration target in front of a fixed PhoXi M 1032 (eye-to-hand), or the PhoXi on its flange
 // over the target lying on a table (eye-in-hand), through 10 poses tilted 10-30° about varied
 // axes; each pose is scanned with the sensor's typical noise (σ 0.1 mm, dropouts, flying pixels).
