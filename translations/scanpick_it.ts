@@ -1520,4 +1520,79 @@
         <translation>PROSAC</translation>
     </message>
 </context>
+<context>
+    <name>scanpick::presets</name>
+    <message>
+        <source>Thesis table 5.7: coat rack recognition, configuration 0 (relaxed constraints, PhoXi). The table&apos;s columns are Ransac size, Ransac threshold [circles/lines], Neig. position range, Score (&apos;-&apos; = 0) and Matching length / radius size / position / orientation; other keys keep their defaults.</source>
+        <translation>Tabella 5.7 della tesi: riconoscimento dell&apos;appendiabiti, configurazione 0 (vincoli rilassati, PhoXi). Le colonne della tabella sono Ransac size, Ransac threshold [cerchi/linee], Neig. position range, Score (&apos;-&apos; = 0) e Matching length / radius size / position / orientation; le altre chiavi mantengono i valori predefiniti.</translation>
+    </message>
+    <message>
+        <source>Thesis table 5.8: coat rack recognition, configuration 1 (strict constraints for the greatest precision, PhoXi). The table&apos;s columns are Ransac size, Ransac threshold [circles/lines], Neig. position range, Score (&apos;-&apos; = 0) and Matching length / radius size / position / orientation; other keys keep their defaults.</source>
+        <translation>Tabella 5.8 della tesi: riconoscimento dell&apos;appendiabiti, configurazione 1 (vincoli stretti per la massima precisione, PhoXi). Le colonne della tabella sono Ransac size, Ransac threshold [cerchi/linee], Neig. position range, Score (&apos;-&apos; = 0) e Matching length / radius size / position / orientation; le altre chiavi mantengono i valori predefiniti.</translation>
+    </message>
+    <message>
+        <source>Thesis table 5.4: cup recognition (PhoXi). The table&apos;s columns are Ransac size, Ransac threshold [circles/lines], Neig. position range, Score (&apos;-&apos; = 0) and Matching length / radius size / position / orientation; other keys keep their defaults.</source>
+        <translation>Tabella 5.4 della tesi: riconoscimento della tazza (PhoXi). Le colonne della tabella sono Ransac size, Ransac threshold [cerchi/linee], Neig. position range, Score (&apos;-&apos; = 0) e Matching length / radius size / position / orientation; le altre chiavi mantengono i valori predefiniti.</translation>
+    </message>
+    <message>
+        <source>Thesis table 5.3: support and ornament detection in a scene of several object types (PhoXi); for the jar use detection-jar. The table&apos;s columns are Ransac size, Ransac threshold [circles/lines], Neig. position range, Score (&apos;-&apos; = 0) and Matching length / radius size / position / orientation; other keys keep their defaults.</source>
+        <translation>Tabella 5.3 della tesi: rilevamento del supporto e dell&apos;ornamento in una scena con oggetti di più tipi (PhoXi); per il barattolo usare detection-jar. Le colonne della tabella sono Ransac size, Ransac threshold [cerchi/linee], Neig. position range, Score (&apos;-&apos; = 0) e Matching length / radius size / position / orientation; le altre chiavi mantengono i valori predefiniti.</translation>
+    </message>
+    <message>
+        <source>Thesis table 5.3 for the jar in a scene of several object types (PhoXi): as detection but with score 0.4, as §5.2 says, because the jar&apos;s simple shape gives few features. The table&apos;s columns are Ransac size, Ransac threshold [circles/lines], Neig. position range, Score (&apos;-&apos; = 0) and Matching length / radius size / position / orientation; other keys keep their defaults.</source>
+        <translation>Tabella 5.3 della tesi per il barattolo in una scena con oggetti di più tipi (PhoXi): come detection ma con punteggio 0,4, come dice il §5.2, perché la forma semplice del barattolo dà poche caratteristiche. Le colonne della tabella sono Ransac size, Ransac threshold [cerchi/linee], Neig. position range, Score (&apos;-&apos; = 0) e Matching length / radius size / position / orientation; le altre chiavi mantengono i valori predefiniti.</translation>
+    </message>
+    <message>
+        <source>Thesis table 5.1: the test in an ideal environment without noise (a model of two circles and two lines). The table&apos;s columns are Ransac size, Ransac threshold [circles/lines], Neig. position range, Score (&apos;-&apos; = 0) and Matching length / radius size / position / orientation; other keys keep their defaults. Ransac threshold &apos;1/10^-3 mm [circles/lines]&apos; means circles 1 mm, lines 0.001 mm; position range -1 keeps every point (the thesis skips first-level keypoints here).</source>
+        <translation>Tabella 5.1 della tesi: la prova in un ambiente ideale senza rumore (un modello di due cerchi e due linee). Le colonne della tabella sono Ransac size, Ransac threshold [cerchi/linee], Neig. position range, Score (&apos;-&apos; = 0) e Matching length / radius size / position / orientation; le altre chiavi mantengono i valori predefiniti. Ransac threshold &apos;1/10^-3 mm [cerchi/linee]&apos; significa cerchi 1 mm, linee 0,001 mm; un position range di -1 tiene ogni punto (qui la tesi salta i punti chiave di primo livello).</translation>
+    </message>
+    <message>
+        <source>Thesis table 5.2: the test in an ideal environment with noise in the target scene. The table&apos;s columns are Ransac size, Ransac threshold [circles/lines], Neig. position range, Score (&apos;-&apos; = 0) and Matching length / radius size / position / orientation; other keys keep their defaults. Ransac threshold &apos;1/0.5 mm [circles/lines]&apos; means circles 1 mm, lines 0.5 mm.</source>
+        <translation>Tabella 5.2 della tesi: la prova in un ambiente ideale con rumore nella scena. Le colonne della tabella sono Ransac size, Ransac threshold [cerchi/linee], Neig. position range, Score (&apos;-&apos; = 0) e Matching length / radius size / position / orientation; le altre chiavi mantengono i valori predefiniti. Ransac threshold &apos;1/0.5 mm [cerchi/linee]&apos; significa cerchi 1 mm, linee 0,5 mm.</translation>
+    </message>
+    <message>
+        <source>Thesis table 5.6: Kinect v1 recognition (rabbit ornament, pears). The table&apos;s columns are Ransac size, Ransac threshold [circles/lines], Neig. position range, Score (&apos;-&apos; = 0) and Matching length / radius size / position / orientation. The table&apos;s &apos;Ransac size 0&apos; is below the parameter&apos;s minimum and is set to 2: a line needs 2 points and a circle 3, so every line and circle RANSAC finds passes, as with 0. What scales with the sensor&apos;s point spacing (about 2 mm at 1 m) the table leaves out and is set as in kinect-milk: a 10 mm neighbourhood radius, normals over 10 mm, a 10 mm floor distance, objects counted with a 6 mm linkage radius and 500 points, verification within 5 mm.</source>
+        <translation>Tabella 5.6 della tesi: riconoscimento con Kinect v1 (ornamento a coniglio, pere). Le colonne della tabella sono Ransac size, Ransac threshold [cerchi/linee], Neig. position range, Score (&apos;-&apos; = 0) e Matching length / radius size / position / orientation. Il &apos;Ransac size 0&apos; della tabella è sotto il minimo del parametro ed è posto a 2: una linea richiede 2 punti e un cerchio 3, quindi ogni linea e cerchio trovati da RANSAC passano, come con 0. Ciò che dipende dalla spaziatura dei punti del sensore (circa 2 mm a 1 m) la tabella lo omette ed è impostato come in kinect-milk: raggio di vicinato di 10 mm, normali su 10 mm, distanza dal pavimento di 10 mm, oggetti contati con un raggio di collegamento di 6 mm e 500 punti, verifica entro 5 mm.</translation>
+    </message>
+    <message>
+        <source>Kinect v1 bin picking: as phoxi-bin with neighbourhoods, RANSAC thresholds and tolerances scaled for the Kinect&apos;s millimetre-to-centimetre depth noise (floor distance, keypoint radius and verification distance as in kinect-milk), and objects counted with a 6 mm linkage radius, since the Kinect&apos;s points lie about 2 mm apart.</source>
+        <translation>Bin picking con Kinect v1: come phoxi-bin con vicinati, soglie RANSAC e tolleranze scalati per il rumore di profondità del Kinect, da millimetri a centimetri (distanza dal pavimento, raggio dei punti chiave e distanza di verifica come in kinect-milk), e oggetti contati con un raggio di collegamento di 6 mm, perché i punti del Kinect distano circa 2 mm.</translation>
+    </message>
+    <message>
+        <source>Kinect v1 bin picking of the support: kinect-bin plus surface point pair voting (8 mm sampling, polished by ICP) with a 0.8 minimum coverage, and no line or circle search: a support seen by a Kinect holds too few points for two line or circle pairs.</source>
+        <translation>Bin picking del supporto con Kinect v1: kinect-bin con il voto su coppie di punti di superficie (campionamento di 8 mm, rifinito con ICP), copertura minima 0,8 e nessuna ricerca di linee o cerchi: un supporto visto da un Kinect ha troppo pochi punti per due coppie di linee o cerchi.</translation>
+    </message>
+    <message>
+        <source>Real Kinect v1 scans of objects on a table (PCL&apos;s milk carton scene): floor and table removal, projected clusters, larger neighbourhoods and RANSAC thresholds for the centimetre-level Kinect noise, point-level verification (5 mm) with several hypotheses per search.</source>
+        <translation>Scansioni reali con Kinect v1 di oggetti su un tavolo (la scena del cartone del latte di PCL): rimozione di pavimento e tavolo, cluster proiettati, vicinati e soglie RANSAC più ampi per il rumore centimetrico del Kinect, verifica punto per punto (5 mm) con più ipotesi per ricerca.</translation>
+    </message>
+    <message>
+        <source>PhoXi M bin picking: the ground and the bin&apos;s floor removed, projected clusters, tight RANSAC thresholds for the 0.1 mm PhoXi noise, tight matching tolerances, a pooled search over all seed pairs (touching parts), point-level verification (1 mm, normals agreeing, edges within 2 mm) with a 0.7 minimum coverage; a detection whose view has a near symmetry (a half turn that puts 75 % of it back on itself) is checked against its turned pose on the points where the two differ.</source>
+        <translation>Bin picking con PhoXi M: pavimento e fondo del contenitore rimossi, cluster proiettati, soglie RANSAC strette per il rumore di 0,1 mm del PhoXi, tolleranze di corrispondenza strette, una ricerca comune su tutte le coppie iniziali (pezzi a contatto), verifica punto per punto (1 mm, normali concordi, bordi entro 2 mm) con copertura minima 0,7; un rilevamento la cui vista ha una quasi simmetria (un mezzo giro che riporta il 75 % della vista su sé stessa) è confrontato con la posa ruotata sui punti in cui le due differiscono.</translation>
+    </message>
+    <message>
+        <source>PhoXi M bin picking of the coat-rack: phoxi-bin-surface plus the near-symmetry check (a turn that puts 75 % of a view back on itself is checked on the points where the two differ; a half turn the scan cannot tell is reported as an alternative pose), a 0.75 minimum coverage and 60 voted poses per view. Teach the view of the coat-rack lying lip down with --view-set matching.min_coverage=0.5, since its edge-on plate covers little. With refine.enabled each plate is also moved in its own plane to where the scan&apos;s points end (refine.outline_ends).</source>
+        <translation>Bin picking dell&apos;appendiabiti con PhoXi M: phoxi-bin-surface con il controllo delle quasi simmetrie (una rotazione che riporta il 75 % di una vista su sé stessa è verificata sui punti in cui le due differiscono; un mezzo giro che la scansione non distingue è riportato come posa alternativa), copertura minima 0,75 e 60 pose votate per vista. Insegnare la vista dell&apos;appendiabiti appoggiato sul bordo con --view-set matching.min_coverage=0.5, perché la sua piastra vista di taglio copre poco. Con refine.enabled ogni piastra è anche spostata nel proprio piano fin dove finiscono i punti della scansione (refine.outline_ends).</translation>
+    </message>
+    <message>
+        <source>PhoXi M bin picking of the cup, a surface of revolution but for its handle: phoxi-bin-coat-rack with the surfaces sampled at 6 mm, 30 voted poses per view and no lines or circles (its rim splits into arcs, so the cup is found by its surface alone and the scene is not split into objects). Teach the bottom view (the cup upside down) with --view-set matching.surface_reference_stride=2, since its flat disk keeps few point pairs.</source>
+        <translation>Bin picking della tazza con PhoXi M, una superficie di rivoluzione tranne il manico: phoxi-bin-coat-rack con le superfici campionate a 6 mm, 30 pose votate per vista e nessuna linea o cerchio (il bordo si spezza in archi, quindi la tazza è trovata dalla sola superficie e la scena non è divisa in oggetti). Insegnare la vista dal fondo (la tazza capovolta) con --view-set matching.surface_reference_stride=2, perché il suo disco piatto conserva poche coppie di punti.</translation>
+    </message>
+    <message>
+        <source>PhoXi M bin picking with surface point pair voting: phoxi-bin (bin floor removed) plus surface voting (5 mm sampling, every 16th scene point votes, 30 poses verified, polished by ICP) with a 0.65 minimum coverage, without the near-symmetry check.</source>
+        <translation>Bin picking con PhoXi M e voto su coppie di punti di superficie: phoxi-bin (fondo del contenitore rimosso) con il voto sulle superfici (campionamento di 5 mm, vota un punto della scena ogni 16, 30 pose verificate, rifinite con ICP), copertura minima 0,65, senza il controllo delle quasi simmetrie.</translation>
+    </message>
+    <message>
+        <source>PhoXi M, parts on a table or a tray: phoxi-bin-surface without the bin-floor search, which would take the top faces of parts lying flat for a bin&apos;s floor and remove them.</source>
+        <translation>PhoXi M, pezzi su un tavolo o un vassoio: phoxi-bin-surface senza la ricerca del fondo del contenitore, che scambierebbe per il fondo le facce superiori dei pezzi appoggiati in piano e le rimuoverebbe.</translation>
+    </message>
+    <message>
+        <source>Thesis table 5.5: pump component recognition (PhoXi, Euclid Labs bin-picking scans). The table&apos;s columns are Ransac size, Ransac threshold [circles/lines], Neig. position range, Score (&apos;-&apos; = 0) and Matching length / radius size / position / orientation; other keys keep their defaults.</source>
+        <translation>Tabella 5.5 della tesi: riconoscimento del componente di pompa (PhoXi, scansioni di bin picking di Euclid Labs). Le colonne della tabella sono Ransac size, Ransac threshold [cerchi/linee], Neig. position range, Score (&apos;-&apos; = 0) e Matching length / radius size / position / orientation; le altre chiavi mantengono i valori predefiniti.</translation>
+    </message>
+    <message>
+        <source>The thesis&apos;s own method with its default values (chapter 3): k-means clustering, first-level keypoints, RANSAC lines and circles, feature matching with the roll search; no point-level verification, no surface voting, no refinement. For comparison: with no preset, teach derives every value from the part and the scan instead.</source>
+        <translation>Il metodo della tesi con i suoi valori predefiniti (capitolo 3): clustering k-means, punti chiave di primo livello, linee e cerchi RANSAC, corrispondenza delle caratteristiche con la ricerca del rollio; nessuna verifica punto per punto, nessun voto sulle superfici, nessuna rifinitura. Per confronto: senza preset, l&apos;insegnamento ricava ogni valore dal pezzo e dalla scansione.</translation>
+    </message>
+</context>
 </TS>

@@ -5,6 +5,7 @@
 #include "ui/Language.h"
 
 #include "core/params/ParameterTable.h"
+#include "core/params/ParamsJson.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "ui/MainWindow.h"
 #include "ui/Settings.h"
@@ -188,4 +189,46 @@ TEST(LiveLanguage, ResultsTableRowsFollowTheLanguage) {
       5000));
   EXPECT_EQ(window.resultsTable()->verticalHeaderItem(1)->toolTip(),
             QStringLiteral("Detection 2: drawn in this colour, labelled 2 in the view"));
+}
+
+// Every bundled preset says what it is for in Italian too: the preset list's tooltips and the
+// loaded preset's description follow the switch, and go back.
+TEST(LiveLanguage, PresetDescriptionsFollowTheLanguage) {
+  MainWindow window;
+  window.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+  ui::ParameterPanel* panel = window.parameterPanel();
+  auto* combo = panel->findChild<QComboBox*>(QStringLiteral("presetCombo"));
+  auto* label = panel->findChild<QLabel*>(QStringLiteral("presetDescription"));
+  ASSERT_NE(combo, nullptr);
+  ASSERT_NE(label, nullptr);
+  panel->loadPresetFile(QStringLiteral(SCANPICK_SOURCE_DIR "/resources/presets/phoxi-bin.json"));
+  const QString english_label = label->text();
+  ASSERT_TRUE(english_label.contains(QStringLiteral("PhoXi M bin picking")))
+      << english_label.toStdString();
+  QStringList english_tips;
+  for (int i = 0; i < combo->count(); ++i)
+    english_tips << combo->itemData(i, Qt::ToolTipRole).toString();
+
+  ASSERT_TRUE(ui::applyLanguage(QStringLiteral("it")));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return label->text() != english_label; }, 5000))
+      << "the loaded preset's description stays English";
+  EXPECT_TRUE(label->text().contains(QStringLiteral("Bin picking con PhoXi M")))
+      << label->text().toStdString();
+  int bundled = 0;
+  for (int i = 1; i < combo->count(); ++i) {
+    const QString file = combo->itemData(i).toString();
+    const std::string english = core::loadPreset(file.toStdString()).description;
+    const QString tip = combo->itemData(i, Qt::ToolTipRole).toString();
+    EXPECT_FALSE(tip.isEmpty()) << file.toStdString();
+    EXPECT_NE(tip.toStdString(), english) << file.toStdString() << ": description not translated";
+    ++bundled;
+  }
+  EXPECT_GE(bundled, 10) << "the bundled presets are listed";
+
+  ASSERT_TRUE(ui::applyLanguage(QStringLiteral("en")));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return label->text() == english_label; }, 5000))
+      << label->text().toStdString();
+  for (int i = 0; i < combo->count(); ++i)
+    EXPECT_EQ(combo->itemData(i, Qt::ToolTipRole).toString(), english_tips[i]) << i;
 }

@@ -203,6 +203,11 @@ QString ParameterPanel::translatedParamText(const std::string& english) {
   return QCoreApplication::translate("scanpick::core::params", english.c_str());
 }
 
+QString ParameterPanel::translatedPresetText(const std::string& english) {
+  return english.empty() ? QString()
+                         : QCoreApplication::translate("scanpick::presets", english.c_str());
+}
+
 void ParameterPanel::changeEvent(QEvent* event) {
   if (event->type() == QEvent::LanguageChange)
     retranslateUi();
@@ -237,8 +242,13 @@ void ParameterPanel::retranslateUi() {
                         "the same result."));
   m_presets->setItemText(0, tr("Derived from the part (default)"));
   m_presets->setItemData(0, derivedEntryTip(), Qt::ToolTipRole);
+  for (int i = 1; i < m_presets->count(); ++i)
+    m_presets->setItemData(
+        i, translatedPresetText(m_presets->itemData(i, kDescriptionRole).toString().toStdString()),
+        Qt::ToolTipRole);
   setChoice(m_choice); // the list's tooltip
-  refreshReasons();    // the editors' tooltips: descriptions and reasons
+  showPresetDescription();
+  refreshReasons(); // the editors' tooltips: descriptions and reasons
 }
 
 QWidget* ParameterPanel::makeEditor(const core::ParamInfo& info) {
@@ -367,14 +377,12 @@ void ParameterPanel::loadPresetFile(const QString& path) {
   if (index < 0) {
     m_presets->addItem(QFileInfo(path).completeBaseName(), QFileInfo(path).absoluteFilePath());
     index = m_presets->count() - 1;
-    m_presets->setItemData(index, qs(preset.description), Qt::ToolTipRole);
+    setEntryDescription(index, preset.description);
   }
+  m_preset_name = qs(preset.name);
+  m_preset_description_en = qs(preset.description);
   setChoice(index);
-  m_preset_description->setText(
-      QStringLiteral("<b>%1</b>: %2")
-          .arg(qs(preset.name).toHtmlEscaped(), qs(preset.description).toHtmlEscaped()));
-  m_preset_description->setToolTip(qs(preset.description));
-  m_preset_description->setVisible(!preset.description.empty());
+  showPresetDescription();
   core::logger()->info("loaded preset '{}' from {}", preset.name, path.toStdString());
   emit presetLoaded(path);
   emit paramsChanged(m_params,
@@ -384,12 +392,27 @@ void ParameterPanel::loadPresetFile(const QString& path) {
 void ParameterPanel::chooseDerived() {
   const core::RecognitionParams before = m_params;
   setParams(core::RecognitionParams{});
+  m_preset_name.clear();
+  m_preset_description_en.clear();
   setChoice(0);
-  m_preset_description->setVisible(false);
+  showPresetDescription();
   core::logger()->info("parameters: derived from the part and the scan at teach");
   emit presetLoaded(QString());
   emit paramsChanged(m_params,
                      core::firstChangedStage(before, m_params).value_or(core::Stage::Preprocess));
+}
+
+void ParameterPanel::setEntryDescription(int index, const std::string& english) {
+  m_presets->setItemData(index, qs(english), kDescriptionRole);
+  m_presets->setItemData(index, translatedPresetText(english), Qt::ToolTipRole);
+}
+
+void ParameterPanel::showPresetDescription() {
+  const QString text = translatedPresetText(m_preset_description_en.toStdString());
+  m_preset_description->setText(
+      QStringLiteral("<b>%1</b>: %2").arg(m_preset_name.toHtmlEscaped(), text.toHtmlEscaped()));
+  m_preset_description->setToolTip(text);
+  m_preset_description->setVisible(!m_preset_description_en.isEmpty());
 }
 
 void ParameterPanel::setChoice(int index) {
@@ -436,9 +459,8 @@ void ParameterPanel::fillPresetList() {
     // Each entry says what it is for; a file that does not read is still listed, and says why
     // when chosen.
     try {
-      const std::string description =
-          core::loadPreset(file.absoluteFilePath().toStdString()).description;
-      m_presets->setItemData(m_presets->count() - 1, qs(description), Qt::ToolTipRole);
+      setEntryDescription(m_presets->count() - 1,
+                          core::loadPreset(file.absoluteFilePath().toStdString()).description);
     } catch (const std::exception& e) {
       core::logger()->warn("preset {}: {}", file.absoluteFilePath().toStdString(), e.what());
     }

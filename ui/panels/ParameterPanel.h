@@ -68,6 +68,9 @@ public:
 
   /// A parameter table text (label, unit, description, choice) in the current language.
   static QString translatedParamText(const std::string& english);
+  /// A bundled preset's description in the current language (the English text when it has no
+  /// translation, e.g. a preset file from elsewhere).
+  static QString translatedPresetText(const std::string& english);
 
 signals:
   /// The operator changed a value; `first_stage` is the earliest stage to re-run.
@@ -90,6 +93,12 @@ private:
   /// Shows m_reasons: the editors' tooltips, the "derived" markers and the note above them.
   void refreshReasons();
   void fillPresetList();
+  /// Keeps preset list entry `index`'s English description (kDescriptionRole) and shows it,
+  /// translated, as the entry's tooltip.
+  void setEntryDescription(int index, const std::string& english);
+  /// Shows the loaded preset's name and description (translated) above the editors, or nothing
+  /// when the parameters are derived.
+  void showPresetDescription();
   /// Makes entry `index` of the preset list the one in effect (m_choice) and shows it.
   void setChoice(int index);
 
@@ -107,7 +116,10 @@ private:
   QComboBox* m_presets = nullptr;
   int m_choice = 0;                       // the preset list's entry in effect; 0 derives at teach
   QLabel* m_preset_description = nullptr; // the loaded preset's description
-  QLabel* m_derived_note = nullptr;       // shown while values are marked "derived"
+  QString m_preset_name;                  // the loaded preset's, empty when derived
+  QString m_preset_description_en;        // the loaded preset's description, in English
+  static constexpr int kDescriptionRole = Qt::UserRole + 1; // preset list: English description
+  QLabel* m_derived_note = nullptr; // shown while values are marked "derived"
   QSpinBox* m_seed = nullptr;
   bool m_updating = false;
 };
