@@ -228,11 +228,8 @@ void MainWindow::updateDepthView() {
     rgb.push_back({static_cast<std::uint8_t>(c.red()), static_cast<std::uint8_t>(c.green()),
                    static_cast<std::uint8_t>(c.blue())});
   }
-  // A scan point is one of a detection's visible points when the posed model has a point as
-  // close as the pose verification asks; never finer than the scan's own spacing allows.
-  const core::RecognitionParams& params = m_params->params();
-  const double tolerance_mm =
-      std::max({params.matching.verify_tolerance_mm, params.refine.inlier_distance_mm, 1.0});
+  // A scan point is one of a detection's visible points as the result picture decides it.
+  const double tolerance_mm = core::depthOverlayTolerance_mm(m_params->params());
   m_depth_jobs->run<core::DepthOverlay>(
       [scan, result, views, rgb, tolerance_mm](const core::ProgressFn& progress) {
         std::vector<const core::PointCloud*> clouds;

@@ -160,7 +160,8 @@ ClearCycle runCycle(Cell& cell, const core::Scene& scene, const core::PointCloud
   }
   char name[32];
   std::snprintf(name, sizeof name, "cycle-%03d.png", index);
-  core::writeOverlayPng(s.out / name, scan, cell.clouds, result.detections, cell.sensor);
+  core::writeOverlayPng(s.out / name, scan, cell.clouds, result.detections, cell.sensor,
+                        core::depthOverlayTolerance_mm(s.params));
   const auto truth = truthInstances(scene, cell.T_part_tool, cell.surface_part);
   const auto true_bin = trueBin(scene);
   for (const auto& pick : list.picks) {

@@ -90,7 +90,8 @@ int runDemo(const DemoOptions& o) {
   const fs::path results_path = dir / "demo-results.json";
   const fs::path picture_path = dir / "demo-overlay.png";
   core::saveResults(results_path, result, sources, scene_path.string());
-  core::writeOverlayPng(picture_path, scene, clouds, result.detections, sensor);
+  core::writeOverlayPng(picture_path, scene, clouds, result.detections, sensor,
+                        core::depthOverlayTolerance_mm(params));
   std::printf("    %zu detection(s) in %.0f ms\n", result.detections.size(),
               result.timings.total_ms);
   for (std::size_t i = 0; i < result.detections.size(); ++i) {
@@ -100,7 +101,7 @@ int runDemo(const DemoOptions& o) {
                 t.z());
   }
   std::cout << "results: " << results_path.string() << "\npicture: " << picture_path.string()
-            << " (scene grey, detections red)\n"
+            << " (depth image, detections in their colours with IDs and grip points)\n"
             << "desktop application: scanpick --scan " << scene_path.string();
   for (const auto& path : model_paths)
     std::cout << " --model " << path;

@@ -176,7 +176,8 @@ int run(const Options& o) {
     const auto result = recognize(scene, sensor);
     saveResultsDocument(o.out, resultsDocument(result, loaded, o.scene, base));
     if (!o.picture.empty())
-      core::writeOverlayPng(o.picture, scene, loaded.clouds, result.detections, sensor);
+      core::writeOverlayPng(o.picture, scene, loaded.clouds, result.detections, sensor,
+                            core::depthOverlayTolerance_mm(params));
     printSummary(o.scene, result);
     return kOk;
   }
@@ -207,7 +208,7 @@ int run(const Options& o) {
     saveResultsDocument(out, resultsDocument(result, loaded, path.string(), base));
     if (!o.picture.empty())
       core::writeOverlayPng(fs::path(o.out) / (path.stem().string() + ".png"), scene, loaded.clouds,
-                            result.detections, sensor);
+                            result.detections, sensor, core::depthOverlayTolerance_mm(params));
     printSummary(path.filename().string(), result);
   }
   return kOk;
@@ -228,8 +229,9 @@ void registerRecognizeCommand(CLI::App& app) {
   sub->add_option("--suite", o->suite, "Folder of scene-XXX.pcd (+ .gt.json) to recognize in turn");
   sub->add_option("--out", o->out, "Results file (or folder with --suite)")->required();
   sub->add_option("--picture", o->picture,
-                  "Overlay PNG: scene grey, detections red (with --suite: any value writes "
-                  "RESULTS_DIR/scene-XXX.png)");
+                  "Result picture (PNG): the scan's depth image with each detection tinted in "
+                  "its colour, its ID and its grip points, as the GUI's depth view shows it "
+                  "(with --suite: any value writes RESULTS_DIR/scene-XXX.png)");
   sub->add_option("--calibration", o->calibration,
                   "Hand-eye calibration file (scanpick-cli calibrate): also write each "
                   "detection's pose and grip points in the robot base frame (\"pose_base\")");

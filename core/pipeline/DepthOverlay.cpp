@@ -99,6 +99,10 @@ std::pair<float, float> depthRange(const PointCloud& scan) {
 
 } // namespace
 
+double depthOverlayTolerance_mm(const RecognitionParams& params) {
+  return std::max({params.matching.verify_tolerance_mm, params.refine.inlier_distance_mm, 1.0});
+}
+
 DepthOverlay renderDepthOverlay(const PointCloud& scan,
                                 const std::vector<const PointCloud*>& models,
                                 const std::vector<Detection>& detections,

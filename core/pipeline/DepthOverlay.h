@@ -3,19 +3,17 @@
 /// The result on the scan's own depth image: one pixel per cell of an organized scan, shaded by
 /// depth (near light, far dark), each detection's visible points tinted in its colour, with the
 /// pixels where its ID and its grip points go. The GUI's depth view draws it (and the IDs and grip
-/// markers over it); a picture writer can use the same rendering.
+/// markers over it); the result picture (OverlayPicture.h) draws them into it.
 
 #include "core/cloud/PointCloud.h"
 #include "core/common/Progress.h"
+#include "core/params/Parameters.h"
 #include "core/pipeline/Detection.h"
+#include "core/pipeline/DetectionColours.h"
 
-#include <array>
-#include <cstdint>
 #include <vector>
 
 namespace scanpick::core {
-
-using Rgb8 = std::array<std::uint8_t, 3>;
 
 /// Where one detection lies in a DepthOverlay (pixel coordinates: column, row; (-1, -1) when
 /// there is no such pixel).
@@ -38,6 +36,11 @@ struct DepthOverlay {
 
 /// Colour of cells without a measurement (NaN) in a DepthOverlay.
 inline constexpr Rgb8 kNoDepthColour{22, 26, 40};
+
+/// The distance (mm) within which a scan point counts as explained by a detection's posed model
+/// in the depth image: as close as the pose verification and the refinement ask
+/// (matching.verify_tolerance_mm, refine.inlier_distance_mm), and never below 1 mm.
+double depthOverlayTolerance_mm(const RecognitionParams& params);
 
 /// Renders `scan_mm` (organized: height > 1) as its depth image: each valid cell grey by depth,
 /// from light (nearest, 2nd percentile of z) to dark (farthest, 98th percentile); cells without

@@ -1,5 +1,7 @@
 #include "ui/viewport/Presenters.h"
 
+#include "core/pipeline/DetectionColours.h"
+
 #include <QString>
 #include <algorithm>
 #include <array>
@@ -252,9 +254,8 @@ vtkSmartPointer<vtkProp> makeLabelActor(const QString& text, const Eigen::Vector
 }
 
 QColor detectionColour(int index) {
-  // Golden-ratio hue steps keep neighbouring indices far apart on the colour wheel.
-  const double hue = std::fmod(0.08 + index * 0.618033988749895, 1.0);
-  return QColor::fromHsvF(static_cast<float>(hue), 0.85f, 1.0f);
+  const core::Rgb8 c = core::detectionColour(static_cast<std::size_t>(std::max(0, index)));
+  return {c[0], c[1], c[2]};
 }
 
 } // namespace scanpick::ui

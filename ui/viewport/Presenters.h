@@ -69,7 +69,8 @@ vtkSmartPointer<vtkActor> makeGripMarkersActor(const std::vector<core::GripPoint
 vtkSmartPointer<vtkProp> makeLabelActor(const QString& text, const Eigen::Vector3d& position_mm,
                                         const QColor& colour, int font_px, double ratio);
 
-/// A distinct, saturated colour for detection `index` (golden-ratio hue steps).
+/// Detection `index`'s colour (core::detectionColour), the one every view and the result picture
+/// use.
 QColor detectionColour(int index);
 
 } // namespace scanpick::ui
