@@ -128,7 +128,8 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
     model.grip_points.push_back({g.name, model.T_teach_model.inverse() * g.position_mm});
   if (options.T_scan_part)
     model.T_part_model = options.T_scan_part->inverse() * model.T_teach_model;
-  model.diameter_mm = static_cast<double>(boundingBox(model.cloud_mm).diagonal().norm());
+  model.diameter_mm =
+      measurePart(model.cloud_mm, measureScan(model.cloud_mm).spacing_mm).diameter_mm;
   reportProgress(progress, 1.0);
   return model;
 }

@@ -48,7 +48,10 @@ struct TaughtModel {
   std::optional<Eigen::Isometry3d> T_part_model;
   /// The other views of the part joined into this one (joinViews); not kept in the model file.
   std::vector<JoinedView> joined_views;
-  double diameter_mm = 0.0; ///< diagonal of the cloud's bounding box, for duplicate suppression
+  /// The largest distance between two of the cloud's points, flying pixels left out
+  /// (PartMeasures::diameter_mm): the same however the part lay when taught. Sizes the radii of
+  /// duplicate suppression and of the merge of views.
+  double diameter_mm = 0.0;
   /// File name of the scan it was taught from ("" when unknown): tells views of one part apart
   /// and lets the evaluator find the teach scene's ground truth.
   std::string teach_scan;

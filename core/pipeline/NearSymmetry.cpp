@@ -27,7 +27,9 @@ constexpr double kMinTurnRad = M_PI / 6.0;
 constexpr int kCandidates = 12;
 
 /// The view is sampled for its self-voting with voxels of this share of its diameter.
-constexpr double kSamplingShare = 0.04;
+constexpr double kSamplingShare = 0.055;
+/// Turns closer than this share of the view's diameter are one (and the identity is left out).
+constexpr double kClusterShare = 0.14;
 
 /// Squared distance from view point k moved by `S` to the nearest point of the view's surface
 /// closer than sqrt(max_distance_sq), or infinity when there is none or it faces another way
@@ -246,9 +248,9 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
   const PointPairModel pairs(sampled, sampling_mm);
   VotingOptions voting;
   voting.reference_stride = 1;
-  voting.cluster_distance_mm = 0.1 * model.diameter_mm;
+  voting.cluster_distance_mm = kClusterShare * model.diameter_mm;
   voting.max_poses = kCandidates;
-  voting.exclude_self_mm = 0.1 * model.diameter_mm;
+  voting.exclude_self_mm = kClusterShare * model.diameter_mm;
   const std::vector<VotedPose> candidates = pairs.vote(sampled, voting);
   // Each candidate is described and polished on its own (in parallel); they are then taken in
   // vote order, so the result does not depend on the threads.

@@ -104,8 +104,8 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
     return take;
   };
   const std::size_t found = merged.detections.size();
-  merged.detections =
-      mergeViewDetections(std::move(merged.detections), models, 0.3 * diameter_mm, prefer);
+  merged.detections = mergeViewDetections(std::move(merged.detections), models,
+                                          kViewMergeShare * diameter_mm, prefer);
   // Whether a turn moved any detection.
   const auto poses = [](const std::vector<Detection>& detections) {
     std::vector<Eigen::Matrix4d> out;
@@ -123,8 +123,8 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
                  });
   // A turn may have moved a detection onto an instance another view's detection holds.
   if (turned)
-    merged.detections =
-        mergeViewDetections(std::move(merged.detections), models, 0.3 * diameter_mm, prefer);
+    merged.detections = mergeViewDetections(std::move(merged.detections), models,
+                                            kViewMergeShare * diameter_mm, prefer);
   sortBestFirst(merged.detections);
   const double merge_ms = msSince(t_merge);
   logger()->debug("the views' {} detections merged into {}, their turns resolved, in {:.1f} ms",

@@ -515,15 +515,16 @@ RecognitionResult Recognizer::recognize(const std::shared_ptr<const TaughtModel>
         verifierFrom(0.5 * params.matching.min_coverage - kIcpCoverageSlack);
     for (auto& d :
          surfaceDetections(*prep->pairs, *cache.surface_scene, scene_pairs.get(), model->features,
-                           *cache.features, params.matching, 0.1 * model->diameter_mm, verify_voted,
-                           polish, rescue, subProgress(progress, 0.95, 0.98)))
+                           *cache.features, params.matching, kVoteClusterShare * model->diameter_mm,
+                           verify_voted, polish, rescue, subProgress(progress, 0.95, 0.98)))
       result.detections.push_back(std::move(d));
   }
   sortBestFirst(result.detections);
-  result.detections = suppressDuplicates(std::move(result.detections), 0.25 * model->diameter_mm);
+  result.detections =
+      suppressDuplicates(std::move(result.detections), kDuplicateShare * model->diameter_mm);
   if (turns == Turns::Resolve && prep)
     resolveDetectionTurns(result.detections, *prep, verify_scene, params.matching, verify, polish,
-                          0.25 * model->diameter_mm);
+                          kDuplicateShare * model->diameter_mm);
   if (params.matching.max_detections > 0 &&
       result.detections.size() > static_cast<std::size_t>(params.matching.max_detections))
     result.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
@@ -623,7 +624,7 @@ void Recognizer::resolveTurns(const std::shared_ptr<const TaughtModel>& model,
   const PosePolisher polish = polisherFor(prep, *at.cache.scene_index, params.refine);
   sortBestFirst(detections);
   resolveDetectionTurns(detections, prep, at.scene, params.matching, verify, polish,
-                        0.25 * model->diameter_mm);
+                        kDuplicateShare * model->diameter_mm);
   placeDetections(detections, *model, &prep, &at.scene, tolerance);
 }
 

@@ -158,13 +158,13 @@ double prepareViews(Recognizer& recognizer,
 /// Finds any of several models in one scene: views of one part, each taught from a scan of
 /// another side it can rest on (one model sees one side only). The scene stages run once (the
 /// recognizer's cache), matching per model; detections are merged best first by
-/// mergeViewDetections within 0.3 × the larger model diameter (the same instance seen through
-/// another view). The turns matching cannot tell (a cup's handle, near symmetries) are resolved
-/// after the merge (Recognizer::resolveTurns), once per instance, and the merge then run again for
-/// the detections a turn moved. With params.refine.enabled the detections left are refined after
-/// that (Recognizer::refine), so that ICP polishes the detections reported and cannot change which
-/// of them the merge keeps. Views that know their place in the part should be joined first
-/// (joinViews, TaughtModel.h): only then are two parts lying close together told apart.
+/// mergeViewDetections within kViewMergeShare × the larger model diameter (the same instance seen
+/// through another view). The turns matching cannot tell (a cup's handle, near symmetries) are
+/// resolved after the merge (Recognizer::resolveTurns), once per instance, and the merge then run
+/// again for the detections a turn moved. With params.refine.enabled the detections left are
+/// refined after that (Recognizer::refine), so that ICP polishes the detections reported and cannot
+/// change which of them the merge keeps. Views that know their place in the part should be joined
+/// first (joinViews, TaughtModel.h): only then are two parts lying close together told apart.
 /// Detection::model_index names the model. The recognizer's own model is left as it is.
 /// Throws as Recognizer::recognize, and Error for an empty `models`.
 RecognitionResult recognizeViews(Recognizer& recognizer,
@@ -174,6 +174,17 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
 
 /// Highest score first; equal scores keep their order.
 void sortBestFirst(std::vector<Detection>& detections);
+
+/// Detections of one view whose origins lie closer than this share of the part's diameter
+/// (TaughtModel::diameter_mm) are one instance (suppressDuplicates): a wrong turn of a view on an
+/// instance keeps its origin within about a third of the part, a neighbour's lies farther.
+inline constexpr double kDuplicateShare = 0.35;
+/// Detections of different views whose Detection::centre_mm lie closer than this share of the
+/// larger diameter are candidates for one instance (mergeViewDetections): two views' origins
+/// (their points' centroids) lie apart on one part.
+inline constexpr double kViewMergeShare = 0.45;
+/// Surface voting's poses closer than this share of the diameter are clustered as one.
+inline constexpr double kVoteClusterShare = 0.14;
 
 /// Two detections near each other are one instance when this share of the later one's part points
 /// lie within kSameSurfaceMm of the earlier one's (mergeViewDetections). On phoxi-bin the same

@@ -199,8 +199,8 @@ Eigen::Vector3d partOrigin(const Detection& d,
 } // namespace
 
 TEST(JoinedMerge, TwoSupportsLyingCloseAreBothFoundAndNoneTwice) {
-  // In this bin two supports lie so close that their views' detections are nearer than 0.3 × the
-  // diameter: the merge by distance alone took them for one instance.
+  // In this bin two supports lie so close that their views' detections are nearer than the merge
+  // radius (kViewMergeShare × the diameter): the merge by distance alone took them for one.
   const RecognitionParams params = test::bundledPreset("phoxi-bin-surface");
   const std::vector<std::shared_ptr<const TaughtModel>> joined = joinViews(supportViews(params));
   ASSERT_EQ(joined.size(), 5u);
@@ -237,9 +237,9 @@ TEST(JoinedMerge, TwoSupportsLyingCloseAreBothFoundAndNoneTwice) {
   for (std::size_t a = 0; a < centres.size(); ++a)
     for (std::size_t b = a + 1; b < centres.size(); ++b)
       closest_mm = std::min(closest_mm, (centres[a] - centres[b]).norm());
-  std::printf("%zu detections; the closest two centres %.1f mm apart (0.3 x diameter: %.1f mm)\n",
-              result.detections.size(), closest_mm, 0.3 * diameter_mm);
-  EXPECT_LT(closest_mm, 0.3 * diameter_mm) << "no two supports lie close in this bin";
+  std::printf("%zu detections; the closest two centres %.1f mm apart (merge radius %.1f mm)\n",
+              result.detections.size(), closest_mm, kViewMergeShare * diameter_mm);
+  EXPECT_LT(closest_mm, kViewMergeShare * diameter_mm) << "no two supports lie close in this bin";
 }
 
 TEST(JoinedMerge, TheWholePartScoresTheTruePoseAboveATurnedOne) {

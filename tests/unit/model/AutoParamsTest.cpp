@@ -160,12 +160,14 @@ TEST(AutoParams, TeachMeasuresThePartWithoutItsTable) {
 
 TEST(AutoParams, TeachingOneScanTurnedInSteps) {
   // One scan of a block on a table, turned about the table's normal through the block in 15°
-  // steps: teach derives the same diameter and the same values at every yaw.
+  // steps: teach derives the same diameter and the same values at every yaw, and the model it
+  // teaches keeps that diameter.
   const PointCloud scan = blockOnTable();
   TeachOptions options;
   options.remove_floor = true;
   const Eigen::Vector3f centre(0, 0, 985);
   std::optional<AutoParams> first;
+  double first_model_diameter_mm = 0.0;
   for (int step = 0; step < 24; ++step) {
     SCOPED_TRACE("yaw " + std::to_string(15 * step) + " deg");
     const Eigen::Isometry3f T =
@@ -176,12 +178,16 @@ TEST(AutoParams, TeachingOneScanTurnedInSteps) {
     // The crop box turns with the scan, so it holds the same points at every yaw.
     options.crop_oriented = OrientedBox{T * Eigen::Translation3f(0, 0, 955), {90, 65, 55}};
     const AutoParams a = autoTeachParams(turned, options);
+    const double model_diameter_mm = teach(turned, options, a.params).diameter_mm;
     if (!first) {
       first = a;
+      first_model_diameter_mm = model_diameter_mm;
       EXPECT_NEAR(a.part.diameter_mm, Eigen::Vector3d(150, 100, 30).norm(), 6.0);
+      EXPECT_NEAR(model_diameter_mm, a.part.diameter_mm, 0.05 * a.part.diameter_mm);
       continue;
     }
     EXPECT_NEAR(a.part.diameter_mm, first->part.diameter_mm, 1e-3);
+    EXPECT_NEAR(model_diameter_mm, first_model_diameter_mm, 1e-3);
     ASSERT_EQ(a.values.size(), first->values.size());
     for (std::size_t i = 0; i < a.values.size(); ++i)
       EXPECT_NEAR(a.values[i].value, first->values[i].value,
