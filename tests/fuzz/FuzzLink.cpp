@@ -1,13 +1,14 @@
 // libFuzzer target: the robot link's decoders (core/link, docs/robot-link.md). The first byte
-// chooses: 0 the binary request decoder on each 32-byte slice, 1 the JSON request decoder on the
-// rest as one line, anything else the stream framer fed in chunks (sizes from the first byte)
-// with each frame decoded and answered as the server would. The decoders never throw: any
-// exception is a finding.
+// chooses: 0 the binary request decoder on each request in turn (cut at its command's length), 1
+// the JSON request decoder on the rest as one line, anything else the stream framer fed in chunks
+// (sizes from the first byte) with each frame decoded and answered as the server would. The
+// decoders never throw: any exception is a finding.
 #include "core/link/LinkProtocol.h"
 #include "core/link/RequestFramer.h"
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string_view>
 
 namespace {
@@ -33,8 +34,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view rest(reinterpret_cast<const char*>(data) + 1, size - 1);
   switch (data[0]) {
   case 0:
-    for (std::size_t at = 0; at < rest.size(); at += kBinaryRequestSize)
-      answer(decodeBinaryRequest(rest.substr(at, kBinaryRequestSize)), true);
+    // Each request as long as its command field says (a trigger at a flange pose is longer).
+    for (std::size_t at = 0; at < rest.size();) {
+      std::int32_t command = 0;
+      if (rest.size() - at >= 8)
+        std::memcpy(&command, rest.data() + at + 4, sizeof command);
+      const std::size_t length = binaryRequestSize(command);
+      answer(decodeBinaryRequest(rest.substr(at, length)), true);
+      at += length;
+    }
     break;
   case 1:
     answer(decodeJsonRequest(rest), false);

@@ -171,6 +171,15 @@ def link_seeds():
     write("corpus/link", "binary-set-recipe.bin", b"\0" + binary(4, 7, 1))
     write("corpus/link", "json-trigger.txt", b"\1" + b'{"cmd": "trigger", "id": 1}')
     write("corpus/link", "json-set-recipe.txt", b"\1" + b'{"cmd": "set_recipe", "recipe": "a"}')
+    # A trigger at a flange pose (command 6, 12 int32): rotation vector, then Euler angles.
+    trigger_at = b"SPK1" + struct.pack("<11i", 6, 8, 0, 1000000, -2000000, 5000000,
+                                       100000, 0, 900000, 0, 0)
+    write("corpus/link", "binary-trigger-at.bin",
+          b"\0" + trigger_at + trigger_at[:12] + struct.pack("<i", 1) + trigger_at[16:])
+    write("corpus/link", "json-trigger-flange.txt",
+          b"\1" + b'{"cmd": "trigger", "id": 2, "flange_pose": [100, -200, 500, 10, 0, 90]}')
+    write("corpus/link", "json-trigger-flange-quaternion.txt",
+          b"\1" + b'{"cmd": "trigger", "flange_pose": [1, 2, 3, 1, 0, 0, 0]}')
     write("corpus/link", "stream-mixed.bin", b"\5" + b'{"cmd":"status"}\n' + binary(2, 3) +
           b' \r\n{"cmd":"next","id":4}\n' + binary(3)[:20])
     write("regressions/link", "deep.txt", b"\1" + b'{"cmd":' + b"[" * 5000 + b"]" * 5000 + b"}")
