@@ -796,6 +796,10 @@
         <translation>Immagine di profondità</translation>
     </message>
     <message>
+        <source>View coverage</source>
+        <translation>Copertura delle viste</translation>
+    </message>
+    <message>
         <source>&amp;Undo %1</source>
         <translation>&amp;Annulla %1</translation>
     </message>
@@ -952,6 +956,95 @@
     <message>
         <source>Drawing the depth image…</source>
         <translation>Disegno dell’immagine di profondità…</translation>
+    </message>
+</context>
+<context>
+    <name>scanpick::ui::CoveragePanel</name>
+    <message>
+        <source>from straight above (+Z)</source>
+        <translation>direttamente da sopra (+Z)</translation>
+    </message>
+    <message>
+        <source>from straight below (−Z)</source>
+        <translation>direttamente da sotto (−Z)</translation>
+    </message>
+    <message>
+        <source>from above (elevation %1°, azimuth %2°)</source>
+        <translation>da sopra (elevazione %1°, azimut %2°)</translation>
+    </message>
+    <message>
+        <source>from below (elevation %1°, azimuth %2°)</source>
+        <translation>da sotto (elevazione %1°, azimut %2°)</translation>
+    </message>
+    <message>
+        <source>from the side at azimuth %1° (elevation %2°)</source>
+        <translation>di lato con azimut %1° (elevazione %2°)</translation>
+    </message>
+    <message>
+        <source>No model: open one (File → Open scan or model…) or teach one to see which viewing directions its views cover.</source>
+        <translation>Nessun modello: aprine uno (File → Apri scansione o modello…) o insegnane uno per vedere quali direzioni di osservazione coprono le sue viste.</translation>
+    </message>
+    <message>
+        <source>Measuring the view coverage…</source>
+        <translation>Misura della copertura delle viste…</translation>
+    </message>
+    <message>
+        <source>The view coverage could not be measured: %1</source>
+        <translation>Impossibile misurare la copertura delle viste: %1</translation>
+    </message>
+    <message>
+        <source>A direction is covered when it lies within %1° of a taught view&apos;s own viewing direction. Views left out do not know their place in the part (teach them with the part&apos;s pose) and are not counted.</source>
+        <translation>Una direzione è coperta quando dista al più %1° dalla direzione di osservazione di una vista insegnata. Le viste escluse non conoscono la loro posizione nel pezzo (insegnale con la posa del pezzo) e non sono contate.</translation>
+    </message>
+    <message>
+        <source>covered</source>
+        <translation>coperta</translation>
+    </message>
+    <message>
+        <source>not covered</source>
+        <translation>non coperta</translation>
+    </message>
+    <message>
+        <source>taught view</source>
+        <translation>vista insegnata</translation>
+    </message>
+    <message>
+        <source>suggested view</source>
+        <translation>vista suggerita</translation>
+    </message>
+    <message>
+        <source>Every viewing direction is covered.</source>
+        <translation>Ogni direzione di osservazione è coperta.</translation>
+    </message>
+    <message>
+        <source>To cover more, teach the part seen:</source>
+        <translation>Per coprire di più, insegna il pezzo visto:</translation>
+    </message>
+    <message>
+        <source>%1. %2: direction (%3, %4, %5) in the part frame</source>
+        <translation>%1. %2: direzione (%3, %4, %5) nel sistema di riferimento del pezzo</translation>
+    </message>
+    <message>
+        <source>Directions from the part towards the camera, in the part frame: azimuth in the XY plane from +X towards +Y, elevation from the XY plane towards +Z.</source>
+        <translation>Direzioni dal pezzo verso la telecamera, nel sistema di riferimento del pezzo: azimut nel piano XY da +X verso +Y, elevazione dal piano XY verso +Z.</translation>
+    </message>
+    <message numerus="yes">
+        <source>%n view(s) placed (%1 left out): %2 % of the viewing directions covered</source>
+        <translation>
+            <numerusform>%n vista collocata (escluse: %1): %2 % delle direzioni di osservazione coperte</numerusform>
+            <numerusform>%n viste collocate (escluse: %1): %2 % delle direzioni di osservazione coperte</numerusform>
+        </translation>
+    </message>
+</context>
+<context>
+    <name>scanpick::ui::CoverageSphere</name>
+    <message>
+        <source>From above (+Z)</source>
+        <translation>Da sopra (+Z)</translation>
+    </message>
+    <message>
+        <source>From below (−Z)</source>
+        <translation>Da sotto (−Z)</translation>
     </message>
 </context>
 <context>

@@ -8,6 +8,7 @@
 #include "ui/Language.h"
 #include "ui/Settings.h"
 #include "ui/jobs/JobRunner.h"
+#include "ui/panels/CoveragePanel.h"
 #include "ui/panels/DepthView.h"
 #include "ui/panels/DevicePanel.h"
 #include "ui/panels/LogDock.h"
@@ -116,6 +117,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   buildDocks();
   buildActions();
   buildTeachDock();
+  buildCoverageDock();
   addPanelsToViewMenu();
   restoreSettings();
   m_welcome_shown = welcomeText();
@@ -147,6 +149,7 @@ MainWindow::~MainWindow() {
   m_recognize_jobs->cancel();
   m_prepare_jobs->cancel();
   m_depth_jobs->cancel();
+  m_coverage->cancel();
   m_jobs->cancel();
   if (m_box_widget)
     m_box_widget->Off();
@@ -654,6 +657,7 @@ void MainWindow::setViews(std::vector<std::shared_ptr<const core::TaughtModel>> 
   // What a derived teach measured belongs to that teach (teach() shows it again).
   m_teach_measures->setVisible(false);
   prepareModelInBackground();
+  m_coverage->setViews(m_views);
   const auto joined = std::count_if(m_views.begin(), m_views.end(),
                                     [](const auto& v) { return !v->joined_views.empty(); });
   for (std::size_t v = 0; v < m_views.size(); ++v)

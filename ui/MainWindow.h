@@ -39,6 +39,7 @@ class vtkProp;
 
 namespace scanpick::ui {
 
+class CoveragePanel;
 class DepthView;
 class DevicePanel;
 class JobPool;
@@ -168,6 +169,8 @@ public:
   [[nodiscard]] DevicePanel* devicePanel() const { return m_devices; }
   /// The depth image view (View → Depth image).
   [[nodiscard]] DepthView* depthView() const { return m_depth_view; }
+  /// The view coverage of the part's views (View → View coverage).
+  [[nodiscard]] CoveragePanel* coveragePanel() const { return m_coverage; }
   [[nodiscard]] JobRunner* depthJobs() const { return m_depth_jobs; }
   [[nodiscard]] JobRunner* jobs() const { return m_jobs; }
   [[nodiscard]] bool liveRunning() const { return m_live; }
@@ -242,6 +245,8 @@ private:
   [[nodiscard]] double ratio() const;
   // MainWindowTeach.cpp
   void buildTeachDock();
+  /// The View coverage panel, a tab beside the depth image.
+  void buildCoverageDock();
   void schedulePreview(core::Stage first_stage);
   void runPreview();
   void showPart();
@@ -290,6 +295,7 @@ private:
   ResultsTable* m_results = nullptr;
   DevicePanel* m_devices = nullptr;
   DepthView* m_depth_view = nullptr;
+  CoveragePanel* m_coverage = nullptr;
   // What the depth view shows or is drawing: of this scan, with this result.
   std::shared_ptr<const core::PointCloud> m_depth_scan;
   std::shared_ptr<const core::RecognitionResult> m_depth_result;

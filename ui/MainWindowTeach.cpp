@@ -8,6 +8,7 @@
 #include "ui/Settings.h"
 #include "ui/TeachJob.h"
 #include "ui/jobs/JobRunner.h"
+#include "ui/panels/CoveragePanel.h"
 #include "ui/panels/ParameterPanel.h"
 #include "ui/viewport/Presenters.h"
 #include "ui/viewport/QtVtkInteractor.h"
@@ -207,6 +208,21 @@ void MainWindow::buildTeachDock() {
     if (m_grip_action->isChecked() || m_grip_move_action->isChecked())
       onViewportClick(p.x(), p.y());
   }));
+}
+
+void MainWindow::buildCoverageDock() {
+  // Which sides the views cover tells which to teach next; a tab beside the depth image.
+  m_coverage = new CoveragePanel(m_pool.get(), this);
+  auto* dock = new QDockWidget(this);
+  dock->setObjectName(QStringLiteral("CoverageDock"));
+  m_texts.bind(dock, "windowTitle", [] { return tr("View coverage"); });
+  dock->setWidget(m_coverage);
+  addDockWidget(Qt::LeftDockWidgetArea, dock);
+  if (auto* depth = findChild<QDockWidget*>(QStringLiteral("DepthDock")))
+    tabifyDockWidget(depth, dock);
+  // The Teach panel stays in front.
+  if (auto* teach = findChild<QDockWidget*>(QStringLiteral("TeachDock")))
+    teach->raise();
 }
 
 void MainWindow::setPreviewDelay(int ms) {
