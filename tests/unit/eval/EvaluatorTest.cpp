@@ -106,7 +106,8 @@ TEST(Evaluator, CupTurnedAboutItsAxisIsWrongButPumpConnectorIsNot) {
     for (const double angle : {90.0, 180.0, 270.0}) {
       auto results = test::makeResults();
       test::addDetection(results, 0.6, T_true * pose({0, 0, 0}, angle), teach);
-      const auto& o = evaluate(truth, results, teach).outcomes.front();
+      const auto evaluation = evaluate(truth, results, teach);
+      const auto& o = evaluation.outcomes.front();
       const bool symmetric = part == &pump;
       EXPECT_EQ(o.true_positive, symmetric) << part->name << " turned " << angle << " deg";
       // The cup's error is the full turn (180° for 180°, 90° for 270°); the connector's is zero.
