@@ -688,22 +688,6 @@ void MainWindow::prepareModelInBackground() {
       });
 }
 
-bool MainWindow::saveScan(const QString& path) {
-  if (!m_scan) {
-    showError(tr("Save scan"), tr("Open or capture a scan first."));
-    return false;
-  }
-  try {
-    core::saveCloud(path.toStdString(), *m_scan);
-    core::logger()->info("saved scan to {}", path.toStdString());
-    statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
-    return true;
-  } catch (const std::exception& e) {
-    showError(tr("Save scan"), QString::fromUtf8(e.what()));
-    return false;
-  }
-}
-
 bool MainWindow::saveModel(const QString& file) {
   if (!model()) {
     showError(tr("Save model"), tr("Teach or open a model first."));

@@ -1,5 +1,6 @@
 // Teach tools beside the crop box: the screen-space lasso, the floor-removal preview and the
 // sensor the scan comes from, with the Teach panel's buttons.
+#include "core/cloud/CloudIo.h"
 #include "core/common/Log.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "ui/MainWindow.h"
@@ -226,6 +227,22 @@ void MainWindow::removeFloorFromPart() {
   replacePart(remaining, tr("Remove floor"));
   core::logger()->info("floor removal: {} points removed", n);
   statusBar()->showMessage(tr("Removed %1 floor points (Ctrl+Z undoes)").arg(n), 5000);
+}
+
+bool MainWindow::saveScan(const QString& path) {
+  if (!m_scan) {
+    showError(tr("Save scan"), tr("Open or capture a scan first."));
+    return false;
+  }
+  try {
+    core::saveCloud(path.toStdString(), *m_scan);
+    core::logger()->info("saved scan to {}", path.toStdString());
+    statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+    return true;
+  } catch (const std::exception& e) {
+    showError(tr("Save scan"), QString::fromUtf8(e.what()));
+    return false;
+  }
 }
 
 } // namespace scanpick::ui
