@@ -5,6 +5,7 @@
 #include "app/cli/TeachTruth.h"
 #include "core/common/AtomicFile.h"
 #include "core/model/ModelFile.h"
+#include "core/model/ViewCoverage.h"
 #include "core/params/ParameterTable.h"
 
 #include <Eigen/Geometry>
@@ -47,6 +48,20 @@ void printDerived(const core::AutoParams& derived, const core::TaughtModel& mode
   }
 }
 
+/// The views given with --with-view, checked to be views of the part being taught (`name`).
+std::vector<std::shared_ptr<const core::TaughtModel>>
+earlierViews(const std::vector<std::string>& paths, const std::string& name) {
+  std::vector<std::shared_ptr<const core::TaughtModel>> views;
+  for (const auto& path : paths) {
+    views.push_back(std::make_shared<const core::TaughtModel>(core::loadModel(path)));
+    if (views.back()->name != name)
+      throw core::Error("--with-view " + path + " is a view of '" + views.back()->name +
+                        "', not of '" + name + "': give --name " + views.back()->name +
+                        " to teach another view of that part");
+  }
+  return views;
+}
+
 } // namespace
 
 void registerTeachCommand(CLI::App& app) {
@@ -56,6 +71,7 @@ void registerTeachCommand(CLI::App& app) {
     bool remove_floor = false;
     std::vector<std::string> grips;
     std::vector<std::string> view_settings;
+    std::vector<std::string> with_views;
   };
   auto o = std::make_shared<Options>();
   CLI::App* sub =
@@ -63,6 +79,8 @@ void registerTeachCommand(CLI::App& app) {
         core::TeachOptions options;
         options.name = o->name;
         core::checkWritable(o->out);
+        // The earlier views are read first: a bad one leaves no new model file behind.
+        const auto views = earlierViews(o->with_views, o->name);
         options.remove_floor = o->remove_floor;
         options.source_units = core::parseLengthUnit(o->recipe.units);
         options.sensor =
@@ -118,12 +136,15 @@ void registerTeachCommand(CLI::App& app) {
         core::saveModel(o->out, model);
         std::cout << "taught '" << model.name << "': " << model.cloud_mm.size() << " points, "
                   << model.keypoints_mm.size() << " keypoints, " << model.features.size()
-                  << " features, bounding box diagonal " << model.diameter_mm << " mm";
+                  << " features, diameter " << model.diameter_mm << " mm";
         for (const auto& [key, value] : model.view_params)
           std::cout << ", " << key << " = " << value << " for this view";
         std::cout << " -> " << o->out << "\n";
         if (derive)
           printDerived(derived, model);
+        auto all_views = views;
+        all_views.push_back(std::make_shared<const core::TaughtModel>(std::move(model)));
+        printViewCoverage(core::viewCoverage(all_views));
         return kOk;
       });
   sub->add_option("--scan", o->scan, "Scan holding the part (.pcd or .ply)")->required();
@@ -140,6 +161,9 @@ void registerTeachCommand(CLI::App& app) {
   sub->add_option("--grip", o->grips, "Grip point NAME=x,y,z in the scan frame (repeatable)");
   sub->add_option("--name", o->name, "Part name stored in the model")->capture_default_str();
   sub->add_option("--out", o->out, "Model file to write (.spmodel)")->required();
+  sub->add_option("--with-view", o->with_views,
+                  "An earlier view of this part (.spmodel, repeatable): the coverage printed "
+                  "counts it with the new view");
   sub->add_option("--view-set", o->view_settings,
                   "A matching parameter this view sets for itself, KEY=VALUE (e.g. "
                   "matching.min_coverage=0.5 for a thin plate seen edge-on); stored in the model "

@@ -6,11 +6,13 @@
 #include "tests/support/RunCli.h"
 #include "tests/support/TempDir.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -40,19 +42,47 @@ TEST(DerivedParams, ARandomPartIsTaughtAndFoundWithNoPreset) {
                                 "--json",
                                 quoted(d / "eval.json"),
                                 "--teach-truth"};
+  // Each side's teach names the sides taught before it (--with-view) and prints their coverage.
+  std::vector<std::string> earlier_views;
+  std::vector<int> coverage_percent;
   for (const std::string view : {"teach", "teach-side1", "teach-side2", "teach-side3"}) {
     const fs::path model = d / (view + ".spmodel");
-    const int status =
-        runCli({"teach", "--scan", quoted(part / (view + ".pcd")), "--crop-from-truth",
-                quoted(part / (view + ".gt.json")), "--remove-floor", "--out", quoted(model)},
-               d / (view + ".txt"));
-    if (status != 0) // a side whose crop is too small to teach (its error says so)
-      continue;
-    EXPECT_THAT(test::readText(d / (view + ".txt")), HasSubstr("parameters derived for this part"));
+    std::vector<std::string> teach{"teach",
+                                   "--scan",
+                                   quoted(part / (view + ".pcd")),
+                                   "--crop-from-truth",
+                                   quoted(part / (view + ".gt.json")),
+                                   "--remove-floor",
+                                   "--out",
+                                   quoted(model)};
+    teach.insert(teach.end(), earlier_views.begin(), earlier_views.end());
+    if (runCli(teach, d / (view + ".txt")) != 0)
+      continue; // a side whose crop is too small to teach (its error says so)
+    const std::string printed = test::readText(d / (view + ".txt"));
+    EXPECT_THAT(printed, HasSubstr("parameters derived for this part"));
+    std::smatch share;
+    ASSERT_TRUE(std::regex_search(printed, share, std::regex("view coverage: ([0-9]+) %")))
+        << printed;
+    coverage_percent.push_back(std::stoi(share[1]));
+    earlier_views.insert(earlier_views.end(), {"--with-view", quoted(model)});
     recognize.insert(recognize.end(), {"--model", quoted(model)});
     eval.push_back(quoted(part / (view + ".gt.json")));
   }
   ASSERT_GE(recognize.size(), 7u) << "fewer than two sides taught";
+  // One view covers the directions within 60 degrees of its own (a quarter of the sphere); each
+  // side taught after it adds to that.
+  EXPECT_EQ(coverage_percent.front(), 25);
+  EXPECT_TRUE(std::is_sorted(coverage_percent.begin(), coverage_percent.end()));
+  EXPECT_GT(coverage_percent.back(), coverage_percent.front());
+  // A view of another part is refused before any work, and no model file is written.
+  EXPECT_EQ(test::exitCode(
+                runCli({"teach", "--scan", quoted(part / "teach.pcd"), "--crop-from-truth",
+                        quoted(part / "teach.gt.json"), "--name", "another-part", "--with-view",
+                        quoted(d / "teach.spmodel"), "--out", quoted(d / "other.spmodel")},
+                       d / "other.txt")),
+            1);
+  EXPECT_THAT(test::readText(d / "other.txt"), HasSubstr("--with-view"));
+  EXPECT_FALSE(fs::exists(d / "other.spmodel"));
 
   const core::TaughtModel first = core::loadModel(d / "teach.spmodel");
   EXPECT_TRUE(first.params.refine.enabled);
