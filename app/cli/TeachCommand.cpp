@@ -9,6 +9,7 @@
 #include "core/params/ParameterTable.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -31,6 +32,30 @@ std::vector<double> parseNumbers(const std::string& text, std::size_t count,
     throw core::Error(what + ": expected " + std::to_string(count) +
                       " comma-separated numbers, got " + std::to_string(values.size()));
   return values;
+}
+
+/// A --grip value: NAME=x,y,z[,ax,ay,az[,cx,cy,cz]] (scan frame: position in mm, then the
+/// approach and the fingers' closing axis as directions of any length).
+core::GripPoint parseGrip(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw core::Error("--grip '" + text +
+                      "': expected NAME=x,y,z[,ax,ay,az[,cx,cy,cz]] (scan frame, mm)");
+  const std::string what = "--grip " + text.substr(0, eq);
+  const std::string numbers = text.substr(eq + 1);
+  const auto count = std::size_t(std::count(numbers.begin(), numbers.end(), ',') + 1);
+  if (count != 3 && count != 6 && count != 9)
+    throw core::Error(what +
+                      ": expected 3 numbers (x,y,z), 6 (and the approach) or 9 (and the "
+                      "closing axis), got " +
+                      std::to_string(count));
+  const auto v = parseNumbers(numbers, count, what);
+  core::GripPoint grip{text.substr(0, eq), Eigen::Vector3d(v[0], v[1], v[2])};
+  if (v.size() >= 6)
+    grip.approach = Eigen::Vector3d(v[3], v[4], v[5]);
+  if (v.size() == 9)
+    grip.closing_axis = Eigen::Vector3d(v[6], v[7], v[8]);
+  return core::checkedGrip(grip);
 }
 
 /// The measured scan and part, then each derived parameter with its reason (or that --set
@@ -85,13 +110,8 @@ void registerTeachCommand(CLI::App& app) {
         options.source_units = core::parseLengthUnit(o->recipe.units);
         options.sensor =
             core::sensorPreset(o->recipe.sensor.empty() ? "phoxi-m-1032" : o->recipe.sensor);
-        for (const auto& g : o->grips) {
-          const auto eq = g.find('=');
-          if (eq == std::string::npos || eq == 0)
-            throw core::Error("--grip '" + g + "': expected NAME=x,y,z (scan frame, mm)");
-          const auto xyz = parseNumbers(g.substr(eq + 1), 3, "--grip " + g.substr(0, eq));
-          options.grips_scan.push_back({g.substr(0, eq), Eigen::Vector3d(xyz[0], xyz[1], xyz[2])});
-        }
+        for (const auto& g : o->grips)
+          options.grips_scan.push_back(parseGrip(g));
         if (o->crop_box.empty() == o->crop_truth.empty())
           throw core::Error("give exactly one of --crop-box or --crop-from-truth");
         if (!o->crop_box.empty()) {
@@ -158,7 +178,10 @@ void registerTeachCommand(CLI::App& app) {
                   "placed it): x,y,z (mm),qw,qx,qy,qz. Views taught knowing it are joined when "
                   "recognized together (overrides the pose of --crop-from-truth)");
   sub->add_flag("--remove-floor", o->remove_floor, "Remove the floor plane inside the crop");
-  sub->add_option("--grip", o->grips, "Grip point NAME=x,y,z in the scan frame (repeatable)");
+  sub->add_option("--grip", o->grips,
+                  "Grip point NAME=x,y,z[,ax,ay,az[,cx,cy,cz]] in the scan frame: position (mm), "
+                  "then optionally the direction the gripper approaches it in and the axis "
+                  "fingers close along (repeatable)");
   sub->add_option("--name", o->name, "Part name stored in the model")->capture_default_str();
   sub->add_option("--out", o->out, "Model file to write (.spmodel)")->required();
   sub->add_option("--with-view", o->with_views,

@@ -33,11 +33,12 @@ struct GraspSpec {
   bool operator==(const GraspSpec&) const = default;
 };
 
-/// The grasp points of a model: with no specs, every grip point approached along +z; otherwise
-/// one per spec, in the specs' order, at its grip point's position, with its approach and
-/// closing axis normalized (the closing axis made perpendicular to the approach). Throws Error for
-/// a spec naming no grip point of the model ("grip 'x' is not a grip point of the model: ..."),
-/// a zero or non-finite direction, or a closing axis along the approach.
+/// The grasp points of a model: with no specs, every grip point with the approach and closing
+/// axis taught with it (GripPoint; approach +z when it has none); otherwise one per spec, in the
+/// specs' order, at its grip point's position, with the spec's approach and closing axis. The
+/// directions are normalized (the closing axis made perpendicular to the approach). Throws Error
+/// for a spec naming no grip point of the model ("grip 'x' is not a grip point of the model:
+/// ..."), a zero or non-finite direction, or a closing axis along the approach.
 std::vector<GraspPoint> graspPoints(const std::vector<GripPoint>& grips_model,
                                     const std::vector<GraspSpec>& specs);
 

@@ -206,7 +206,7 @@ std::string encodeModel(const TaughtModel& model) {
                         {"inlier_count", f.inlier_count}});
   json grips = json::array();
   for (const auto& g : model.grip_points)
-    grips.push_back({{"name", g.name}, {"position_mm", vec(g.position_mm)}});
+    grips.push_back(gripToJson(g));
   json header = {{"format", "scanpick-model"},
                  {"version", kModelFormatVersion},
                  {"units", "mm"},
@@ -344,9 +344,19 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
                                : 0;
     model.features.push_back(feature);
   }
-  for (const auto& g : header.value("grip_points", json::array()))
-    model.grip_points.push_back(
-        {g.value("name", std::string("grip")), r.vector(r.at(g, "position_mm"), "position_mm")});
+  for (const auto& g : header.value("grip_points", json::array())) {
+    GripPoint grip{g.value("name", std::string("grip")),
+                   r.vector(r.at(g, "position_mm"), "position_mm")};
+    if (g.contains("approach"))
+      grip.approach = r.vector(g["approach"], "approach");
+    if (g.contains("closing_axis"))
+      grip.closing_axis = r.vector(g["closing_axis"], "closing_axis");
+    try {
+      model.grip_points.push_back(checkedGrip(grip));
+    } catch (const Error& e) {
+      r.fail(e.what());
+    }
+  }
   std::size_t offset = 0;
   model.cloud_mm = PointCloud::fromPoints(readPoints(block, offset, cloud_points));
   if (normals)

@@ -125,7 +125,7 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
   for (auto& f : model.features)
     f.centre_mm = T_model_teach * f.centre_mm;
   for (const auto& g : options.grips_scan)
-    model.grip_points.push_back({g.name, model.T_teach_model.inverse() * g.position_mm});
+    model.grip_points.push_back(transformed(checkedGrip(g), model.T_teach_model.inverse()));
   if (options.T_scan_part)
     model.T_part_model = options.T_scan_part->inverse() * model.T_teach_model;
   model.diameter_mm =

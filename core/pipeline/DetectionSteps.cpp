@@ -279,7 +279,7 @@ void placeDetections(std::vector<Detection>& detections, const TaughtModel& mode
                                : Eigen::Vector3d(d.T_scene_model.translation());
     d.grip_points_scene.clear();
     for (const auto& g : model.grip_points)
-      d.grip_points_scene.push_back({g.name, d.T_scene_model * g.position_mm});
+      d.grip_points_scene.push_back(transformed(g, d.T_scene_model));
     d.free_turn_axis = freeTurnAt(d.T_scene_model);
     d.alternative_free_turn_axes.clear();
     for (const auto& T_alternative : d.alternative_poses)

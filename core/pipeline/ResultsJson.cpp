@@ -35,7 +35,7 @@ json resultsToJson(const RecognitionResult& result, const std::vector<ModelSourc
     const Eigen::Quaterniond q(d.T_scene_model.linear());
     json grips = json::array();
     for (const auto& g : d.grip_points_scene)
-      grips.push_back({{"name", g.name}, {"position_mm", vec(g.position_mm)}});
+      grips.push_back(gripToJson(g));
     json pairs = json::array();
     for (const auto& [m, s] : d.matched_features)
       pairs.push_back(json::array({m, s}));

@@ -4,6 +4,7 @@
 #include "core/cloud/CloudIo.h"
 #include "core/common/AtomicFile.h"
 #include "core/model/ModelFile.h"
+#include "core/params/ParamsJson.h"
 #include "tests/support/RunCli.h"
 #include "tests/support/TempDir.h"
 #include "tests/unit/pipeline/IdealScene.h"
@@ -97,4 +98,52 @@ TEST_F(CliBadInput, AFileNameThatIsNotUtf8IsRecognizedAndReported) {
   ASSERT_EQ(recognize(odd, m_dir / "r.json"), 0) << log();
   const auto results = nlohmann::json::parse(readText(m_dir / "r.json"));
   EXPECT_FALSE(results.dump().empty());
+}
+
+TEST_F(CliBadInput, GripDirectionsAreTaughtCheckedAndReportedInTheScene) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(0, 0, 700);
+  core::saveCloudPcd(m_dir / "teach.pcd", test::idealScene(test::idealPartPoints(), {T}, 0.0, 1));
+  // The fixture model's parameters: the ideal part is a few sparse circles.
+  core::savePreset(m_dir / "ideal.json", {"ideal", "", test::idealParams(0.001)});
+  const auto teach = [&](const std::string& grip, const fs::path& out) {
+    return exitCode(runCli({"teach", "--scan", quoted(m_dir / "teach.pcd"), "--params",
+                            quoted(m_dir / "ideal.json"), "--crop-box", "-60,-60,650,90,90,750",
+                            "--grip", grip, "--out", quoted(out)},
+                           m_dir / "log.txt"));
+  };
+  EXPECT_EQ(teach("top=0,0,700,0,0", m_dir / "bad.spmodel"), 1);
+  EXPECT_NE(log().find("expected 3 numbers"), std::string::npos) << log();
+  EXPECT_EQ(teach("top=0,0,700,0,0,0", m_dir / "bad.spmodel"), 1);
+  EXPECT_NE(log().find("non-zero direction"), std::string::npos) << log();
+  EXPECT_EQ(teach("top=0,0,700,0,0,1,0,0,5", m_dir / "bad.spmodel"), 1);
+  EXPECT_NE(log().find("along its approach"), std::string::npos) << log();
+  EXPECT_FALSE(fs::exists(m_dir / "bad.spmodel"));
+
+  ASSERT_EQ(teach("top=0,0,700,0,0,2,1,0,0", m_dir / "grip.spmodel"), 0) << log();
+  const core::TaughtModel model = core::loadModel(m_dir / "grip.spmodel");
+  ASSERT_EQ(model.grip_points.size(), 1u);
+  ASSERT_TRUE(model.grip_points[0].approach && model.grip_points[0].closing_axis);
+  EXPECT_TRUE((model.T_teach_model.linear() * *model.grip_points[0].approach)
+                  .isApprox(Eigen::Vector3d::UnitZ()));
+  // Each detection reports the grip's directions turned into the scene with it.
+  ASSERT_EQ(exitCode(runCli({"recognize", "--model", quoted(m_dir / "grip.spmodel"), "--scene",
+                             quoted(m_dir / "scene.pcd"), "--out", quoted(m_dir / "r.json")},
+                            m_dir / "log.txt")),
+            0)
+      << log();
+  const auto results = nlohmann::json::parse(readText(m_dir / "r.json"));
+  ASSERT_FALSE(results["detections"].empty()) << log();
+  for (const auto& d : results["detections"]) {
+    Eigen::Matrix4d T_scene_model;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        T_scene_model(r, c) = d["T_scene_model"][r][c].get<double>();
+    const auto& approach = d["grip_points"][0]["approach"];
+    const Eigen::Vector3d expected =
+        T_scene_model.topLeftCorner<3, 3>() * *model.grip_points[0].approach;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(approach[k].get<double>(), expected[k], 1e-6);
+    EXPECT_TRUE(d["grip_points"][0].contains("closing_axis"));
+  }
 }

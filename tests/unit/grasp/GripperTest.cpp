@@ -4,7 +4,9 @@
 #include "core/grasp/GraspPlanner.h"
 #include "core/grasp/GraspPoint.h"
 
+#include <cmath>
 #include <gtest/gtest.h>
+#include <limits>
 
 using namespace scanpick::core;
 using namespace scanpick::core::grasp;
@@ -79,6 +81,52 @@ TEST(GraspPoint, SpecsTakeThePositionFromTheModelAndNormalizeDirections) {
   EXPECT_THROW((void)graspPoints(grips, {{"handle", {0, 0, 1}, {}}}), Error);
   EXPECT_THROW((void)graspPoints(grips, {{"top", {0, 0, 0}, {}}}), Error);
   EXPECT_THROW((void)graspPoints(grips, {{"top", {0, 0, 1}, Eigen::Vector3d(0, 0, 2)}}), Error);
+}
+
+TEST(GraspPoint, AGripPointsTaughtDirectionsApplyUnlessASpecNamesIt) {
+  GripPoint side{"side", {4, 5, 6}};
+  side.approach = Eigen::Vector3d(-3, 0, 0);
+  side.closing_axis = Eigen::Vector3d(0, 2, 1);
+  const std::vector<GripPoint> grips{{"top", {1, 2, 3}}, side};
+  const auto taught = graspPoints(grips, {});
+  ASSERT_EQ(taught.size(), 2u);
+  EXPECT_EQ(taught[0].approach, Eigen::Vector3d::UnitZ()); // none taught
+  EXPECT_TRUE(taught[1].approach.isApprox(-Eigen::Vector3d::UnitX()));
+  ASSERT_TRUE(taught[1].closing_axis);
+  EXPECT_TRUE(taught[1].closing_axis->isApprox(Eigen::Vector3d(0, 2, 1).normalized()));
+  // A recipe's spec replaces what the grip point was taught with.
+  const auto spec = graspPoints(grips, {{"side", {0, 0, 1}, {}}});
+  ASSERT_EQ(spec.size(), 1u);
+  EXPECT_EQ(spec[0].approach, Eigen::Vector3d::UnitZ());
+  EXPECT_FALSE(spec[0].closing_axis);
+  // A taught closing axis along the approach is refused.
+  side.closing_axis = Eigen::Vector3d(1, 0, 0);
+  EXPECT_THROW((void)graspPoints({side}, {}), Error);
+}
+
+TEST(GripPoint, MovesWithItsDirectionsAndIsCheckedBeforeUse) {
+  GripPoint g{"g", {1, 0, 0}};
+  g.approach = Eigen::Vector3d(0, 0, 2);
+  g.closing_axis = Eigen::Vector3d(1, 1, 0);
+  const GripPoint c = checkedGrip(g);
+  EXPECT_TRUE(c.approach->isApprox(Eigen::Vector3d::UnitZ()));
+  EXPECT_TRUE(c.closing_axis->isApprox(Eigen::Vector3d(1, 1, 0).normalized()));
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).matrix();
+  T.translation() = Eigen::Vector3d(0, 0, 100);
+  const GripPoint moved = transformed(c, T);
+  EXPECT_TRUE(moved.position_mm.isApprox(Eigen::Vector3d(1, 0, 100)));
+  EXPECT_TRUE(moved.approach->isApprox(-Eigen::Vector3d::UnitY())); // rotated, not translated
+  EXPECT_TRUE(moved.closing_axis->isApprox(T.linear() * *c.closing_axis));
+  GripPoint zero = g;
+  zero.approach = Eigen::Vector3d::Zero();
+  EXPECT_THROW((void)checkedGrip(zero), Error);
+  GripPoint no_approach = g;
+  no_approach.approach.reset();
+  EXPECT_THROW((void)checkedGrip(no_approach), Error); // a closing axis needs an approach
+  GripPoint not_finite = g;
+  not_finite.position_mm.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW((void)checkedGrip(not_finite), Error);
 }
 
 TEST(ToolPose, OriginAtTheGripPointZAlongTheApproachXAlongTheClosingAxis) {

@@ -116,6 +116,23 @@ TEST(ModelFile, RoundTripKeepsEverything) {
   EXPECT_TRUE(r.view_params.empty());
 }
 
+TEST(ModelFile, AGripPointsDirectionsAreTaughtInTheModelFrameKeptAndChecked) {
+  TeachOptions options = cropAll();
+  options.grips_scan.front().approach = Eigen::Vector3d(0, 0, 3);
+  options.grips_scan.front().closing_axis = Eigen::Vector3d(1, 0, 0);
+  TaughtModel m = teach(teachScan(), options, test::idealParams(0.001));
+  ASSERT_EQ(m.grip_points.size(), 1u);
+  const GripPoint& g = m.grip_points.front();
+  ASSERT_TRUE(g.approach && g.closing_axis);
+  // Unit, in the model frame: back in the scan they are the directions given.
+  EXPECT_TRUE((m.T_teach_model.linear() * *g.approach).isApprox(Eigen::Vector3d::UnitZ()));
+  EXPECT_TRUE((m.T_teach_model.linear() * *g.closing_axis).isApprox(Eigen::Vector3d::UnitX()));
+  EXPECT_EQ(decodeModel(encodeModel(m), "p.spmodel").grip_points, m.grip_points);
+  m.grip_points.front().approach = Eigen::Vector3d::Zero();
+  EXPECT_THAT(messageOf([&] { decodeModel(encodeModel(m), "p.spmodel"); }),
+              HasSubstr("must be a non-zero direction"));
+}
+
 TEST(Teach, APartPoseGivenPlacesTheModelInThePart) {
   TeachOptions options = cropAll();
   EXPECT_FALSE(teach(teachScan(), options, test::idealParams(0.001)).T_part_model);
