@@ -748,6 +748,22 @@
         <translation>Sposta punto di presa</translation>
     </message>
     <message>
+        <source>Approach:</source>
+        <translation>Approccio:</translation>
+    </message>
+    <message>
+        <source>Direction the gripper moves in to reach the selected grip point (scan frame: x, y, z, any length; Enter applies); placing or moving a point sets it against the surface normal</source>
+        <translation>Direzione in cui la pinza si muove per raggiungere il punto di presa selezionato (sistema della scansione: x, y, z, lunghezza qualsiasi; Invio applica); posare o spostare un punto la imposta contro la normale della superficie</translation>
+    </message>
+    <message>
+        <source>The approach is three numbers x, y, z, not all zero (e.g. 0, 0, 1)</source>
+        <translation>L'approccio è formato da tre numeri x, y, z, non tutti nulli (per es. 0, 0, 1)</translation>
+    </message>
+    <message>
+        <source>Set grip approach</source>
+        <translation>Imposta approccio di presa</translation>
+    </message>
+    <message>
         <source>Add grip point</source>
         <translation>Aggiungi punto di presa</translation>
     </message>
@@ -806,6 +822,14 @@
     <message>
         <source>&amp;Redo %1</source>
         <translation>&amp;Ripeti %1</translation>
+    </message>
+    <message>
+        <source>T&amp;ools</source>
+        <translation>&amp;Strumenti</translation>
+    </message>
+    <message>
+        <source>&amp;Hand-eye calibration…</source>
+        <translation>Calibrazione &amp;mano-occhio…</translation>
     </message>
 </context>
 <context>
@@ -1045,6 +1069,238 @@
     <message>
         <source>From below (−Z)</source>
         <translation>Da sotto (−Z)</translation>
+    </message>
+</context>
+<context>
+    <name>scanpick::ui::CalibrationWizard</name>
+    <message>
+        <source>Hand-eye calibration</source>
+        <translation>Calibrazione mano-occhio</translation>
+    </message>
+    <message>
+        <source>Mode:</source>
+        <translation>Modalità:</translation>
+    </message>
+    <message>
+        <source>Scan units:</source>
+        <translation>Unità delle scansioni:</translation>
+    </message>
+    <message>
+        <source>Robot positions:</source>
+        <translation>Posizioni del robot:</translation>
+    </message>
+    <message>
+        <source>Target file:</source>
+        <translation>File del bersaglio:</translation>
+    </message>
+    <message>
+        <source>Poses file:</source>
+        <translation>File delle pose:</translation>
+    </message>
+    <message>
+        <source>Eye-to-hand: fixed camera, target on the flange</source>
+        <translation>Eye-to-hand: telecamera fissa, bersaglio sulla flangia</translation>
+    </message>
+    <message>
+        <source>Eye-in-hand: camera on the flange, fixed target</source>
+        <translation>Eye-in-hand: telecamera sulla flangia, bersaglio fisso</translation>
+    </message>
+    <message>
+        <source>millimetres (mm)</source>
+        <translation>millimetri (mm)</translation>
+    </message>
+    <message>
+        <source>metres (m)</source>
+        <translation>metri (m)</translation>
+    </message>
+    <message>
+        <source>as the scans</source>
+        <translation>come le scansioni</translation>
+    </message>
+    <message>
+        <source>Eye-to-hand finds the camera in the robot base (T_base_camera) and the target on the flange (T_flange_target); eye-in-hand finds the camera on the flange (T_flange_camera) and the target in the base (T_base_target).</source>
+        <translation>Eye-to-hand trova la telecamera nella base del robot (T_base_camera) e il bersaglio sulla flangia (T_flange_target); eye-in-hand trova la telecamera sulla flangia (T_flange_camera) e il bersaglio nella base (T_base_target).</translation>
+    </message>
+    <message>
+        <source>Units of the robot&apos;s flange positions in the poses file (a UR robot reports m)</source>
+        <translation>Unità delle posizioni della flangia del robot nel file delle pose (un robot UR le dà in m)</translation>
+    </message>
+    <message>
+        <source>built-in target: 4 spheres on a 200 × 160 mm plate</source>
+        <translation>bersaglio predefinito: 4 sfere su una piastra di 200 × 160 mm</translation>
+    </message>
+    <message>
+        <source>no poses file loaded</source>
+        <translation>nessun file delle pose caricato</translation>
+    </message>
+    <message>
+        <source>Browse…</source>
+        <translation>Sfoglia…</translation>
+    </message>
+    <message>
+        <source>Load poses…</source>
+        <translation>Carica pose…</translation>
+    </message>
+    <message>
+        <source>&amp;Calibrate</source>
+        <translation>&amp;Calibra</translation>
+    </message>
+    <message>
+        <source>Cancel</source>
+        <translation>Annulla</translation>
+    </message>
+    <message>
+        <source>&amp;Save calibration…</source>
+        <translation>&amp;Salva calibrazione…</translation>
+    </message>
+    <message>
+        <source>Close</source>
+        <translation>Chiudi</translation>
+    </message>
+    <message>
+        <source>Scan</source>
+        <translation>Scansione</translation>
+    </message>
+    <message>
+        <source>Flange position (mm)</source>
+        <translation>Posizione della flangia (mm)</translation>
+    </message>
+    <message>
+        <source>Spheres</source>
+        <translation>Sfere</translation>
+    </message>
+    <message>
+        <source>Fit RMS (mm)</source>
+        <translation>RMS adattamento (mm)</translation>
+    </message>
+    <message>
+        <source>RMS (mm)</source>
+        <translation>RMS (mm)</translation>
+    </message>
+    <message>
+        <source>Max (mm)</source>
+        <translation>Max (mm)</translation>
+    </message>
+    <message>
+        <source>Rotation (°)</source>
+        <translation>Rotazione (°)</translation>
+    </message>
+    <message>
+        <source>Status</source>
+        <translation>Stato</translation>
+    </message>
+    <message>
+        <source>The poses file could not be read: %1</source>
+        <translation>Impossibile leggere il file delle pose: %1</translation>
+    </message>
+    <message>
+        <source>Calibration failed, nothing was written: %1</source>
+        <translation>Calibrazione non riuscita, non è stato scritto nulla: %1</translation>
+    </message>
+    <message>
+        <source>Calibration cancelled.</source>
+        <translation>Calibrazione annullata.</translation>
+    </message>
+    <message>
+        <source>Calibration saved to %1.</source>
+        <translation>Calibrazione salvata in %1.</translation>
+    </message>
+    <message>
+        <source>The calibration was not saved: %1</source>
+        <translation>La calibrazione non è stata salvata: %1</translation>
+    </message>
+    <message>
+        <source>calibrate first</source>
+        <translation>calibrare prima</translation>
+    </message>
+    <message>
+        <source>Load a poses file: the scans of the calibration target and the robot&apos;s flange pose at each (docs/calibration.md).</source>
+        <translation>Caricare un file delle pose: le scansioni del bersaglio di calibrazione e la posa della flangia del robot per ciascuna (docs/calibration.md).</translation>
+    </message>
+    <message numerus="yes">
+        <source>%n pose(s) loaded: press Calibrate.</source>
+        <translation>
+            <numerusform>%n posa caricata: premere Calibra.</numerusform>
+            <numerusform>%n pose caricate: premere Calibra.</numerusform>
+        </translation>
+    </message>
+    <message numerus="yes">
+        <source>Calibrating: finding the target in %n scan(s)…</source>
+        <translation>
+            <numerusform>Calibrazione: ricerca del bersaglio in %n scansione…</numerusform>
+            <numerusform>Calibrazione: ricerca del bersaglio in %n scansioni…</numerusform>
+        </translation>
+    </message>
+    <message>
+        <source>Calibrated: save the calibration file.</source>
+        <translation>Calibrato: salvare il file di calibrazione.</translation>
+    </message>
+    <message>
+        <source>%1 calibration from %2 of %3 poses, residuals %4 mm / %5° RMS</source>
+        <translation>Calibrazione %1 da %2 di %3 pose, residui %4 mm / %5° RMS</translation>
+    </message>
+    <message numerus="yes">
+        <source>%n pose(s) rejected (see the table)</source>
+        <translation>
+            <numerusform>%n posa scartata (vedere la tabella)</numerusform>
+            <numerusform>%n pose scartate (vedere la tabella)</numerusform>
+        </translation>
+    </message>
+    <message>
+        <source>No pose rejected</source>
+        <translation>Nessuna posa scartata</translation>
+    </message>
+    <message>
+        <source>%1: position %2, %3, %4 mm, quaternion (w x y z) %5 %6 %7 %8</source>
+        <translation>%1: posizione %2, %3, %4 mm, quaternione (w x y z) %5 %6 %7 %8</translation>
+    </message>
+    <message>
+        <source>Eye-to-hand</source>
+        <translation>eye-to-hand</translation>
+    </message>
+    <message>
+        <source>Eye-in-hand</source>
+        <translation>eye-in-hand</translation>
+    </message>
+    <message>
+        <source>%1 of %2</source>
+        <translation>%1 di %2</translation>
+    </message>
+    <message>
+        <source>failed</source>
+        <translation>non riuscita</translation>
+    </message>
+    <message>
+        <source>rejected: %1</source>
+        <translation>scartata: %1</translation>
+    </message>
+    <message>
+        <source>used</source>
+        <translation>usata</translation>
+    </message>
+    <message>
+        <source>Open poses file</source>
+        <translation>Apri file delle pose</translation>
+    </message>
+    <message>
+        <source>Poses files (*.json);;All files (*)</source>
+        <translation>File delle pose (*.json);;Tutti i file (*)</translation>
+    </message>
+    <message>
+        <source>Open target file</source>
+        <translation>Apri file del bersaglio</translation>
+    </message>
+    <message>
+        <source>Target files (*.json);;All files (*)</source>
+        <translation>File del bersaglio (*.json);;Tutti i file (*)</translation>
+    </message>
+    <message>
+        <source>Save calibration</source>
+        <translation>Salva calibrazione</translation>
+    </message>
+    <message>
+        <source>Calibrations (*.json)</source>
+        <translation>Calibrazioni (*.json)</translation>
     </message>
 </context>
 <context>

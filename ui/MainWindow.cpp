@@ -383,6 +383,13 @@ void MainWindow::buildActions() {
   m_live_action->setShortcut(Qt::Key_F6);
   connect(m_live_action, &QAction::toggled, this, &MainWindow::setLiveRunning);
 
+  // Tools: the hand-eye calibration (docs/calibration.md), one dialog at a time, made on demand.
+  QMenu* tools_menu = menu([] { return tr("T&ools"); });
+  add(
+      tools_menu, [] { return tr("&Hand-eye calibration…"); }, this,
+      &MainWindow::showCalibrationWizard)
+      ->setObjectName(QStringLiteral("handEyeCalibrationAction"));
+
   QMenu* view = menu([] { return tr("&View"); });
   m_view_menu = view;
   add(

@@ -119,10 +119,16 @@ public:
   [[nodiscard]] core::SensorModel currentSensor() const;
   /// The sensor preset whose grid (width × height) matches an organized `cloud`, if any.
   static std::optional<core::SensorModel> sensorOfGrid(const core::PointCloud& cloud);
-  /// Adds a grip point (scan frame, mm) with an automatic name (undoable).
+  /// Adds a grip point (scan frame, mm) with an automatic name, approached against the surface
+  /// normal there (core::grasp::surfaceApproach; undoable).
   void addGripPoint(const Eigen::Vector3d& position_mm);
-  /// Moves grip point `index` to `position_mm` (scan frame; undoable). Nothing for a bad index.
+  /// Moves grip point `index` to `position_mm` (scan frame), approached against the surface
+  /// normal at its new place (undoable). Nothing for a bad index.
   void moveGripPoint(int index, const Eigen::Vector3d& position_mm);
+  /// Sets the approach of grip point `index` (scan frame, any length; undoable) and drops a
+  /// closing axis that is no longer across it. Returns false, changing nothing, for a bad index
+  /// or a zero or non-finite direction.
+  bool setGripApproach(int index, const Eigen::Vector3d& approach);
   /// Removes grip point `index` (undoable). Nothing for a bad index.
   void removeGripPoint(int index);
   /// Renames grip point `index` (undoable). Nothing for a bad index or the same name.
@@ -252,6 +258,8 @@ private:
   void showPart();
   void showPreview();
   void showGrips();
+  void showGripApproach();      // the selected grip point's approach in its field
+  void showCalibrationWizard(); // one dialog at a time, made on demand, deleted on close
   void refreshGripList();
   void onViewportClick(int x, int y);
   void showFloorPreview();
@@ -322,6 +330,7 @@ private:
   QProgressBar* m_progress = nullptr;
   QPushButton* m_cancel = nullptr;
   QListWidget* m_grip_list = nullptr;
+  QLineEdit* m_grip_approach = nullptr; // the selected grip point's approach, "x, y, z"
   QAction* m_crop_action = nullptr;
   QAction* m_grip_action = nullptr;
   QAction* m_grip_move_action = nullptr; // the next click moves the selected grip point

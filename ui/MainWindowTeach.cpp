@@ -2,6 +2,7 @@
 // keypoint/feature preview and teaching the model.
 #include "core/common/Error.h"
 #include "core/common/Log.h"
+#include "core/grasp/GraspPoint.h"
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "ui/MainWindow.h"
@@ -104,6 +105,18 @@ double pointSize() {
   return QSettings().value(settings::kPointSize, 2.0).toDouble();
 }
 
+/// The approach a grip point placed at `position_mm` on `part` gets: against the surface normal
+/// there; none (the model's +z at recognition) where the part has no surface to fit.
+std::optional<Eigen::Vector3d> approachAt(const core::PointCloud& part,
+                                          const Eigen::Vector3d& position_mm) {
+  try {
+    return core::grasp::surfaceApproach(part, position_mm);
+  } catch (const core::Error& e) {
+    core::logger()->warn("grip point: no approach from the surface: {}", e.what());
+    return std::nullopt;
+  }
+}
+
 } // namespace
 
 void MainWindow::buildTeachDock() {
@@ -153,6 +166,32 @@ void MainWindow::buildTeachDock() {
   m_texts.bind(m_grip_list, "toolTip",
                [] { return tr("Del removes the selected grip point; Ctrl+Z undoes"); });
   layout->addWidget(m_grip_list, 1);
+  auto* approach_form = new QFormLayout;
+  m_grip_approach = new QLineEdit(panel);
+  m_grip_approach->setObjectName(QStringLiteral("gripApproach"));
+  m_texts.bind(m_grip_approach, "toolTip", [] {
+    return tr(
+        "Direction the gripper moves in to reach the selected grip point (scan frame: x, y, "
+        "z, any length; Enter applies); placing or moving a point sets it against the surface "
+        "normal");
+  });
+  auto* approach_label = new QLabel(panel);
+  m_texts.bind(approach_label, "text", [] { return tr("Approach:"); });
+  approach_form->addRow(approach_label, m_grip_approach);
+  layout->addLayout(approach_form);
+  connect(m_grip_list, &QListWidget::currentRowChanged, this, [this] { showGripApproach(); });
+  connect(m_grip_approach, &QLineEdit::returnPressed, this, [this] {
+    const QStringList parts = m_grip_approach->text().split(QLatin1Char(','));
+    Eigen::Vector3d v;
+    bool ok = parts.size() == 3;
+    for (int k = 0; ok && k < 3; ++k)
+      v[k] = parts[k].trimmed().toDouble(&ok);
+    if (!ok || !setGripApproach(m_grip_list->currentRow(), v)) {
+      statusBar()->showMessage(
+          tr("The approach is three numbers x, y, z, not all zero (e.g. 0, 0, 1)"), 5000);
+      showGripApproach();
+    }
+  });
   auto* grip_buttons = new QHBoxLayout;
   m_grip_move_action = new QAction(this);
   m_texts.bind(m_grip_move_action, "text", [] { return tr("Move grip point"); });
@@ -370,6 +409,7 @@ void MainWindow::addGripPoint(const Eigen::Vector3d& position_mm) {
   core::GripPoint grip;
   grip.name = tr("grip %1").arg(m_grips.size() + 1).toStdString();
   grip.position_mm = position_mm;
+  grip.approach = approachAt(*m_part, position_mm);
   core::logger()->info("grip point '{}' at ({:.1f}, {:.1f}, {:.1f}) mm", grip.name, position_mm.x(),
                        position_mm.y(), position_mm.z());
   auto after = m_grips;
@@ -383,11 +423,41 @@ void MainWindow::moveGripPoint(int index, const Eigen::Vector3d& position_mm) {
     return;
   auto after = m_grips;
   after[std::size_t(index)].position_mm = position_mm;
+  after[std::size_t(index)].approach = approachAt(*m_part, position_mm);
+  after[std::size_t(index)].closing_axis.reset();
   core::logger()->info("grip point '{}' moved to ({:.1f}, {:.1f}, {:.1f}) mm",
                        after[std::size_t(index)].name, position_mm.x(), position_mm.y(),
                        position_mm.z());
   m_undo->push(
       new ReplaceGripsCommand(this, m_grips, std::move(after), index, tr("Move grip point")));
+}
+
+bool MainWindow::setGripApproach(int index, const Eigen::Vector3d& approach) {
+  if (index < 0 || index >= static_cast<int>(m_grips.size()) || !approach.allFinite() ||
+      approach.norm() < 1e-9)
+    return false;
+  auto after = m_grips;
+  core::GripPoint& grip = after[std::size_t(index)];
+  grip.approach = approach.normalized();
+  if (grip.closing_axis && std::abs(grip.closing_axis->dot(*grip.approach)) > 0.99)
+    grip.closing_axis.reset();
+  if (after == m_grips)
+    return true;
+  m_undo->push(
+      new ReplaceGripsCommand(this, m_grips, std::move(after), index, tr("Set grip approach")));
+  return true;
+}
+
+void MainWindow::showGripApproach() {
+  const int row = m_grip_list->currentRow();
+  const bool selected = row >= 0 && row < static_cast<int>(m_grips.size());
+  m_grip_approach->setEnabled(selected);
+  const auto& approach = selected ? m_grips[std::size_t(row)].approach : std::nullopt;
+  m_grip_approach->setText(approach ? QStringLiteral("%1, %2, %3")
+                                          .arg(approach->x(), 0, 'f', 3)
+                                          .arg(approach->y(), 0, 'f', 3)
+                                          .arg(approach->z(), 0, 'f', 3)
+                                    : QString());
 }
 
 void MainWindow::removeGripPoint(int index) {
@@ -413,6 +483,7 @@ void MainWindow::setGripPoints(std::vector<core::GripPoint> grips, int selected)
   m_grips = std::move(grips);
   refreshGripList();
   m_grip_list->setCurrentRow(std::min(selected, static_cast<int>(m_grips.size()) - 1));
+  showGripApproach();
   showGrips();
 }
 

@@ -6,6 +6,7 @@
 #include "ui/MainWindow.h"
 #include "ui/Settings.h"
 #include "ui/jobs/JobRunner.h"
+#include "ui/panels/CalibrationWizard.h"
 #include "ui/panels/ParameterPanel.h"
 #include "ui/viewport/Lasso.h"
 #include "ui/viewport/Presenters.h"
@@ -243,6 +244,18 @@ bool MainWindow::saveScan(const QString& path) {
     showError(tr("Save scan"), QString::fromUtf8(e.what()));
     return false;
   }
+}
+
+void MainWindow::showCalibrationWizard() {
+  for (auto* shown : findChildren<CalibrationWizard*>())
+    if (shown->isVisible()) {
+      shown->raise();
+      shown->activateWindow();
+      return;
+    }
+  auto* wizard = new CalibrationWizard(this);
+  wizard->setAttribute(Qt::WA_DeleteOnClose);
+  wizard->show();
 }
 
 } // namespace scanpick::ui

@@ -1,13 +1,12 @@
 // scanpick-cli calibrate: hand-eye calibration from robot poses and scans of the sphere target
-// (docs/calibration.md). Reads the poses file, finds the target in every scan, solves, prints the
-// residual of every pose and the rejected ones, and writes the calibration atomically; on any
-// error it writes nothing.
+// (docs/calibration.md). Runs core::calib::runCalibration (as the GUI's dialog does), prints the
+// target found in every scan, the residual of every pose and the rejected ones, and writes the
+// calibration atomically; on any error it writes nothing.
 #include "app/cli/CliCommon.h"
 #include "app/cli/Commands.h"
 #include "core/calib/CalibJson.h"
-#include "core/calib/HandEye.h"
-#include "core/calib/TargetDetection.h"
-#include "core/cloud/CloudIo.h"
+#include "core/calib/CalibrationRun.h"
+#include "core/cloud/Units.h"
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 
@@ -47,54 +46,31 @@ void printPose(const std::string& name, const Eigen::Isometry3d& T) {
   }
 }
 
-/// `e` with "scan N (PATH): " before its message.
-core::Error scanError(std::size_t index, const std::filesystem::path& scan, const std::string& e) {
-  return core::Error(std::string("scan ")
-                         .append(std::to_string(index + 1))
-                         .append(" (")
-                         .append(scan.string())
-                         .append("): ")
-                         .append(e));
-}
-
 int runCalibrate(const CalibrateOptions& o) {
   using namespace core::calib;
   core::checkWritable(o.out);
-  const HandEyeMode mode = modeFromName(o.mode);
-  const TargetDetectParams detect;
-  const TargetLayout target =
-      o.target.empty() ? defaultTarget() : loadTarget(o.target, 2 * detect.match_tolerance_mm);
-  const core::LengthUnit scan_units = core::parseLengthUnit(o.units);
-  const core::LengthUnit pose_units =
-      core::parseLengthUnit(o.pose_units.empty() ? o.units : o.pose_units);
-  const std::vector<PoseEntry> entries =
-      loadPoseList(o.poses, double(core::millimetresPer(pose_units)));
-  // Pose count and motion first: a bad pose set fails before any scan is read.
-  std::vector<Eigen::Isometry3d> flanges;
-  for (const auto& e : entries)
-    flanges.push_back(e.T_base_flange);
-  checkPoses(flanges, o.params);
-
-  std::vector<HandEyeSample> samples;
-  for (std::size_t i = 0; i < entries.size(); ++i) {
-    HandEyeSample sample;
-    sample.T_base_flange = entries[i].T_base_flange;
-    try {
-      core::LoadedCloud loaded = core::loadCloud(entries[i].scan, scan_units);
-      if (!loaded.units_warning.empty())
-        std::cerr << "warning: scan " << i + 1 << ": " << loaded.units_warning << "\n";
-      sample.observation = detectTarget(loaded.cloud, target, detect);
-    } catch (const core::Error& e) {
-      throw scanError(i, entries[i].scan, e.what());
-    }
-    std::cout << "scan " << i + 1 << " " << entries[i].scan.filename().string() << ": "
-              << sample.observation.found() << " of " << target.sphere_centres_mm.size()
-              << " spheres, fit to the target " << fixed(sample.observation.fit_rms_mm, 3)
-              << " mm RMS\n";
-    samples.push_back(std::move(sample));
+  CalibrationRequest request;
+  request.mode = modeFromName(o.mode);
+  request.poses_file = o.poses;
+  request.target_file = o.target;
+  request.scan_units = core::parseLengthUnit(o.units);
+  request.pose_units = core::parseLengthUnit(o.pose_units.empty() ? o.units : o.pose_units);
+  request.params = o.params;
+  const CalibrationOutcome run = runCalibration(request, {});
+  for (std::size_t i = 0; i < run.scans.size(); ++i) {
+    const ScanReport& scan = run.scans[i];
+    if (!scan.units_warning.empty())
+      std::cerr << "warning: scan " << i + 1 << ": " << scan.units_warning << "\n";
+    std::cout << "scan " << i + 1 << " " << run.entries[i].scan.filename().string() << ": "
+              << scan.spheres_found << " of " << run.target.sphere_centres_mm.size()
+              << " spheres, fit to the target " << fixed(scan.fit_rms_mm, 3) << " mm RMS\n";
   }
-
-  const HandEyeResult result = calibrateHandEye(mode, samples, target, o.params);
+  if (!run.result)
+    throw core::Error(run.error);
+  const HandEyeMode mode = request.mode;
+  const std::vector<PoseEntry>& entries = run.entries;
+  const TargetLayout& target = run.target;
+  const HandEyeResult& result = *run.result;
   std::cout << "\npose  rms mm  max mm  rot deg\n";
   for (const auto& r : result.residuals) {
     char line[96];

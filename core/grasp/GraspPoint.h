@@ -3,6 +3,7 @@
 /// A grip point with the direction the gripper comes from and, for fingers, the axis they close
 /// along.
 
+#include "core/cloud/PointCloud.h"
 #include "core/common/GripPoint.h"
 
 #include <Eigen/Core>
@@ -41,5 +42,16 @@ struct GraspSpec {
 /// ..."), a zero or non-finite direction, or a closing axis along the approach.
 std::vector<GraspPoint> graspPoints(const std::vector<GripPoint>& grips_model,
                                     const std::vector<GraspSpec>& specs);
+
+/// How many scan points the default approach's plane is fitted to: enough to average a PhoXi's or
+/// a Kinect's depth noise over a patch a few point spacings across.
+inline constexpr std::size_t kSurfaceNeighbours = 30;
+
+/// The approach a grip point placed at `point_mm` on `scan_mm` (a scan, camera frame: the camera at
+/// the origin) gets by default: against the surface normal there, i.e. the normal of the plane
+/// fitted to the kSurfaceNeighbours valid points nearest to it, turned away from the camera
+/// (towards and into the part). Throws Error when the scan has fewer valid points than that or
+/// they lie on a line.
+Eigen::Vector3d surfaceApproach(const PointCloud& scan_mm, const Eigen::Vector3d& point_mm);
 
 } // namespace scanpick::core::grasp

@@ -23,6 +23,7 @@
 #include <QDoubleSpinBox>
 #include <QFileDialog>
 #include <QLabel>
+#include <QLineEdit>
 #include <QListWidget>
 #include <QMenu>
 #include <QMenuBar>
@@ -307,6 +308,43 @@ TEST_F(DayOne, GripPointsMoveAndGoAwayWithUndo) {
   undo->undo();
   EXPECT_EQ(window.gripPoints().size(), 2u);
   EXPECT_EQ(list->count(), 2) << "the list follows the undo";
+}
+
+TEST_F(DayOne, AGripPointIsApproachedAgainstTheSurfaceAndTheApproachIsEditedWithUndo) {
+  window.setScan(onePart(), QStringLiteral("part"));
+  window.addGripPoint(Eigen::Vector3d(0, 0, 700));
+  ASSERT_EQ(window.gripPoints().size(), 1u);
+  // The ideal part lies in the plane z = 700 facing the camera: approached along +z, into it.
+  ASSERT_TRUE(window.gripPoints()[0].approach);
+  EXPECT_TRUE(window.gripPoints()[0].approach->isApprox(Eigen::Vector3d::UnitZ(), 1e-6))
+      << window.gripPoints()[0].approach->transpose();
+  auto* field = window.findChild<QLineEdit*>(QStringLiteral("gripApproach"));
+  ASSERT_NE(field, nullptr);
+  EXPECT_TRUE(field->isEnabled());
+  EXPECT_EQ(field->text(), QStringLiteral("0.000, 0.000, 1.000"));
+
+  // Typed in the field: made unit, undoable, and the field follows the undo.
+  field->setFocus();
+  field->selectAll();
+  QTest::keyClicks(field, QStringLiteral("0, 3, 4"));
+  QTest::keyClick(field, Qt::Key_Return);
+  ASSERT_TRUE(window.gripPoints()[0].approach);
+  EXPECT_TRUE(window.gripPoints()[0].approach->isApprox(Eigen::Vector3d(0, 0.6, 0.8)));
+  EXPECT_EQ(field->text(), QStringLiteral("0.000, 0.600, 0.800"));
+  window.undoStack()->undo();
+  EXPECT_TRUE(window.gripPoints()[0].approach->isApprox(Eigen::Vector3d::UnitZ(), 1e-6));
+  EXPECT_EQ(field->text(), QStringLiteral("0.000, 0.000, 1.000"));
+
+  // Text that is no direction changes nothing and puts the approach back in the field.
+  const int commands = window.undoStack()->count();
+  for (const QString& bad :
+       {QStringLiteral("1, 2"), QStringLiteral("0, 0, 0"), QStringLiteral("a, b, c")}) {
+    field->selectAll();
+    QTest::keyClicks(field, bad);
+    QTest::keyClick(field, Qt::Key_Return);
+    EXPECT_EQ(window.undoStack()->count(), commands) << bad.toStdString();
+    EXPECT_EQ(field->text(), QStringLiteral("0.000, 0.000, 1.000")) << bad.toStdString();
+  }
 }
 
 TEST_F(DayOne, UsableAt1024x700WithFiveResultRowsVisible) {

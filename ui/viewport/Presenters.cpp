@@ -1,5 +1,6 @@
 #include "ui/viewport/Presenters.h"
 
+#include "core/grasp/GraspPlanner.h"
 #include "core/pipeline/DetectionColours.h"
 
 #include <QString>
@@ -201,8 +202,13 @@ vtkSmartPointer<vtkActor> makeGripAxesActor(const std::vector<core::GripPoint>& 
   colours->SetNumberOfComponents(3);
   const unsigned char axis_rgb[3][3] = {{235, 60, 60}, {60, 220, 60}, {70, 110, 255}};
   for (const core::GripPoint& g : grips) {
+    const Eigen::Matrix3d frame =
+        g.approach ? core::grasp::toolPose(Eigen::Isometry3d::Identity(),
+                                           {g.name, g.position_mm, *g.approach, g.closing_axis})
+                         .linear()
+                   : R;
     for (int axis = 0; axis < 3; ++axis) {
-      const Eigen::Vector3d end = g.position_mm + R.col(axis) * length_mm;
+      const Eigen::Vector3d end = g.position_mm + frame.col(axis) * length_mm;
       lines->InsertNextCell(2);
       lines->InsertCellPoint(points->InsertNextPoint(g.position_mm.data()));
       lines->InsertCellPoint(points->InsertNextPoint(end.data()));

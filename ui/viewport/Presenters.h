@@ -54,8 +54,10 @@ makeFeaturesActor(const core::FeatureList& features, const QColor& line_colour,
                   const QColor& circle_colour, double line_width_px, double ratio,
                   const Eigen::Isometry3d& T = Eigen::Isometry3d::Identity());
 
-/// Axes (x red, y green, z blue, `length_mm` long, 4 px wide) at each grip point, oriented by
-/// `R`; the positions are already in the frame shown.
+/// Axes (x red, y green, z blue, `length_mm` long, 4 px wide) at each grip point: the tool frame
+/// of a grip point taught with an approach (z the approach, x the closing axis;
+/// core::grasp::toolPose), otherwise oriented by `R`. Positions and directions are already in the
+/// frame shown.
 vtkSmartPointer<vtkActor> makeGripAxesActor(const std::vector<core::GripPoint>& grips,
                                             double length_mm, double ratio,
                                             const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity());

@@ -129,6 +129,24 @@ TEST(GripPoint, MovesWithItsDirectionsAndIsCheckedBeforeUse) {
   EXPECT_THROW((void)checkedGrip(not_finite), Error);
 }
 
+TEST(GraspPoint, TheDefaultApproachGoesIntoTheSurfaceAwayFromTheCamera) {
+  // A plane 700 mm in front of the camera, tilted 30 degrees about x, sampled every 2 mm.
+  const Eigen::Vector3d normal(0, std::sin(M_PI / 6), -std::cos(M_PI / 6)); // towards the camera
+  const Eigen::Vector3d u = Eigen::Vector3d::UnitX(), v = normal.cross(u);
+  std::vector<Eigen::Vector3f> plane, line;
+  for (int i = -10; i <= 10; ++i) {
+    line.push_back(Eigen::Vector3f(float(2 * i), 0, 700));
+    for (int j = -10; j <= 10; ++j)
+      plane.push_back((Eigen::Vector3d(0, 0, 700) + 2.0 * i * u + 2.0 * j * v).cast<float>());
+  }
+  const Eigen::Vector3d approach =
+      surfaceApproach(PointCloud::fromPoints(plane), Eigen::Vector3d(3, 3, 701));
+  EXPECT_TRUE(approach.isApprox(-normal, 1e-6)) << approach.transpose();
+  EXPECT_THROW((void)surfaceApproach(PointCloud::fromPoints(line), {0, 0, 700}), Error);
+  plane.resize(kSurfaceNeighbours - 1);
+  EXPECT_THROW((void)surfaceApproach(PointCloud::fromPoints(plane), {0, 0, 700}), Error);
+}
+
 TEST(ToolPose, OriginAtTheGripPointZAlongTheApproachXAlongTheClosingAxis) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
