@@ -153,6 +153,9 @@ MainWindow::~MainWindow() {
   m_jobs->cancel();
   if (m_box_widget)
     m_box_widget->Off();
+  // The undo stack, a child, is destroyed after this destructor has run, and clearing it emits
+  // signals whose handlers read this window's members.
+  m_undo->disconnect();
 }
 
 double MainWindow::ratio() const {

@@ -49,6 +49,11 @@ QtVtkViewport::~QtVtkViewport() {
     makeCurrent();
     cleanupContext();
   }
+  // QOpenGLWidget's destructor destroys the context after this one has run: its
+  // aboutToBeDestroyed must no longer reach cleanupContext of a widget that is no longer a
+  // QtVtkViewport.
+  if (context() != nullptr)
+    disconnect(context(), nullptr, this, nullptr);
   m_render_window->RemoveAllObservers();
 }
 
