@@ -33,6 +33,93 @@ Response CellService::status(std::int32_t id) const {
   return r;
 }
 
+/// Runs a cycle; its picks replace the old list, which is cleared before the scan begins.
+void CellService::trigger(const Request& request, Response& r) {
+  {
+    // The old list is void from here on: the bin is being scanned anew.
+    const std::lock_guard lock(m_mutex);
+    m_cycle = {};
+    m_triggered = true;
+    m_next = 0;
+  }
+  CycleInput input;
+  if (request.flange_pose)
+    input.T_base_flange = flangePose(*request.flange_pose);
+  CycleResult cycle = m_backend->runCycle(input);
+  const std::lock_guard lock(m_mutex);
+  m_cycle = std::move(cycle);
+  ++m_cycles;
+  m_last_error.clear();
+  r.count = std::int32_t(m_cycle.picks.size());
+  r.detections = m_cycle.detections;
+  r.cycle = m_cycles;
+  r.status = m_cycle.picks.empty() ? Status::NoPicks : Status::Ok;
+  if (m_cycle.picks.empty())
+    r.message = std::to_string(m_cycle.detections) +
+                " part(s) found, none pickable (the pick list says why)";
+}
+
+/// NextPick: the next pick of the last trigger's list; PickList: the whole list and the rejects.
+void CellService::handOutPicks(const Request& request, Response& r) {
+  const std::lock_guard lock(m_mutex);
+  r.cycle = m_cycles;
+  r.detections = m_cycle.detections;
+  if (!m_triggered) {
+    r.status = Status::NotTriggered;
+    r.message = "no pick list yet: send trigger first";
+    return;
+  }
+  if (request.command == Command::NextPick) {
+    if (m_next >= m_cycle.picks.size()) {
+      r.status = Status::NoPicks;
+      r.message = m_last_error.empty() ? "no picks left: trigger again"
+                                       : "no picks: the last trigger failed: " + m_last_error;
+      return;
+    }
+    r.picks.push_back(m_cycle.picks[m_next++]);
+    r.count = std::int32_t(m_cycle.picks.size() - m_next);
+  } else {
+    r.picks = m_cycle.picks;
+    r.rejected = m_cycle.rejected;
+    r.count = std::int32_t(r.picks.size());
+    r.status = r.picks.empty() ? Status::NoPicks : Status::Ok;
+  }
+}
+
+/// Switches to the recipe named (JSON) or numbered (binary) in the request; the pick list is
+/// cleared until the next trigger.
+void CellService::setRecipe(const Request& request, Response& r) {
+  std::size_t index = 0;
+  if (request.binary) {
+    index = std::size_t(std::max(0, request.recipe_index));
+  } else {
+    index = m_recipes.size();
+    for (std::size_t i = 0; i < m_recipes.size(); ++i)
+      if (m_recipes[i] == request.recipe)
+        index = i;
+    if (index == m_recipes.size()) {
+      std::string names;
+      for (const auto& n : m_recipes)
+        names += (names.empty() ? "" : ", ") + n;
+      throw CellFailure(Status::RecipeFailed,
+                        "unknown recipe '" + request.recipe + "': use one of [" + names + "]");
+    }
+  }
+  if (index >= m_recipes.size())
+    throw CellFailure(Status::RecipeFailed, "no recipe " + std::to_string(index) +
+                                                ": the cell has " +
+                                                std::to_string(m_recipes.size()));
+  m_backend->setRecipe(index);
+  const std::lock_guard lock(m_mutex);
+  m_recipe = index;
+  m_triggered = false;
+  m_cycle = {};
+  m_next = 0;
+  r.recipe = m_recipes[index];
+  r.recipe_index = std::int32_t(index);
+  r.count = std::int32_t(m_recipes.size());
+}
+
 Response CellService::handle(const Request& request) {
   if (request.command == Command::Status)
     return status(request.id);
@@ -50,90 +137,16 @@ Response CellService::handle(const Request& request) {
   try {
     switch (request.command) {
     case Command::Trigger:
-    case Command::TriggerAt: {
-      {
-        // The old list is void from here on: the bin is being scanned anew.
-        const std::lock_guard lock(m_mutex);
-        m_cycle = {};
-        m_triggered = true;
-        m_next = 0;
-      }
-      CycleInput input;
-      if (request.flange_pose)
-        input.T_base_flange = flangePose(*request.flange_pose);
-      CycleResult cycle = m_backend->runCycle(input);
-      const std::lock_guard lock(m_mutex);
-      m_cycle = std::move(cycle);
-      ++m_cycles;
-      m_last_error.clear();
-      r.count = std::int32_t(m_cycle.picks.size());
-      r.detections = m_cycle.detections;
-      r.cycle = m_cycles;
-      r.status = m_cycle.picks.empty() ? Status::NoPicks : Status::Ok;
-      if (m_cycle.picks.empty())
-        r.message = std::to_string(m_cycle.detections) +
-                    " part(s) found, none pickable (the pick list says why)";
+    case Command::TriggerAt:
+      trigger(request, r);
       break;
-    }
     case Command::NextPick:
-    case Command::PickList: {
-      const std::lock_guard lock(m_mutex);
-      r.cycle = m_cycles;
-      r.detections = m_cycle.detections;
-      if (!m_triggered) {
-        r.status = Status::NotTriggered;
-        r.message = "no pick list yet: send trigger first";
-        break;
-      }
-      if (request.command == Command::NextPick) {
-        if (m_next >= m_cycle.picks.size()) {
-          r.status = Status::NoPicks;
-          r.message = m_last_error.empty() ? "no picks left: trigger again"
-                                           : "no picks: the last trigger failed: " + m_last_error;
-          break;
-        }
-        r.picks.push_back(m_cycle.picks[m_next++]);
-        r.count = std::int32_t(m_cycle.picks.size() - m_next);
-      } else {
-        r.picks = m_cycle.picks;
-        r.rejected = m_cycle.rejected;
-        r.count = std::int32_t(r.picks.size());
-        r.status = r.picks.empty() ? Status::NoPicks : Status::Ok;
-      }
+    case Command::PickList:
+      handOutPicks(request, r);
       break;
-    }
-    case Command::SetRecipe: {
-      std::size_t index = 0;
-      if (request.binary) {
-        index = std::size_t(std::max(0, request.recipe_index));
-      } else {
-        index = m_recipes.size();
-        for (std::size_t i = 0; i < m_recipes.size(); ++i)
-          if (m_recipes[i] == request.recipe)
-            index = i;
-        if (index == m_recipes.size()) {
-          std::string names;
-          for (const auto& n : m_recipes)
-            names += (names.empty() ? "" : ", ") + n;
-          throw CellFailure(Status::RecipeFailed,
-                            "unknown recipe '" + request.recipe + "': use one of [" + names + "]");
-        }
-      }
-      if (index >= m_recipes.size())
-        throw CellFailure(Status::RecipeFailed, "no recipe " + std::to_string(index) +
-                                                    ": the cell has " +
-                                                    std::to_string(m_recipes.size()));
-      m_backend->setRecipe(index);
-      const std::lock_guard lock(m_mutex);
-      m_recipe = index;
-      m_triggered = false;
-      m_cycle = {};
-      m_next = 0;
-      r.recipe = m_recipes[index];
-      r.recipe_index = std::int32_t(index);
-      r.count = std::int32_t(m_recipes.size());
+    case Command::SetRecipe:
+      setRecipe(request, r);
       break;
-    }
     default:
       r.status = Status::UnknownCommand;
       r.message = "unknown command";

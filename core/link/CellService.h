@@ -28,6 +28,11 @@ public:
   [[nodiscard]] Response status(std::int32_t id) const;
 
 private:
+  // The commands handle() serves; each fills `r` or throws CellFailure or Error.
+  void trigger(const Request& request, Response& r);
+  void handOutPicks(const Request& request, Response& r);
+  void setRecipe(const Request& request, Response& r);
+
   std::shared_ptr<CellBackend> m_backend;
   mutable std::mutex m_mutex; ///< guards what follows
   CycleResult m_cycle;
