@@ -49,29 +49,26 @@ Stats computeStats(std::vector<double> values) {
   return s;
 }
 
-SceneEvaluation evaluateScene(GroundTruth scene_truth, const ResultsFile& results,
-                              const GroundTruth& teach, const Tolerances& tolerances,
-                              const std::string& name,
-                              const std::vector<const GroundTruth*>& view_teach) {
-  const auto kept = std::make_shared<const GroundTruth>(std::move(scene_truth));
-  const GroundTruth& truth = *kept;
-  const auto taughtOf = [](const GroundTruth& t) -> const TruthInstance& {
-    if (t.instances.size() != 1)
-      throw Error(
-          "teach ground truth " + t.source + " holds " + std::to_string(t.instances.size()) +
-          " instances; a teach scene must hold exactly one (pass the teach scene's .gt.json)");
-    return t.instances.front();
-  };
-  const TruthInstance& taught = taughtOf(view_teach.empty() ? teach : *view_teach.front());
-  const auto part_it = truth.parts.contains(taught.part) ? truth.parts.find(taught.part)
-                                                         : teach.parts.find(taught.part);
-  const PartInfo& part = part_it->second;
-  const auto group = symmetryGroup(part.symmetry, part.diameter_mm);
-  // Each model's frame relative to the part, from the scan that model was taught from.
+namespace {
+
+/// The one instance of a teach scene's ground truth; throws Error when it holds more or none.
+const TruthInstance& taughtInstance(const GroundTruth& t) {
+  if (t.instances.size() != 1)
+    throw Error(
+        "teach ground truth " + t.source + " holds " + std::to_string(t.instances.size()) +
+        " instances; a teach scene must hold exactly one (pass the teach scene's .gt.json)");
+  return t.instances.front();
+}
+
+/// Each model's frame relative to the part (T_model_part), from the scan that model was taught
+/// from: its own teach truth in `view_teach`, else the first model's `taught` instance.
+std::vector<Eigen::Isometry3d> modelFramesInPart(const ResultsFile& results,
+                                                 const std::vector<const GroundTruth*>& view_teach,
+                                                 const TruthInstance& taught) {
   std::vector<Eigen::Isometry3d> T_model_part;
   for (std::size_t m = 0; m < std::max<std::size_t>(1, results.models.size()); ++m) {
     const bool own = m < view_teach.size();
-    const TruthInstance& view = own ? taughtOf(*view_teach[m]) : taught;
+    const TruthInstance& view = own ? taughtInstance(*view_teach[m]) : taught;
     if (view.part != taught.part)
       throw Error(results.source + ": its models are views of different parts (" + taught.part +
                   ", " + view.part + "): evaluate one part at a time");
@@ -79,6 +76,118 @@ SceneEvaluation evaluateScene(GroundTruth scene_truth, const ResultsFile& result
         m < results.models.size() ? results.models[m].T_teach_model : results.T_teach_model;
     T_model_part.push_back(T_teach_model.inverse() * view.T_scene_part);
   }
+  return T_model_part;
+}
+
+/// A pose estimate and the part as scored for it: a reported free turn is scored as a symmetry
+/// of that pose alone.
+struct Estimate {
+  Eigen::Isometry3d T_scene_part;
+  PartInfo scored;
+};
+
+/// The detection's pose and, when free turns are accepted, its reported alternative poses, each
+/// as a pose of the part (T_model_part: the detection's model frame in the part).
+std::vector<Estimate> estimatesOf(const ResultDetection& detection,
+                                  const Eigen::Isometry3d& T_model_part, const PartInfo& part,
+                                  const Tolerances& tolerances) {
+  const auto estimate = [&](const Eigen::Isometry3d& T_scene_model,
+                            const std::optional<ContinuousAxis>& free_turn_axis) {
+    Estimate e{T_scene_model * T_model_part, part};
+    if (tolerances.accept_free_turns && free_turn_axis && !part.symmetry.continuous_axis) {
+      const Eigen::Isometry3d T_part_scene = e.T_scene_part.inverse();
+      e.scored.symmetry.continuous_axis =
+          ContinuousAxis{T_part_scene * free_turn_axis->point_mm,
+                         T_part_scene.linear() * free_turn_axis->direction};
+    }
+    return e;
+  };
+  std::vector<Estimate> estimates{estimate(detection.T_scene_model, detection.free_turn_axis)};
+  if (tolerances.accept_free_turns)
+    for (std::size_t k = 0; k < detection.alternative_poses.size(); ++k)
+      estimates.push_back(
+          estimate(detection.alternative_poses[k], k < detection.alternative_free_turn_axes.size()
+                                                       ? detection.alternative_free_turn_axes[k]
+                                                       : std::nullopt));
+  return estimates;
+}
+
+/// What the detections of one scene are judged against.
+struct SceneTargets {
+  const GroundTruth& truth;
+  const PartInfo& part;
+  const std::vector<Eigen::Isometry3d>& group; ///< the part's symmetries (symmetryGroup)
+  const std::vector<std::size_t>& targets;     ///< indices of the truth's instances of the part
+  const Tolerances& tolerances;
+};
+
+/// Judges one detection against the scene's instances: it matches the nearest instance within
+/// tolerance that no better-scored detection has claimed (marked in `matched`), else it is a
+/// false positive carrying its error to the nearest instance.
+DetectionOutcome judgeDetection(const ResultDetection& detection,
+                                const Eigen::Isometry3d& T_model_part, const SceneTargets& scene,
+                                std::vector<bool>& matched) {
+  const GroundTruth& truth = scene.truth;
+  DetectionOutcome outcome;
+  outcome.detection_id = detection.id;
+  outcome.score = detection.score;
+  outcome.T_scene_part = detection.T_scene_model * T_model_part;
+  // Reported alternative poses are scored as poses of this detection too (the best one counts).
+  const std::vector<Estimate> estimates =
+      estimatesOf(detection, T_model_part, scene.part, scene.tolerances);
+  double nearest_cost = 0.0, match_cost = 0.0;
+  std::optional<PoseError> match_error;
+  for (const std::size_t i : scene.targets) {
+    PoseError e;
+    double cost = std::numeric_limits<double>::infinity();
+    for (const auto& est : estimates) {
+      PoseError candidate = symmetricPoseError(est.T_scene_part, truth.instances[i].T_scene_part,
+                                               est.scored, scene.group, scene.tolerances);
+      const double candidate_cost = poseCost(candidate, scene.part.diameter_mm);
+      if (candidate_cost < cost) {
+        cost = candidate_cost;
+        e = std::move(candidate);
+      }
+    }
+    if (!outcome.error || cost < nearest_cost) {
+      nearest_cost = cost;
+      outcome.error = e;
+      outcome.nearest_instance_id = truth.instances[i].id;
+    }
+    if (e.within_tolerance && !matched[i] && (!match_error || cost < match_cost)) {
+      match_cost = cost;
+      match_error = std::move(e);
+      outcome.instance_id = static_cast<int>(i); // index for now, id below
+    }
+  }
+  if (match_error) {
+    const auto index = static_cast<std::size_t>(outcome.instance_id);
+    matched[index] = true;
+    outcome.true_positive = true;
+    outcome.instance_id = truth.instances[index].id;
+    outcome.counts_for_recall =
+        truth.instances[index].visible_fraction >= scene.tolerances.min_visible_fraction;
+    outcome.error = std::move(match_error);
+    outcome.nearest_instance_id = outcome.instance_id;
+  }
+  return outcome;
+}
+
+} // namespace
+
+SceneEvaluation evaluateScene(GroundTruth scene_truth, const ResultsFile& results,
+                              const GroundTruth& teach, const Tolerances& tolerances,
+                              const std::string& name,
+                              const std::vector<const GroundTruth*>& view_teach) {
+  const auto kept = std::make_shared<const GroundTruth>(std::move(scene_truth));
+  const GroundTruth& truth = *kept;
+  const TruthInstance& taught = taughtInstance(view_teach.empty() ? teach : *view_teach.front());
+  const auto part_it = truth.parts.contains(taught.part) ? truth.parts.find(taught.part)
+                                                         : teach.parts.find(taught.part);
+  const PartInfo& part = part_it->second;
+  const auto group = symmetryGroup(part.symmetry, part.diameter_mm);
+  const std::vector<Eigen::Isometry3d> T_model_part =
+      modelFramesInPart(results, view_teach, taught);
 
   SceneEvaluation scene;
   scene.name = name;
@@ -102,77 +211,15 @@ SceneEvaluation evaluateScene(GroundTruth scene_truth, const ResultsFile& result
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return results.detections[a].score > results.detections[b].score;
   });
+  const SceneTargets judged{truth, part, group, targets, tolerances};
   std::vector<bool> matched(truth.instances.size(), false);
   for (const std::size_t d : order) {
     const ResultDetection& detection = results.detections[d];
     if (detection.model >= T_model_part.size())
       throw Error(results.source + ": detection " + std::to_string(detection.id) +
                   " names a model the file does not list");
-    // A pose estimate and the part as scored for it: a reported free turn is scored as a symmetry
-    // of that pose alone.
-    struct Estimate {
-      Eigen::Isometry3d T_scene_part;
-      PartInfo scored;
-    };
-    const auto estimate = [&](const Eigen::Isometry3d& T_scene_model,
-                              const std::optional<ContinuousAxis>& free_turn_axis) {
-      Estimate e{T_scene_model * T_model_part[detection.model], part};
-      if (tolerances.accept_free_turns && free_turn_axis && !part.symmetry.continuous_axis) {
-        const Eigen::Isometry3d T_part_scene = e.T_scene_part.inverse();
-        e.scored.symmetry.continuous_axis =
-            ContinuousAxis{T_part_scene * free_turn_axis->point_mm,
-                           T_part_scene.linear() * free_turn_axis->direction};
-      }
-      return e;
-    };
-    DetectionOutcome outcome;
-    outcome.detection_id = detection.id;
-    outcome.score = detection.score;
-    outcome.T_scene_part = detection.T_scene_model * T_model_part[detection.model];
-    // Reported alternative poses are scored as poses of this detection too (the best one counts).
-    std::vector<Estimate> estimates{estimate(detection.T_scene_model, detection.free_turn_axis)};
-    if (tolerances.accept_free_turns)
-      for (std::size_t k = 0; k < detection.alternative_poses.size(); ++k)
-        estimates.push_back(
-            estimate(detection.alternative_poses[k], k < detection.alternative_free_turn_axes.size()
-                                                         ? detection.alternative_free_turn_axes[k]
-                                                         : std::nullopt));
-    double nearest_cost = 0.0, match_cost = 0.0;
-    std::optional<PoseError> match_error;
-    for (const std::size_t i : targets) {
-      PoseError e;
-      double cost = std::numeric_limits<double>::infinity();
-      for (const auto& est : estimates) {
-        PoseError candidate = symmetricPoseError(est.T_scene_part, truth.instances[i].T_scene_part,
-                                                 est.scored, group, tolerances);
-        const double candidate_cost = poseCost(candidate, part.diameter_mm);
-        if (candidate_cost < cost) {
-          cost = candidate_cost;
-          e = std::move(candidate);
-        }
-      }
-      if (!outcome.error || cost < nearest_cost) {
-        nearest_cost = cost;
-        outcome.error = e;
-        outcome.nearest_instance_id = truth.instances[i].id;
-      }
-      if (e.within_tolerance && !matched[i] && (!match_error || cost < match_cost)) {
-        match_cost = cost;
-        match_error = std::move(e);
-        outcome.instance_id = static_cast<int>(i); // index for now, id below
-      }
-    }
-    if (match_error) {
-      const auto index = static_cast<std::size_t>(outcome.instance_id);
-      matched[index] = true;
-      outcome.true_positive = true;
-      outcome.instance_id = truth.instances[index].id;
-      outcome.counts_for_recall =
-          truth.instances[index].visible_fraction >= tolerances.min_visible_fraction;
-      outcome.error = std::move(match_error);
-      outcome.nearest_instance_id = outcome.instance_id;
-    }
-    scene.outcomes.push_back(std::move(outcome));
+    scene.outcomes.push_back(
+        judgeDetection(detection, T_model_part[detection.model], judged, matched));
   }
   return scene;
 }

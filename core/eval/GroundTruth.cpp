@@ -50,34 +50,28 @@ PartSymmetry readSymmetry(const nlohmann::json& object, const std::string& where
   return symmetry;
 }
 
-} // namespace
+/// A scene's "bin": inner size, wall height and thickness (mm), each positive.
+BinGeometry readBin(const nlohmann::json& bin, const std::string& at) {
+  const auto positive = [&](const char* name) {
+    const double mm = readNumber(requireField(bin, name, at), at + "." + name);
+    if (!(mm > 0.0))
+      throw Error(at + "." + name + " must be positive");
+    return mm;
+  };
+  return BinGeometry{positive("inner_x_mm"), positive("inner_y_mm"), positive("wall_height_mm"),
+                     positive("wall_thickness_mm")};
+}
 
-namespace {
-GroundTruth parseGroundTruthFields(const nlohmann::json& doc, const std::string& source) {
-  checkFormatAndVersion(doc, "scanpick-ground-truth", kGroundTruthVersion, source);
-  if (doc.contains("units") && doc["units"] != "mm")
-    throw Error(source + ": units " + jsonExcerpt(doc["units"]) +
-                " are not supported (expected \"mm\")");
-  GroundTruth truth;
-  truth.source = source;
+/// The optional "scene" (kind, seed, cloud, bin) and "sensor" (preset, T_scene_world) objects.
+void readSceneAndSensor(const nlohmann::json& doc, const std::string& source, GroundTruth& truth) {
   if (doc.contains("scene") && doc["scene"].is_object()) {
     const auto& scene = doc["scene"];
     truth.kind = scene.value("kind", "");
     if (scene.contains("seed") && scene["seed"].is_number_unsigned())
       truth.seed = scene["seed"].get<std::uint64_t>();
     truth.cloud = scene.value("cloud", "");
-    if (scene.contains("bin")) {
-      const std::string at = source + ": scene.bin";
-      const auto& bin = scene["bin"];
-      const auto positive = [&](const char* name) {
-        const double mm = readNumber(requireField(bin, name, at), at + "." + name);
-        if (!(mm > 0.0))
-          throw Error(at + "." + name + " must be positive");
-        return mm;
-      };
-      truth.bin = BinGeometry{positive("inner_x_mm"), positive("inner_y_mm"),
-                              positive("wall_height_mm"), positive("wall_thickness_mm")};
-    }
+    if (scene.contains("bin"))
+      truth.bin = readBin(scene["bin"], source + ": scene.bin");
   }
   if (doc.contains("sensor") && doc["sensor"].is_object()) {
     const auto& sensor = doc["sensor"];
@@ -87,63 +81,82 @@ GroundTruth parseGroundTruthFields(const nlohmann::json& doc, const std::string&
       truth.T_scene_world =
           readRigidTransform(sensor["T_scene_world"], source + ": sensor.T_scene_world");
   }
+}
+
+/// Entry `name` of "parts" (`at` names it): diameter, grip points and symmetry.
+PartInfo readPart(const std::string& name, const nlohmann::json& value, const std::string& at) {
+  PartInfo part;
+  part.name = name;
+  part.diameter_mm = readNumber(requireField(value, "diameter_mm", at), at + ".diameter_mm");
+  if (part.diameter_mm <= 0.0)
+    throw Error(at + ".diameter_mm must be positive");
+  if (value.contains("grip_points"))
+    part.grip_points_part = readNamedPoints(value["grip_points"], at + ".grip_points");
+  if (value.contains("symmetry"))
+    part.symmetry = readSymmetry(value["symmetry"], at + ".symmetry");
+  return part;
+}
+
+/// Entry `index` of "instances" (`at` names it), whose part must be one of `parts`.
+TruthInstance readInstance(const nlohmann::json& value, const std::string& at, std::size_t index,
+                           const std::map<std::string, PartInfo>& parts) {
+  TruthInstance instance;
+  instance.id = value.contains("id") ? static_cast<int>(readNumber(value["id"], at + ".id"))
+                                     : static_cast<int>(index);
+  instance.part = readString(requireField(value, "part", at), at + ".part");
+  if (!parts.contains(instance.part))
+    throw Error(at + ": part '" + instance.part + "' is not described in 'parts'");
+  instance.T_scene_part =
+      readRigidTransform(requireField(value, "T_scene_part", at), at + ".T_scene_part");
+  instance.visible_fraction =
+      readNumber(requireField(value, "visible_fraction", at), at + ".visible_fraction");
+  if (instance.visible_fraction < 0.0 || instance.visible_fraction > 1.0 + 1e-9)
+    throw Error(at + ".visible_fraction must lie in [0, 1]");
+  if (value.contains("visible_points"))
+    instance.visible_points =
+        static_cast<long long>(readNumber(value["visible_points"], at + ".visible_points"));
+  if (value.contains("grip_points"))
+    instance.grip_points_scene = readNamedPoints(value["grip_points"], at + ".grip_points");
+  return instance;
+}
+
+/// The "crop_box": its pose in the scene and its corners (mm, box frame), min not above max.
+TruthCropBox readCropBox(const nlohmann::json& value, const std::string& at) {
+  TruthCropBox box;
+  box.T_scene_box = readRigidTransform(requireField(value, "T_scene_box", at), at + ".T_scene_box");
+  box.min_mm = readVector3(requireField(value, "min_mm", at), at + ".min_mm");
+  box.max_mm = readVector3(requireField(value, "max_mm", at), at + ".max_mm");
+  if ((box.min_mm.array() > box.max_mm.array()).any())
+    throw Error(at + ": min_mm exceeds max_mm");
+  return box;
+}
+
+GroundTruth parseGroundTruthFields(const nlohmann::json& doc, const std::string& source) {
+  checkFormatAndVersion(doc, "scanpick-ground-truth", kGroundTruthVersion, source);
+  if (doc.contains("units") && doc["units"] != "mm")
+    throw Error(source + ": units " + jsonExcerpt(doc["units"]) +
+                " are not supported (expected \"mm\")");
+  GroundTruth truth;
+  truth.source = source;
+  readSceneAndSensor(doc, source, truth);
 
   const auto& parts = requireField(doc, "parts", source);
   if (!parts.is_object())
     throw Error(source + ": 'parts' must be an object {name: {...}}");
-  for (const auto& [name, value] : parts.items()) {
-    const std::string at = source + ": parts." + name;
-    PartInfo part;
-    part.name = name;
-    part.diameter_mm = readNumber(requireField(value, "diameter_mm", at), at + ".diameter_mm");
-    if (part.diameter_mm <= 0.0)
-      throw Error(at + ".diameter_mm must be positive");
-    if (value.contains("grip_points"))
-      part.grip_points_part = readNamedPoints(value["grip_points"], at + ".grip_points");
-    if (value.contains("symmetry"))
-      part.symmetry = readSymmetry(value["symmetry"], at + ".symmetry");
-    truth.parts.emplace(name, std::move(part));
-  }
+  for (const auto& [name, value] : parts.items())
+    truth.parts.emplace(name, readPart(name, value, source + ": parts." + name));
 
   const auto& instances = requireField(doc, "instances", source);
   if (!instances.is_array())
     throw Error(source + ": 'instances' must be an array");
-  for (std::size_t i = 0; i < instances.size(); ++i) {
-    const auto& value = instances[i];
-    const std::string at = source + ": instances[" + std::to_string(i) + "]";
-    TruthInstance instance;
-    instance.id = value.contains("id") ? static_cast<int>(readNumber(value["id"], at + ".id"))
-                                       : static_cast<int>(i);
-    instance.part = readString(requireField(value, "part", at), at + ".part");
-    if (!truth.parts.contains(instance.part))
-      throw Error(at + ": part '" + instance.part + "' is not described in 'parts'");
-    instance.T_scene_part =
-        readRigidTransform(requireField(value, "T_scene_part", at), at + ".T_scene_part");
-    instance.visible_fraction =
-        readNumber(requireField(value, "visible_fraction", at), at + ".visible_fraction");
-    if (instance.visible_fraction < 0.0 || instance.visible_fraction > 1.0 + 1e-9)
-      throw Error(at + ".visible_fraction must lie in [0, 1]");
-    if (value.contains("visible_points"))
-      instance.visible_points =
-          static_cast<long long>(readNumber(value["visible_points"], at + ".visible_points"));
-    if (value.contains("grip_points"))
-      instance.grip_points_scene = readNamedPoints(value["grip_points"], at + ".grip_points");
-    truth.instances.push_back(std::move(instance));
-  }
-  if (doc.contains("crop_box")) {
-    const auto& value = doc["crop_box"];
-    const std::string at = source + ": crop_box";
-    TruthCropBox box;
-    box.T_scene_box =
-        readRigidTransform(requireField(value, "T_scene_box", at), at + ".T_scene_box");
-    box.min_mm = readVector3(requireField(value, "min_mm", at), at + ".min_mm");
-    box.max_mm = readVector3(requireField(value, "max_mm", at), at + ".max_mm");
-    if ((box.min_mm.array() > box.max_mm.array()).any())
-      throw Error(at + ": min_mm exceeds max_mm");
-    truth.crop_box = box;
-  }
+  for (std::size_t i = 0; i < instances.size(); ++i)
+    truth.instances.push_back(readInstance(
+        instances[i], source + ": instances[" + std::to_string(i) + "]", i, truth.parts));
+  if (doc.contains("crop_box"))
+    truth.crop_box = readCropBox(doc["crop_box"], source + ": crop_box");
   return truth;
 }
+
 } // namespace
 
 GroundTruth parseGroundTruth(const nlohmann::json& doc, const std::string& source) {
