@@ -246,48 +246,60 @@ std::string encodeModel(const TaughtModel& model) {
 }
 
 namespace {
-TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
-  const Reader r{source};
-  const std::size_t eol = bytes.find('\n');
-  if (bytes.empty() || bytes[0] != '{' || eol == std::string::npos)
-    throw Error(source + " is not a scanpick model (.spmodel): it does not start with the JSON "
-                         "header line");
-  const json header = parseJsonText(std::string_view(bytes).substr(0, eol), source,
-                                    ": it is not a readable scanpick model (.spmodel)");
+/// Checks the header's format and version (a newer version asks for an update); returns the
+/// version.
+int checkedVersion(const json& header, const Reader& r) {
   if (header.value("format", std::string()) != "scanpick-model")
-    throw Error(source + " is not a scanpick model: its format is '" +
+    throw Error(r.source + " is not a scanpick model: its format is '" +
                 header.value("format", std::string("?")) + "'");
   const int version =
       static_cast<int>(std::min<std::size_t>(r.count(r.at(header, "version"), "version"), 1000));
   if (version > kModelFormatVersion)
-    throw Error(source + " was written by a newer scanpick (model format version " +
+    throw Error(r.source + " was written by a newer scanpick (model format version " +
                 std::to_string(version) + ", this build reads up to " +
                 std::to_string(kModelFormatVersion) + "): update scanpick");
   if (version < 1)
     r.fail("invalid version " + std::to_string(version));
+  return version;
+}
 
-  const json& info = r.at(header, "block");
-  const std::size_t cloud_points = r.count(r.at(info, "cloud_points"), "cloud_points");
-  const bool normals = info.value("cloud_normals", false);
-  const std::size_t n_keypoints = r.count(r.at(info, "keypoints"), "keypoints");
+/// The point block after the header line and its layout as the header's "block" states it.
+struct PointBlock {
+  std::size_t cloud_points = 0;
+  bool normals = false;
+  std::size_t keypoints = 0;
+  std::string bytes;
+};
+
+/// Checks the header's block description (`info`) against the bytes after the header line (which
+/// ends at `eol`): counts, size and CRC-32. Throws Error for a truncated or damaged block.
+PointBlock checkedPointBlock(const std::string& bytes, std::size_t eol, const json& info,
+                             const Reader& r) {
+  PointBlock block;
+  block.cloud_points = r.count(r.at(info, "cloud_points"), "cloud_points");
+  block.normals = info.value("cloud_normals", false);
+  block.keypoints = r.count(r.at(info, "keypoints"), "keypoints");
   const std::size_t n_bytes = r.count(r.at(info, "bytes"), "bytes");
   const double crc_value = r.number(r.at(info, "crc32"), "crc32");
   if (crc_value < 0 || crc_value > 4294967295.0)
     r.fail("'crc32' is out of range");
   const auto crc = static_cast<std::uint32_t>(crc_value);
-  if (n_bytes != 12 * (cloud_points * (normals ? 2 : 1) + n_keypoints))
+  if (n_bytes != 12 * (block.cloud_points * (block.normals ? 2 : 1) + block.keypoints))
     r.fail("the point block's byte count does not match its point counts");
   const std::size_t have = bytes.size() - eol - 1;
   if (have < n_bytes)
-    throw Error(source + " is truncated: its point block holds " + std::to_string(have) + " of " +
+    throw Error(r.source + " is truncated: its point block holds " + std::to_string(have) + " of " +
                 std::to_string(n_bytes) + " bytes (copy the file again or teach the part again)");
   if (have > n_bytes)
     r.fail(std::to_string(have - n_bytes) + " unexpected bytes after the point block");
-  const std::string block = bytes.substr(eol + 1);
-  if (crc32(block.data(), block.size()) != crc)
+  block.bytes = bytes.substr(eol + 1);
+  if (crc32(block.bytes.data(), block.bytes.size()) != crc)
     r.fail("the point block's checksum does not match (CRC-32)");
+  return block;
+}
 
-  TaughtModel model;
+/// Reads the part's name, units, size and frames (teach scan to model, part to model).
+void readDescription(const json& header, const Reader& r, TaughtModel& model) {
   model.name = header.value("name", std::string("part"));
   model.teach_scan = header.value("teach_scan", std::string());
   model.source_units = parseLengthUnit(header.value("source_units", std::string("mm")));
@@ -297,6 +309,11 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   model.T_teach_model = r.rigid(r.at(header, "T_teach_model"), "T_teach_model");
   if (header.contains("T_part_model"))
     model.T_part_model = r.rigid(header["T_part_model"], "T_part_model");
+}
+
+/// Reads the optional per-view parameter values and the reasons they were chosen, each checked
+/// against the parameter table.
+void readViewParamsAndReasons(const json& header, const Reader& r, TaughtModel& model) {
   if (header.contains("view_params")) {
     const json& view = header["view_params"];
     if (!view.is_object())
@@ -321,6 +338,54 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
       model.param_reasons[key] = reason.get<std::string>();
     }
   }
+}
+
+/// One entry of "features": a line or circle (mm, model frame) with a unit direction.
+Feature featureFromJson(const json& f, const Reader& r) {
+  Feature feature;
+  const std::string type = r.at(f, "type").get<std::string>();
+  if (type != "line" && type != "circle")
+    r.fail("unknown feature type '" + type + "'");
+  feature.type = type == "line" ? FeatureType::Line : FeatureType::Circle;
+  feature.centre_mm = r.vector(r.at(f, "centre_mm"), "centre_mm").cast<float>();
+  feature.direction = r.vector(r.at(f, "direction"), "direction").cast<float>();
+  feature.size_mm = static_cast<float>(r.length(r.at(f, "size_mm"), "size_mm"));
+  if (std::abs(feature.direction.norm() - 1.0f) > 1e-3f || !(feature.size_mm >= 0))
+    r.fail("a feature's direction is not a unit vector or its size is negative");
+  feature.inlier_count =
+      f.contains("inlier_count") ? static_cast<int>(r.count(f["inlier_count"], "inlier_count")) : 0;
+  return feature;
+}
+
+/// One entry of "grip_points" (mm, model frame), checked as teach checks it.
+GripPoint gripFromJson(const json& g, const Reader& r) {
+  GripPoint grip{g.value("name", std::string("grip")),
+                 r.vector(r.at(g, "position_mm"), "position_mm")};
+  if (g.contains("approach"))
+    grip.approach = r.vector(g["approach"], "approach");
+  if (g.contains("closing_axis"))
+    grip.closing_axis = r.vector(g["closing_axis"], "closing_axis");
+  try {
+    return checkedGrip(grip);
+  } catch (const Error& e) {
+    r.fail(e.what());
+  }
+}
+
+TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
+  const Reader r{source};
+  const std::size_t eol = bytes.find('\n');
+  if (bytes.empty() || bytes[0] != '{' || eol == std::string::npos)
+    throw Error(source + " is not a scanpick model (.spmodel): it does not start with the JSON "
+                         "header line");
+  const json header = parseJsonText(std::string_view(bytes).substr(0, eol), source,
+                                    ": it is not a readable scanpick model (.spmodel)");
+  const int version = checkedVersion(header, r);
+  const PointBlock block = checkedPointBlock(bytes, eol, r.at(header, "block"), r);
+
+  TaughtModel model;
+  readDescription(header, r, model);
+  readViewParamsAndReasons(header, r, model);
   if (header.contains("sensor"))
     model.sensor = sensorFromJson(header["sensor"], r);
   try {
@@ -328,41 +393,16 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   } catch (const Error& e) {
     r.fail(std::string("parameters: ") + e.what());
   }
-  for (const auto& f : r.at(header, "features")) {
-    Feature feature;
-    const std::string type = r.at(f, "type").get<std::string>();
-    if (type != "line" && type != "circle")
-      r.fail("unknown feature type '" + type + "'");
-    feature.type = type == "line" ? FeatureType::Line : FeatureType::Circle;
-    feature.centre_mm = r.vector(r.at(f, "centre_mm"), "centre_mm").cast<float>();
-    feature.direction = r.vector(r.at(f, "direction"), "direction").cast<float>();
-    feature.size_mm = static_cast<float>(r.length(r.at(f, "size_mm"), "size_mm"));
-    if (std::abs(feature.direction.norm() - 1.0f) > 1e-3f || !(feature.size_mm >= 0))
-      r.fail("a feature's direction is not a unit vector or its size is negative");
-    feature.inlier_count = f.contains("inlier_count")
-                               ? static_cast<int>(r.count(f["inlier_count"], "inlier_count"))
-                               : 0;
-    model.features.push_back(feature);
-  }
-  for (const auto& g : header.value("grip_points", json::array())) {
-    GripPoint grip{g.value("name", std::string("grip")),
-                   r.vector(r.at(g, "position_mm"), "position_mm")};
-    if (g.contains("approach"))
-      grip.approach = r.vector(g["approach"], "approach");
-    if (g.contains("closing_axis"))
-      grip.closing_axis = r.vector(g["closing_axis"], "closing_axis");
-    try {
-      model.grip_points.push_back(checkedGrip(grip));
-    } catch (const Error& e) {
-      r.fail(e.what());
-    }
-  }
+  for (const auto& f : r.at(header, "features"))
+    model.features.push_back(featureFromJson(f, r));
+  for (const auto& g : header.value("grip_points", json::array()))
+    model.grip_points.push_back(gripFromJson(g, r));
   std::size_t offset = 0;
-  model.cloud_mm = PointCloud::fromPoints(readPoints(block, offset, cloud_points));
-  if (normals)
-    model.cloud_mm.normals = readPoints(block, offset, cloud_points);
-  model.keypoints_mm = readPoints(block, offset, n_keypoints);
-  if (cloud_points == 0 || !model.cloud_mm.hasValidPoint())
+  model.cloud_mm = PointCloud::fromPoints(readPoints(block.bytes, offset, block.cloud_points));
+  if (block.normals)
+    model.cloud_mm.normals = readPoints(block.bytes, offset, block.cloud_points);
+  model.keypoints_mm = readPoints(block.bytes, offset, block.keypoints);
+  if (block.cloud_points == 0 || !model.cloud_mm.hasValidPoint())
     r.fail("the model holds no points");
   // Last, so that a header whose values are wrong says which; one edited to values that read
   // well is still refused.
