@@ -140,137 +140,187 @@ std::optional<Eigen::Vector4f> fitPlane(const std::vector<Eigen::Vector3f>& poin
   return plane;
 }
 
+/// The floor search over one scan: the valid points not removed yet and the planes removed so far.
+struct FloorSearch {
+  FloorSearch(const PointCloud& scene, const FloorParams& floor_params, std::vector<int> valid)
+      : scene_mm(scene), params(floor_params), total_valid(valid.size()), alive(std::move(valid)),
+        removed(scene.size(), 0) {}
+
+  const PointCloud& scene_mm;
+  const FloorParams& params;
+  std::size_t total_valid = 0; ///< valid points of the scan
+  std::vector<int> alive;      ///< valid points not removed yet (indices into scene_mm)
+  std::vector<char> removed;   ///< per point of scene_mm: 1 when removed
+  FloorRemovalResult result;
+};
+
+/// Throws Error for a mask that does not match the scan or a plane distance that is not positive.
+void checkFloorInputs(const PointCloud& scene_mm, const FloorParams& params,
+                      const std::vector<char>& part) {
+  if (!part.empty() && part.size() != scene_mm.size())
+    throw Error("floor removal: " + std::to_string(part.size()) + " part flags for " +
+                std::to_string(scene_mm.size()) + " points");
+  if (params.distance_mm <= 0)
+    throw Error("floor removal needs a positive plane distance (floor.distance_mm), got " +
+                std::to_string(params.distance_mm));
+}
+
+/// Removes the remaining points within params.distance_mm of `plane` if there are at least
+/// `min_count` of them, recording the plane; returns whether it did.
+bool removePlane(FloorSearch& search, const Eigen::Vector4f& plane, std::size_t min_count) {
+  const PointCloud& scene_mm = search.scene_mm;
+  std::vector<int>& alive = search.alive;
+  std::vector<char> on_plane(alive.size(), 0);
+  const auto distance = static_cast<float>(search.params.distance_mm);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, alive.size(), 16384),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t j = r.begin(); j < r.end(); ++j) {
+                        const auto& p = scene_mm.points_mm[static_cast<std::size_t>(alive[j])];
+                        on_plane[j] = std::abs(plane.head<3>().dot(p) + plane[3]) <= distance;
+                      }
+                    });
+  const auto count = static_cast<std::size_t>(std::count(on_plane.begin(), on_plane.end(), 1));
+  if (count < std::max<std::size_t>(1, min_count))
+    return false;
+  std::vector<int> still_alive;
+  still_alive.reserve(alive.size() - count);
+  for (std::size_t j = 0; j < alive.size(); ++j) {
+    if (on_plane[j])
+      search.removed[static_cast<std::size_t>(alive[j])] = 1;
+    else
+      still_alive.push_back(alive[j]);
+  }
+  alive.swap(still_alive);
+  logger()->debug("floor plane {}: ({:.3f}, {:.3f}, {:.3f}) at {:.1f} mm from the camera, {} "
+                  "points ({:.1f} % of the scan)",
+                  search.result.planes.size(), plane[0], plane[1], plane[2], plane[3], count,
+                  100.0 * double(count) / double(search.total_valid));
+  search.result.planes.push_back(plane);
+  search.result.removed_points += count;
+  return true;
+}
+
+/// Whether more than kMaxShareBehindFloor of the valid points lie beyond `plane`.
+bool hasPointsBehind(const FloorSearch& search, const Eigen::Vector4f& plane) {
+  const auto beyond = static_cast<float>(-kBehindDistances * search.params.distance_mm);
+  const auto behind = std::count_if(search.alive.begin(), search.alive.end(), [&](int i) {
+    const auto& p = search.scene_mm.points_mm[static_cast<std::size_t>(i)];
+    return plane.head<3>().dot(p) + plane[3] < beyond;
+  });
+  return double(behind) > kMaxShareBehindFloor * double(search.total_valid);
+}
+
+/// Flags in `set_aside` the `candidates` within params.distance_mm of `plane` (a face of a part).
+void setAsidePlane(const FloorSearch& search, const std::vector<int>& candidates,
+                   const Eigen::Vector4f& plane, std::vector<char>& set_aside) {
+  logger()->debug("plane ({:.3f}, {:.3f}, {:.3f}) at {:.1f} mm has points behind it: a "
+                  "face of a part, not the floor",
+                  plane[0], plane[1], plane[2], plane[3]);
+  const auto distance = static_cast<float>(search.params.distance_mm);
+  for (const int i : candidates) {
+    const auto& p = search.scene_mm.points_mm[static_cast<std::size_t>(i)];
+    if (std::abs(plane.head<3>().dot(p) + plane[3]) <= distance)
+      set_aside[static_cast<std::size_t>(i)] = 1;
+  }
+}
+
+/// Removes up to params.max_planes planes of at least `min_points` points, largest first. With
+/// `support_only`, planes with points behind them are set aside (at most kFloorRetries times).
+void removeFloorPlanes(FloorSearch& search, std::size_t min_points, bool support_only,
+                       std::uint64_t seed, const ProgressFn& progress) {
+  const FloorParams& params = search.params;
+  std::vector<char> set_aside(search.scene_mm.size(), 0);
+  const int planes = params.enabled ? params.max_planes : 0;
+  for (int plane = 0, retries = 0; plane < planes && search.alive.size() >= 3;) {
+    reportProgress(progress, static_cast<double>(plane) / planes);
+    std::vector<int> candidates;
+    candidates.reserve(search.alive.size());
+    for (const int i : search.alive)
+      if (!set_aside[static_cast<std::size_t>(i)])
+        candidates.push_back(i);
+    const std::uint64_t attempt = static_cast<std::uint64_t>(plane + 1 + 1000 * retries);
+    const auto found = fitPlane(search.scene_mm.points_mm, candidates, params.distance_mm,
+                                seed + 0x9e3779b97f4a7c15ULL * attempt);
+    if (!found)
+      break;
+    if (support_only && hasPointsBehind(search, *found)) {
+      if (++retries > kFloorRetries)
+        break;
+      setAsidePlane(search, candidates, *found, set_aside);
+      continue;
+    }
+    if (!removePlane(search, *found, min_points))
+      break; // the largest remaining plane is too small: no more floor or walls
+    ++plane;
+  }
+}
+
+/// Whether more of `plane`'s points lie outside the part than in it: a floor reaches beyond
+/// the part resting on it, a face of the part does not.
+bool reachesBeyondPart(const FloorSearch& search, const std::vector<char>& part,
+                       const Eigen::Vector4f& plane) {
+  std::size_t inside = 0, outside = 0;
+  for (const int i : search.alive) {
+    const auto& p = search.scene_mm.points_mm[static_cast<std::size_t>(i)];
+    if (std::abs(plane.head<3>().dot(p) + plane[3]) <= search.params.distance_mm)
+      ++(part[static_cast<std::size_t>(i)] ? inside : outside);
+  }
+  return outside > inside;
+}
+
+/// Removes the bin floor above the first plane removed, if params.bin_floor_fraction asks for it
+/// and one is found (with a `part`, only one that reaches beyond it).
+void removeBinFloor(FloorSearch& search, const std::vector<char>& part, bool support_only) {
+  const FloorParams& params = search.params;
+  if (!(params.bin_floor_fraction > 0 && !search.result.planes.empty()))
+    return;
+  const auto min_bin_floor_points =
+      static_cast<std::size_t>(std::ceil(params.bin_floor_fraction * double(search.total_valid)));
+  const auto bin_floor =
+      findBinFloor(search.scene_mm.points_mm, search.alive, search.result.planes.front(),
+                   params.distance_mm, min_bin_floor_points);
+  if (bin_floor && (!support_only || reachesBeyondPart(search, part, *bin_floor)))
+    removePlane(search, *bin_floor, min_bin_floor_points);
+}
+
+/// `scene_mm` without the `removed` points: NaN in their place when organized, else dropped.
+PointCloud withoutRemoved(const PointCloud& scene_mm, const std::vector<char>& removed) {
+  if (scene_mm.isOrganized()) {
+    PointCloud remaining = scene_mm;
+    for (std::size_t i = 0; i < removed.size(); ++i)
+      if (removed[i])
+        remaining.points_mm[i] = invalidPoint();
+    return remaining;
+  }
+  PointCloud marked = scene_mm;
+  for (std::size_t i = 0; i < removed.size(); ++i)
+    if (removed[i])
+      marked.points_mm[i] = invalidPoint();
+  return dropInvalid(marked);
+}
+
 } // namespace
 
 FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& params,
                                std::uint64_t seed, const ProgressFn& progress,
                                const std::vector<char>& part) {
   scene_mm.validate();
-  if (!part.empty() && part.size() != scene_mm.size())
-    throw Error("floor removal: " + std::to_string(part.size()) + " part flags for " +
-                std::to_string(scene_mm.size()) + " points");
+  checkFloorInputs(scene_mm, params, part);
   const bool support_only = !part.empty();
-  if (params.distance_mm <= 0)
-    throw Error("floor removal needs a positive plane distance (floor.distance_mm), got " +
-                std::to_string(params.distance_mm));
-  FloorRemovalResult result;
-  std::vector<char> removed(scene_mm.size(), 0);
   std::vector<int> alive;
   alive.reserve(scene_mm.size());
   for (std::size_t i = 0; i < scene_mm.size(); ++i)
     if (isValid(scene_mm.points_mm[i]))
       alive.push_back(static_cast<int>(i));
-  const std::size_t total_valid = alive.size();
+  FloorSearch search(scene_mm, params, std::move(alive));
 
-  // Removes the remaining points within params.distance_mm of `plane` if there are at least
-  // `min_count` of them; returns whether it did.
-  const auto removePlane = [&](const Eigen::Vector4f& plane, std::size_t min_count) {
-    std::vector<char> on_plane(alive.size(), 0);
-    const auto distance = static_cast<float>(params.distance_mm);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, alive.size(), 16384),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t j = r.begin(); j < r.end(); ++j) {
-                          const auto& p = scene_mm.points_mm[static_cast<std::size_t>(alive[j])];
-                          on_plane[j] = std::abs(plane.head<3>().dot(p) + plane[3]) <= distance;
-                        }
-                      });
-    const auto count = static_cast<std::size_t>(std::count(on_plane.begin(), on_plane.end(), 1));
-    if (count < std::max<std::size_t>(1, min_count))
-      return false;
-    std::vector<int> still_alive;
-    still_alive.reserve(alive.size() - count);
-    for (std::size_t j = 0; j < alive.size(); ++j) {
-      if (on_plane[j])
-        removed[static_cast<std::size_t>(alive[j])] = 1;
-      else
-        still_alive.push_back(alive[j]);
-    }
-    alive.swap(still_alive);
-    logger()->debug("floor plane {}: ({:.3f}, {:.3f}, {:.3f}) at {:.1f} mm from the camera, {} "
-                    "points ({:.1f} % of the scan)",
-                    result.planes.size(), plane[0], plane[1], plane[2], plane[3], count,
-                    100.0 * double(count) / double(total_valid));
-    result.planes.push_back(plane);
-    result.removed_points += count;
-    return true;
-  };
   const auto min_points =
-      static_cast<std::size_t>(std::ceil(params.min_plane_fraction * double(total_valid)));
-  // Whether more than kMaxShareBehindFloor of the valid points lie beyond `plane`.
-  const auto hasPointsBehind = [&](const Eigen::Vector4f& plane) {
-    const auto beyond = static_cast<float>(-kBehindDistances * params.distance_mm);
-    const auto behind = std::count_if(alive.begin(), alive.end(), [&](int i) {
-      const auto& p = scene_mm.points_mm[static_cast<std::size_t>(i)];
-      return plane.head<3>().dot(p) + plane[3] < beyond;
-    });
-    return double(behind) > kMaxShareBehindFloor * double(total_valid);
-  };
-  std::vector<char> set_aside(scene_mm.size(), 0);
-  const int planes = params.enabled ? params.max_planes : 0;
-  for (int plane = 0, retries = 0; plane < planes && alive.size() >= 3;) {
-    reportProgress(progress, static_cast<double>(plane) / planes);
-    std::vector<int> candidates;
-    candidates.reserve(alive.size());
-    for (const int i : alive)
-      if (!set_aside[static_cast<std::size_t>(i)])
-        candidates.push_back(i);
-    const std::uint64_t attempt = static_cast<std::uint64_t>(plane + 1 + 1000 * retries);
-    const auto found = fitPlane(scene_mm.points_mm, candidates, params.distance_mm,
-                                seed + 0x9e3779b97f4a7c15ULL * attempt);
-    if (!found)
-      break;
-    if (support_only && hasPointsBehind(*found)) {
-      if (++retries > kFloorRetries)
-        break;
-      logger()->debug("plane ({:.3f}, {:.3f}, {:.3f}) at {:.1f} mm has points behind it: a "
-                      "face of a part, not the floor",
-                      (*found)[0], (*found)[1], (*found)[2], (*found)[3]);
-      const auto distance = static_cast<float>(params.distance_mm);
-      for (const int i : candidates) {
-        const auto& p = scene_mm.points_mm[static_cast<std::size_t>(i)];
-        if (std::abs(found->head<3>().dot(p) + (*found)[3]) <= distance)
-          set_aside[static_cast<std::size_t>(i)] = 1;
-      }
-      continue;
-    }
-    if (!removePlane(*found, min_points))
-      break; // the largest remaining plane is too small: no more floor or walls
-    ++plane;
-  }
-  // Whether more of `plane`'s points lie outside the part than in it: a floor reaches beyond
-  // the part resting on it, a face of the part does not.
-  const auto reachesBeyondPart = [&](const Eigen::Vector4f& plane) {
-    std::size_t inside = 0, outside = 0;
-    for (const int i : alive) {
-      const auto& p = scene_mm.points_mm[static_cast<std::size_t>(i)];
-      if (std::abs(plane.head<3>().dot(p) + plane[3]) <= params.distance_mm)
-        ++(part[static_cast<std::size_t>(i)] ? inside : outside);
-    }
-    return outside > inside;
-  };
-  if (params.bin_floor_fraction > 0 && !result.planes.empty()) {
-    const auto min_bin_floor_points =
-        static_cast<std::size_t>(std::ceil(params.bin_floor_fraction * double(total_valid)));
-    const auto bin_floor = findBinFloor(scene_mm.points_mm, alive, result.planes.front(),
-                                        params.distance_mm, min_bin_floor_points);
-    if (bin_floor && (!support_only || reachesBeyondPart(*bin_floor)))
-      removePlane(*bin_floor, min_bin_floor_points);
-  }
-
-  if (scene_mm.isOrganized()) {
-    result.remaining = scene_mm;
-    for (std::size_t i = 0; i < removed.size(); ++i)
-      if (removed[i])
-        result.remaining.points_mm[i] = invalidPoint();
-  } else {
-    PointCloud marked = scene_mm;
-    for (std::size_t i = 0; i < removed.size(); ++i)
-      if (removed[i])
-        marked.points_mm[i] = invalidPoint();
-    result.remaining = dropInvalid(marked);
-  }
+      static_cast<std::size_t>(std::ceil(params.min_plane_fraction * double(search.total_valid)));
+  removeFloorPlanes(search, min_points, support_only, seed, progress);
+  removeBinFloor(search, part, support_only);
+  search.result.remaining = withoutRemoved(scene_mm, search.removed);
   reportProgress(progress, 1.0);
-  return result;
+  return std::move(search.result);
 }
 
 } // namespace scanpick::core
