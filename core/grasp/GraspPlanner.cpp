@@ -197,6 +197,113 @@ Eigen::Isometry3d toolPose(const Eigen::Isometry3d& T_scene_model, const GraspPo
   return T;
 }
 
+namespace {
+
+/// Rejects the candidate as Ambiguous when its grasp moves or turns more than tolerated between
+/// the detection's pose and the poses the scan cannot tell from it (alternatives, free turns).
+void checkAmbiguous(const Detection& det, const GraspPoint& grasp, const GraspPlanParams& p,
+                    GraspCandidate& c) {
+  const Eigen::Vector3d approach = c.T_scene_tool.linear().col(2);
+  double moved = 0.0, turned = 0.0;
+  for (const auto& alt : det.alternative_poses) {
+    const Eigen::Isometry3d T_alt = toolPose(alt, grasp);
+    moved = std::max(moved, (T_alt.translation() - c.T_scene_tool.translation()).norm());
+    turned = std::max(turned,
+                      std::acos(std::clamp(T_alt.linear().col(2).dot(approach), -1.0, 1.0)) / kDeg);
+  }
+  if (det.free_turn_axis) {
+    const Eigen::Vector3d a = det.free_turn_axis->direction.normalized();
+    const Eigen::Vector3d v = c.T_scene_tool.translation() - det.free_turn_axis->point_mm;
+    // A turn about the axis moves the grip by up to twice its distance from the axis.
+    moved = std::max(moved, 2.0 * (v - v.dot(a) * a).norm());
+    turned =
+        std::max(turned, 2.0 * std::asin(std::clamp(approach.cross(a).norm(), 0.0, 1.0)) / kDeg);
+  }
+  if (moved > p.part_tolerance_mm || turned > kMaxAmbiguousTurnDeg)
+    c.rejections.push_back(
+        {RejectKind::Ambiguous,
+         format("the grasp moves up to %.1f mm (turns %.0f deg) between poses the scan "
+                "cannot tell apart",
+                moved, turned)});
+}
+
+/// Grasp `g` of detection `d` with the tool pose and pregrasp in the scene, its tilt, height and
+/// occlusion `occ`, rejected for a low score, ambiguity or tilt (collisions are checked apart).
+GraspCandidate candidateFor(const Detection& det, std::size_t d, std::size_t g,
+                            const GraspPoint& grasp, double occ, const GraspPlanParams& p) {
+  GraspCandidate c;
+  c.detection = int(d);
+  c.grasp = int(g);
+  c.grip = grasp.name;
+  c.T_scene_tool = toolPose(det.T_scene_model, grasp);
+  c.T_scene_pregrasp = c.T_scene_tool * Eigen::Translation3d(0.0, 0.0, -p.approach_length_mm);
+  const Eigen::Vector3d approach = c.T_scene_tool.linear().col(2);
+  c.tilt_deg = std::acos(std::clamp(approach.dot(-p.up), -1.0, 1.0)) / kDeg;
+  c.height_mm = c.T_scene_tool.translation().dot(p.up);
+  c.occlusion = occ;
+  c.score = det.score;
+  if (det.score < p.min_score)
+    c.rejections.push_back(
+        {RejectKind::LowScore, format("score %.3f < minimum %.3f", det.score, p.min_score)});
+  if (p.reject_ambiguous)
+    checkAmbiguous(det, grasp, p, c);
+  if (c.tilt_deg > p.max_tilt_deg)
+    c.rejections.push_back(
+        {RejectKind::TiltTooLarge, format("approach tilted %.1f deg from straight down (max %.1f)",
+                                          c.tilt_deg, p.max_tilt_deg)});
+  return c;
+}
+
+/// Appends each tool solid's collisions with the scan's points and, when there is one, the bin.
+void checkCollisions(const PointGrid& grid, const Owned& owned, int picked,
+                     const std::vector<ToolSolid>& solids, const std::optional<BinBox>& bin,
+                     const GraspPlanParams& p, GraspCandidate& c) {
+  for (const auto& solid : solids) {
+    checkPoints(grid, owned, picked, solid, c.T_scene_tool, p, c.rejections);
+    if (!bin)
+      continue;
+    for (const auto& q : solidSurfaceSamples(solid, p.bin_sample_mm)) {
+      const std::string hit = binCollision(*bin, c.T_scene_tool * q);
+      if (!hit.empty()) {
+        c.rejections.push_back({RejectKind::BinCollision, solid.name + " hits the " + hit});
+        break;
+      }
+    }
+  }
+}
+
+/// Sorts the picks by the pick order (ties by detection, then grasp) and, with one_per_part,
+/// keeps each detection's first.
+void orderPicks(std::vector<GraspCandidate>& picks, const GraspPlanParams& p) {
+  const auto key = [&p](const GraspCandidate& c) {
+    switch (p.order) {
+    case PickOrder::LeastOccluded:
+      return std::make_tuple(c.occlusion, -c.height_mm);
+    case PickOrder::BestScore:
+      return std::make_tuple(-c.score, -c.height_mm);
+    default:
+      return std::make_tuple(-c.height_mm, 0.0);
+    }
+  };
+  std::stable_sort(picks.begin(), picks.end(),
+                   [&](const GraspCandidate& a, const GraspCandidate& b) {
+                     return std::make_tuple(key(a), a.detection, a.grasp) <
+                            std::make_tuple(key(b), b.detection, b.grasp);
+                   });
+  if (p.one_per_part) {
+    std::vector<GraspCandidate> kept;
+    std::vector<int> taken;
+    for (auto& c : picks)
+      if (std::find(taken.begin(), taken.end(), c.detection) == taken.end()) {
+        taken.push_back(c.detection);
+        kept.push_back(std::move(c));
+      }
+    picks = std::move(kept);
+  }
+}
+
+} // namespace
+
 PickList planGrasps(const PointCloud& scene_mm, const std::vector<Detection>& detections,
                     const std::vector<GraspModel>& models, const Gripper& gripper,
                     const std::optional<BinBox>& bin, const GraspPlanParams& p) {
@@ -218,60 +325,8 @@ PickList planGrasps(const PointCloud& scene_mm, const std::vector<Detection>& de
     const double occ =
         model.grasps.empty() ? 0.0 : occlusion(grid, owned, det, int(d), model.cloud_mm, p);
     for (std::size_t g = 0; g < model.grasps.size(); ++g) {
-      const GraspPoint& grasp = model.grasps[g];
-      GraspCandidate c;
-      c.detection = int(d);
-      c.grasp = int(g);
-      c.grip = grasp.name;
-      c.T_scene_tool = toolPose(det.T_scene_model, grasp);
-      c.T_scene_pregrasp = c.T_scene_tool * Eigen::Translation3d(0.0, 0.0, -p.approach_length_mm);
-      const Eigen::Vector3d approach = c.T_scene_tool.linear().col(2);
-      c.tilt_deg = std::acos(std::clamp(approach.dot(-p.up), -1.0, 1.0)) / kDeg;
-      c.height_mm = c.T_scene_tool.translation().dot(p.up);
-      c.occlusion = occ;
-      c.score = det.score;
-      if (det.score < p.min_score)
-        c.rejections.push_back(
-            {RejectKind::LowScore, format("score %.3f < minimum %.3f", det.score, p.min_score)});
-      if (p.reject_ambiguous) {
-        double moved = 0.0, turned = 0.0;
-        for (const auto& alt : det.alternative_poses) {
-          const Eigen::Isometry3d T_alt = toolPose(alt, grasp);
-          moved = std::max(moved, (T_alt.translation() - c.T_scene_tool.translation()).norm());
-          turned = std::max(
-              turned, std::acos(std::clamp(T_alt.linear().col(2).dot(approach), -1.0, 1.0)) / kDeg);
-        }
-        if (det.free_turn_axis) {
-          const Eigen::Vector3d a = det.free_turn_axis->direction.normalized();
-          const Eigen::Vector3d v = c.T_scene_tool.translation() - det.free_turn_axis->point_mm;
-          // A turn about the axis moves the grip by up to twice its distance from the axis.
-          moved = std::max(moved, 2.0 * (v - v.dot(a) * a).norm());
-          turned = std::max(turned,
-                            2.0 * std::asin(std::clamp(approach.cross(a).norm(), 0.0, 1.0)) / kDeg);
-        }
-        if (moved > p.part_tolerance_mm || turned > kMaxAmbiguousTurnDeg)
-          c.rejections.push_back(
-              {RejectKind::Ambiguous,
-               format("the grasp moves up to %.1f mm (turns %.0f deg) between poses the scan "
-                      "cannot tell apart",
-                      moved, turned)});
-      }
-      if (c.tilt_deg > p.max_tilt_deg)
-        c.rejections.push_back({RejectKind::TiltTooLarge,
-                                format("approach tilted %.1f deg from straight down (max %.1f)",
-                                       c.tilt_deg, p.max_tilt_deg)});
-      for (const auto& solid : solids) {
-        checkPoints(grid, owned, int(d), solid, c.T_scene_tool, p, c.rejections);
-        if (!bin)
-          continue;
-        for (const auto& q : solidSurfaceSamples(solid, p.bin_sample_mm)) {
-          const std::string hit = binCollision(*bin, c.T_scene_tool * q);
-          if (!hit.empty()) {
-            c.rejections.push_back({RejectKind::BinCollision, solid.name + " hits the " + hit});
-            break;
-          }
-        }
-      }
+      GraspCandidate c = candidateFor(det, d, g, model.grasps[g], occ, p);
+      checkCollisions(grid, owned, int(d), solids, bin, p, c);
       all.push_back(std::move(c));
     }
   }
@@ -279,31 +334,7 @@ PickList planGrasps(const PointCloud& scene_mm, const std::vector<Detection>& de
   PickList out;
   for (auto& c : all)
     (c.feasible() ? out.picks : out.rejected).push_back(std::move(c));
-  const auto key = [&p](const GraspCandidate& c) {
-    switch (p.order) {
-    case PickOrder::LeastOccluded:
-      return std::make_tuple(c.occlusion, -c.height_mm);
-    case PickOrder::BestScore:
-      return std::make_tuple(-c.score, -c.height_mm);
-    default:
-      return std::make_tuple(-c.height_mm, 0.0);
-    }
-  };
-  std::stable_sort(out.picks.begin(), out.picks.end(),
-                   [&](const GraspCandidate& a, const GraspCandidate& b) {
-                     return std::make_tuple(key(a), a.detection, a.grasp) <
-                            std::make_tuple(key(b), b.detection, b.grasp);
-                   });
-  if (p.one_per_part) {
-    std::vector<GraspCandidate> kept;
-    std::vector<int> taken;
-    for (auto& c : out.picks)
-      if (std::find(taken.begin(), taken.end(), c.detection) == taken.end()) {
-        taken.push_back(c.detection);
-        kept.push_back(std::move(c));
-      }
-    out.picks = std::move(kept);
-  }
+  orderPicks(out.picks, p);
   return out;
 }
 
