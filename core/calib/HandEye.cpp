@@ -162,15 +162,14 @@ void checkPoses(const std::vector<Eigen::Isometry3d>& T_base_flange, const HandE
   checkMotion(T_base_flange, params);
 }
 
-HandEyeResult calibrateHandEye(HandEyeMode mode, const std::vector<HandEyeSample>& samples,
-                               const TargetLayout& layout, const HandEyeParams& params) {
-  const int n = int(samples.size());
-  std::vector<Eigen::Isometry3d> all_flanges;
-  for (const auto& s : samples)
-    all_flanges.push_back(s.T_base_flange);
-  checkPoses(all_flanges, params);
+namespace {
+
+/// Each sample's pose data for `mode`; throws Error for a pose with fewer than 3 sphere centres.
+std::vector<detail::PoseData> checkedPoseData(HandEyeMode mode,
+                                              const std::vector<HandEyeSample>& samples,
+                                              const TargetLayout& layout) {
   std::vector<detail::PoseData> data;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < int(samples.size()); ++i) {
     data.push_back(poseData(mode, samples[std::size_t(i)], layout));
     if (data.back().centres.size() < 3)
       throw Error(std::string("pose ")
@@ -179,10 +178,44 @@ HandEyeResult calibrateHandEye(HandEyeMode mode, const std::vector<HandEyeSample
                       .append(std::to_string(data.back().centres.size()))
                       .append(" sphere centres of the target: at least 3 are needed"));
   }
+  return data;
+}
 
-  HandEyeResult result;
-  result.mode = mode;
-  result.residuals.resize(std::size_t(n));
+/// The residuals of the active poses against one solution and the worst outlier among them.
+struct Outlier {
+  std::vector<double> mm, deg; ///< RMS (mm) and rotation (degrees) per active pose
+  double limit_mm = 0, limit_deg = 0;
+  int worst = -1; ///< index into the active poses of the worst beyond a limit; -1: none
+};
+
+/// Finds the active pose furthest beyond the robust limits (median + factor × scaled MAD).
+Outlier worstOutlier(const std::vector<int>& active, const std::vector<detail::PoseData>& data,
+                     const detail::Solution& solution, const HandEyeParams& params) {
+  Outlier o;
+  for (const int i : active) {
+    const PoseResidual r = residualOf(i, data[std::size_t(i)], solution);
+    o.mm.push_back(r.rms_mm);
+    o.deg.push_back(r.rot_deg);
+  }
+  o.limit_mm = robustLimit(o.mm, params.outlier_mad_factor, params.outlier_floor_mm);
+  o.limit_deg = robustLimit(o.deg, params.outlier_mad_factor, params.outlier_floor_deg);
+  double worst_excess = 1.0;
+  for (std::size_t a = 0; a < active.size(); ++a) {
+    const double excess = std::max(o.mm[a] / o.limit_mm, o.deg[a] / o.limit_deg);
+    if (excess > worst_excess)
+      worst_excess = excess, o.worst = int(a);
+  }
+  return o;
+}
+
+/// Solves over all poses, then rejects the worst outlier and solves again until none is left,
+/// writing each rejected pose's reason into `residuals` (one per sample). Throws Error when more
+/// than max_rejected_fraction of the poses, or all but 3, would have to go.
+detail::Solution solveRejectingOutliers(const std::vector<HandEyeSample>& samples,
+                                        const std::vector<detail::PoseData>& data,
+                                        const HandEyeParams& params,
+                                        std::vector<PoseResidual>& residuals) {
+  const int n = int(samples.size());
   std::vector<int> active(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
     active[std::size_t(i)] = i;
@@ -197,27 +230,13 @@ HandEyeResult calibrateHandEye(HandEyeMode mode, const std::vector<HandEyeSample
     }
     checkMotion(flanges, params);
     solution = solve(used, params.max_iterations);
-
-    std::vector<double> mm, deg;
-    for (const int i : active) {
-      const PoseResidual r = residualOf(i, data[std::size_t(i)], solution);
-      mm.push_back(r.rms_mm);
-      deg.push_back(r.rot_deg);
-    }
-    const double limit_mm = robustLimit(mm, params.outlier_mad_factor, params.outlier_floor_mm);
-    const double limit_deg = robustLimit(deg, params.outlier_mad_factor, params.outlier_floor_deg);
     // The worst pose goes first: a wrong pose drags the solution and with it the others'
     // residuals, which settle once it is out.
-    int worst = -1;
-    double worst_excess = 1.0;
-    for (std::size_t a = 0; a < active.size(); ++a) {
-      const double excess = std::max(mm[a] / limit_mm, deg[a] / limit_deg);
-      if (excess > worst_excess)
-        worst_excess = excess, worst = int(a);
-    }
-    if (worst < 0)
+    const Outlier o = worstOutlier(active, data, solution, params);
+    if (o.worst < 0)
       break;
-    const int rejected_index = active[std::size_t(worst)];
+    const auto worst = std::size_t(o.worst);
+    const int rejected_index = active[worst];
     const int rejected_count = n - int(active.size()) + 1;
     if (rejected_count > max_rejected || int(active.size()) - 1 < 3)
       throw Error(std::string("the poses disagree: after rejecting ")
@@ -225,28 +244,46 @@ HandEyeResult calibrateHandEye(HandEyeMode mode, const std::vector<HandEyeSample
                       .append(" pose(s), pose ")
                       .append(std::to_string(rejected_index + 1))
                       .append(" still misses the others' solution by ")
-                      .append(fixed(mm[std::size_t(worst)], 2))
+                      .append(fixed(o.mm[worst], 2))
                       .append(" mm / ")
-                      .append(fixed(deg[std::size_t(worst)], 3))
+                      .append(fixed(o.deg[worst], 3))
                       .append(" degrees: check that each scan was taken at the robot pose listed "
                               "with it, in the same units, that the target is rigidly mounted, "
                               "and the mode (eye-to-hand or eye-in-hand)"));
-    PoseResidual& r = result.residuals[std::size_t(rejected_index)];
+    PoseResidual& r = residuals[std::size_t(rejected_index)];
     r.rejected = true;
     r.reason = std::string("its residual in the solve with it, ")
-                   .append(fixed(mm[std::size_t(worst)], 2))
+                   .append(fixed(o.mm[worst], 2))
                    .append(" mm / ")
-                   .append(fixed(deg[std::size_t(worst)], 3))
+                   .append(fixed(o.deg[worst], 3))
                    .append(" deg, was above the limit ")
-                   .append(fixed(limit_mm, 2))
+                   .append(fixed(o.limit_mm, 2))
                    .append(" mm / ")
-                   .append(fixed(limit_deg, 3))
+                   .append(fixed(o.limit_deg, 3))
                    .append(" deg (median + ")
                    .append(fixed(params.outlier_mad_factor, 1))
                    .append(" x scaled MAD of the poses' residuals): the robot pose or the scan "
                            "of this pose is wrong");
-    active.erase(active.begin() + worst);
+    active.erase(active.begin() + o.worst);
   }
+  return solution;
+}
+
+} // namespace
+
+HandEyeResult calibrateHandEye(HandEyeMode mode, const std::vector<HandEyeSample>& samples,
+                               const TargetLayout& layout, const HandEyeParams& params) {
+  const int n = int(samples.size());
+  std::vector<Eigen::Isometry3d> all_flanges;
+  for (const auto& s : samples)
+    all_flanges.push_back(s.T_base_flange);
+  checkPoses(all_flanges, params);
+  const std::vector<detail::PoseData> data = checkedPoseData(mode, samples, layout);
+
+  HandEyeResult result;
+  result.mode = mode;
+  result.residuals.resize(std::size_t(n));
+  const detail::Solution solution = solveRejectingOutliers(samples, data, params, result.residuals);
 
   result.T_camera = solution.X;
   result.T_target = solution.Y;
