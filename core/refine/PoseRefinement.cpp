@@ -133,6 +133,136 @@ Eigen::Isometry3d increment(const Eigen::Matrix<double, 6, 1>& x) {
   return dT;
 }
 
+/// The turn about `pivot` (scene frame, mm) by the twist `x`, applied to the pose `T`.
+Eigen::Isometry3d turnedAbout(const Eigen::Isometry3d& T, const Eigen::Matrix<double, 6, 1>& x,
+                              const Eigen::Vector3d& pivot) {
+  Eigen::Isometry3d dT = increment(x);
+  dT.translation() += pivot - dT.linear() * pivot;
+  return dT * T;
+}
+
+/// The Gauss-Newton system of one iteration: J^T W J and J^T W r over the used pairs.
+struct LinearSystem {
+  Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+  double sum_sq_distance = 0; ///< of the used pairs (mm²)
+  std::size_t used = 0;       ///< pairs with a positive weight
+  /// Mean of the valid pairs' model points (scene frame, mm): point-to-plane turns about it.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+};
+
+/// Gauss-Newton on the linearised error of the valid `pairs`, summed in point order (bitwise
+/// reproducible). Tukey weights with the current pair distance `distance_mm` as scale fade out
+/// pairs near the cut-off. Point-to-plane turns about the pairs' centroid, its rotation scaled
+/// by `radius_mm`, so that the six unknowns are comparable and the weak ones can be told.
+LinearSystem linearise(const std::vector<Pair>& pairs, bool point_to_plane, double distance_mm,
+                       double radius_mm) {
+  LinearSystem system;
+  Eigen::Matrix<double, 6, 6>& A = system.A;
+  Eigen::Matrix<double, 6, 1>& b = system.b;
+  Eigen::Vector3d& centroid = system.centroid;
+  std::size_t valid = 0;
+  for (const Pair& pair : pairs)
+    if (pair.valid) {
+      centroid += pair.p;
+      ++valid;
+    }
+  if (valid > 0)
+    centroid /= static_cast<double>(valid);
+  for (const Pair& pair : pairs) {
+    if (!pair.valid)
+      continue;
+    const Eigen::Vector3d d = pair.p - pair.q;
+    const double distance_sq = d.squaredNorm();
+    const double residual = point_to_plane ? pair.n.dot(d) : std::sqrt(distance_sq);
+    const double u = residual / distance_mm;
+    const double w = std::max(0.0, 1.0 - u * u);
+    if (w <= 0)
+      continue;
+    const double weight = w * w;
+    if (point_to_plane) {
+      Eigen::Matrix<double, 6, 1> J;
+      J << (pair.p - centroid).cross(pair.n) / radius_mm, pair.n;
+      A.noalias() += weight * J * J.transpose();
+      b.noalias() += weight * J * pair.n.dot(d);
+    } else {
+      // d(p') = -[p']x omega + t for a small rotation omega about the scene origin.
+      Eigen::Matrix<double, 3, 6> J;
+      J << -(Eigen::Matrix3d() << 0, -pair.p.z(), pair.p.y(), pair.p.z(), 0, -pair.p.x(),
+             -pair.p.y(), pair.p.x(), 0)
+                .finished(),
+          Eigen::Matrix3d::Identity();
+      A.noalias() += weight * J.transpose() * J;
+      b.noalias() += weight * J.transpose() * d;
+    }
+    system.sum_sq_distance += distance_sq;
+    ++system.used;
+  }
+  return system;
+}
+
+/// The increment that solves `system`: rotation omega and the translation at the origin
+/// (point-to-point) or at the centroid (point-to-plane). Point-to-point adds a tiny ridge to A.
+Eigen::Matrix<double, 6, 1> solveIncrement(LinearSystem& system, bool point_to_plane,
+                                           double stable_share, double radius_mm) {
+  Eigen::Matrix<double, 6, 6>& A = system.A;
+  const Eigen::Matrix<double, 6, 1>& b = system.b;
+  Eigen::Matrix<double, 6, 1> x;
+  if (point_to_plane) {
+    // Only the directions the surface pins down move (Gelfand et al., "Geometrically stable
+    // sampling for the ICP algorithm", 2003): a plate seen face-on constrains its tilt and
+    // depth but hardly its slide and turn within its plane, where point-to-plane ICP would
+    // drift on sensor noise, and a pipe does not constrain its turn about its axis. Directions
+    // weaker than stable_share of the strongest keep the pose they came with.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(A);
+    const double strongest = eigen.eigenvalues()(5);
+    x.setZero();
+    for (int k = 0; k < 6; ++k)
+      if (eigen.eigenvalues()(k) > stable_share * strongest)
+        x += eigen.eigenvectors().col(k) *
+             (eigen.eigenvectors().col(k).dot(-b) / eigen.eigenvalues()(k));
+    x.head<3>() /= radius_mm;
+  } else {
+    // A tiny ridge keeps flat or symmetric models (rank-deficient A) from exploding along the
+    // unconstrained directions; it does not bias constrained ones measurably.
+    A.diagonal().array() += 1e-9 * A.trace() / 6.0;
+    x = A.ldlt().solve(-b);
+  }
+  return x;
+}
+
+/// Final check on all points at pose `T`: sets the result's pose, its visible model points, the
+/// share of them with a scene point within params.inlier_distance_mm, and their residual.
+void scorePose(const RefineModel& model, const SceneIndex& scene, const Eigen::Isometry3d& T,
+               const RefineParams& params, RefinementResult& result) {
+  std::vector<Pair> pairs;
+  findPairs(model, scene, T, 1,
+            static_cast<float>(params.inlier_distance_mm * params.inlier_distance_mm), false, 0.0f,
+            pairs);
+  const Eigen::Vector3f viewpoint = scene.options().viewpoint_mm.cast<float>();
+  const Eigen::Matrix3f R = T.linear().cast<float>();
+  const Eigen::Vector3f t = T.translation().cast<float>();
+  std::size_t visible = 0, inliers = 0;
+  double sum_sq = 0;
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    if (facesViewpoint(R * model.points()[i] + t, R * model.normals()[i], viewpoint))
+      ++visible;
+    const Pair& pair = pairs[i];
+    if (!pair.valid)
+      continue;
+    ++inliers;
+    const Eigen::Vector3d d = pair.p - pair.q;
+    const double r =
+        params.point_to_plane && pair.n != Eigen::Vector3d::Zero() ? pair.n.dot(d) : d.norm();
+    sum_sq += r * r;
+  }
+  result.T_scene_model = T;
+  result.visible_points = visible;
+  result.inlier_fraction =
+      visible ? static_cast<double>(inliers) / static_cast<double>(visible) : 0;
+  result.rmse_mm = inliers ? std::sqrt(sum_sq / static_cast<double>(inliers)) : 0;
+}
+
 } // namespace
 
 RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
@@ -165,90 +295,22 @@ RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
     findPairs(model, scene, T, stride, static_cast<float>(distance_mm * distance_mm),
               params.point_to_plane,
               params.point_to_plane ? static_cast<float>(0.05 * floor_mm) : 0.0f, pairs);
-
-    // Gauss-Newton on the linearised error, summed in point order (bitwise reproducible). Tukey
-    // weights with the current pair distance as scale fade out pairs near the cut-off.
-    Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
-    Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
-    double sum_sq_distance = 0;
-    std::size_t used = 0;
-    // Point-to-plane turns about the pairs' centroid, its rotation scaled by the model radius, so
-    // that the six unknowns are comparable and the weak ones can be told (see below).
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    std::size_t valid = 0;
-    for (const Pair& pair : pairs)
-      if (pair.valid) {
-        centroid += pair.p;
-        ++valid;
-      }
-    if (valid > 0)
-      centroid /= static_cast<double>(valid);
     const double radius_mm = std::max(1.0, model.radius_mm());
-    for (const Pair& pair : pairs) {
-      if (!pair.valid)
-        continue;
-      const Eigen::Vector3d d = pair.p - pair.q;
-      const double distance_sq = d.squaredNorm();
-      const double residual = params.point_to_plane ? pair.n.dot(d) : std::sqrt(distance_sq);
-      const double u = residual / distance_mm;
-      const double w = std::max(0.0, 1.0 - u * u);
-      if (w <= 0)
-        continue;
-      const double weight = w * w;
-      if (params.point_to_plane) {
-        Eigen::Matrix<double, 6, 1> J;
-        J << (pair.p - centroid).cross(pair.n) / radius_mm, pair.n;
-        A.noalias() += weight * J * J.transpose();
-        b.noalias() += weight * J * pair.n.dot(d);
-      } else {
-        // d(p') = -[p']x omega + t for a small rotation omega about the scene origin.
-        Eigen::Matrix<double, 3, 6> J;
-        J << -(Eigen::Matrix3d() << 0, -pair.p.z(), pair.p.y(), pair.p.z(), 0, -pair.p.x(),
-               -pair.p.y(), pair.p.x(), 0)
-                  .finished(),
-            Eigen::Matrix3d::Identity();
-        A.noalias() += weight * J.transpose() * J;
-        b.noalias() += weight * J.transpose() * d;
-      }
-      sum_sq_distance += distance_sq;
-      ++used;
-    }
-    if (used < 6)
+    LinearSystem system = linearise(pairs, params.point_to_plane, distance_mm, radius_mm);
+    if (system.used < 6)
       break; // too few pairs to fix six degrees of freedom: keep the last pose
     result.iterations = iteration + 1;
-    // The increment: rotation omega and the translation at the origin (point-to-point) or at the
-    // centroid (point-to-plane).
-    Eigen::Matrix<double, 6, 1> x;
-    if (params.point_to_plane) {
-      // Only the directions the surface pins down move (Gelfand et al., "Geometrically stable
-      // sampling for the ICP algorithm", 2003): a plate seen face-on constrains its tilt and
-      // depth but hardly its slide and turn within its plane, where point-to-plane ICP would
-      // drift on sensor noise, and a pipe does not constrain its turn about its axis. Directions
-      // weaker than stable_share of the strongest keep the pose they came with.
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(A);
-      const double strongest = eigen.eigenvalues()(5);
-      x.setZero();
-      for (int k = 0; k < 6; ++k)
-        if (eigen.eigenvalues()(k) > stable_share * strongest)
-          x += eigen.eigenvectors().col(k) *
-               (eigen.eigenvectors().col(k).dot(-b) / eigen.eigenvalues()(k));
-      x.head<3>() /= radius_mm;
-    } else {
-      // A tiny ridge keeps flat or symmetric models (rank-deficient A) from exploding along the
-      // unconstrained directions; it does not bias constrained ones measurably.
-      A.diagonal().array() += 1e-9 * A.trace() / 6.0;
-      x = A.ldlt().solve(-b);
-    }
+    const Eigen::Matrix<double, 6, 1> x =
+        solveIncrement(system, params.point_to_plane, stable_share, radius_mm);
     if (!x.allFinite())
       break;
+    const Eigen::Vector3d& centroid = system.centroid;
     const Eigen::Vector3d pivot = params.point_to_plane ? centroid : Eigen::Vector3d::Zero();
-    Eigen::Isometry3d dT = increment(x);
-    dT.translation() += pivot - dT.linear() * pivot;
-    T = dT * T;
+    T = turnedAbout(T, x, pivot);
 
     const double motion_mm = (x.head<3>().cross(centroid - pivot) + x.tail<3>()).norm() +
                              x.head<3>().norm() * model.radius_mm();
-    const double rms_mm = std::sqrt(sum_sq_distance / static_cast<double>(used));
+    const double rms_mm = std::sqrt(system.sum_sq_distance / static_cast<double>(system.used));
     distance_mm = std::clamp(3.0 * rms_mm, floor_mm, distance_mm);
     if (!fine) {
       fine = motion_mm < 10 * params.convergence_mm;
@@ -263,33 +325,7 @@ RefinementResult refinePose(const RefineModel& model, const SceneIndex& scene,
     }
   }
 
-  // Final check on all points: visible ones, their inliers, and the residual.
-  pairs.clear();
-  findPairs(model, scene, T, 1,
-            static_cast<float>(params.inlier_distance_mm * params.inlier_distance_mm), false, 0.0f,
-            pairs);
-  const Eigen::Vector3f viewpoint = scene.options().viewpoint_mm.cast<float>();
-  const Eigen::Matrix3f R = T.linear().cast<float>();
-  const Eigen::Vector3f t = T.translation().cast<float>();
-  std::size_t visible = 0, inliers = 0;
-  double sum_sq = 0;
-  for (std::size_t i = 0; i < model.size(); ++i) {
-    if (facesViewpoint(R * model.points()[i] + t, R * model.normals()[i], viewpoint))
-      ++visible;
-    const Pair& pair = pairs[i];
-    if (!pair.valid)
-      continue;
-    ++inliers;
-    const Eigen::Vector3d d = pair.p - pair.q;
-    const double r =
-        params.point_to_plane && pair.n != Eigen::Vector3d::Zero() ? pair.n.dot(d) : d.norm();
-    sum_sq += r * r;
-  }
-  result.T_scene_model = T;
-  result.visible_points = visible;
-  result.inlier_fraction =
-      visible ? static_cast<double>(inliers) / static_cast<double>(visible) : 0;
-  result.rmse_mm = inliers ? std::sqrt(sum_sq / static_cast<double>(inliers)) : 0;
+  scorePose(model, scene, T, params, result);
   result.converged = settled && result.inlier_fraction >= params.min_inlier_fraction;
   reportProgress(progress, 1.0);
   return result;

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -119,6 +120,105 @@ nearestInPixels(const float* xs, const float* ys, const float* zs, const std::in
   return best_index;
 }
 
+/// Throws Error when `options` are out of range.
+void checkOptions(const SceneIndexOptions& options) {
+  if (!(options.normal_radius_mm > 0) || options.pixel_half_window < 1 ||
+      options.pixel_half_window > 10 || options.neighbours < 5 || options.neighbours > 100 ||
+      options.normal_stride < 1 || !options.viewpoint_mm.allFinite())
+    throw Error("Scene index options out of range: normal radius must be > 0 mm, pixel half "
+                "window 1-10, neighbours 5-100, normal stride at least 1, and the viewpoint "
+                "finite.");
+}
+
+/// The valid points of a cloud in input order with their indices in it; for an organized cloud
+/// also each pixel's index among them (-1: none).
+struct ValidPoints {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<std::size_t> source_index;
+  std::vector<std::int32_t> pixel_to_index; ///< empty unless organized
+};
+
+ValidPoints validPoints(const PointCloud& scene_mm, bool organized) {
+  ValidPoints valid;
+  valid.pixel_to_index.assign(organized ? scene_mm.size() : 0, -1);
+  valid.points.reserve(scene_mm.size());
+  valid.source_index.reserve(scene_mm.size());
+  for (std::size_t i = 0; i < scene_mm.size(); ++i)
+    if (isValid(scene_mm.points_mm[i])) {
+      if (organized)
+        valid.pixel_to_index[i] = static_cast<std::int32_t>(valid.points.size());
+      valid.points.push_back(scene_mm.points_mm[i]);
+      valid.source_index.push_back(i);
+    }
+  return valid;
+}
+
+/// The cloud's own normal `n` at `p` made unit and, with `orient`, turned to face `viewpoint`;
+/// none when it is not finite or shorter than 0.5.
+std::optional<Eigen::Vector3f> cloudNormal(const Eigen::Vector3f& n, const Eigen::Vector3f& p,
+                                           const Eigen::Vector3d& viewpoint, bool orient) {
+  if (!(n.allFinite() && n.norm() > 0.5f))
+    return std::nullopt;
+  Eigen::Vector3f unit = n.normalized();
+  if (orient && unit.cast<double>().dot(viewpoint - p.cast<double>()) < 0)
+    unit = -unit;
+  return unit;
+}
+
+/// What the estimated normals of a cloud's indexed points are computed from.
+struct NormalSources {
+  const PointCloud& scene_mm;
+  const std::vector<Eigen::Vector3f>& indexed;  ///< the valid points
+  const std::vector<std::int32_t>& pixel_index; ///< organized clouds: each pixel's point
+  Eigen::Vector3d viewpoint;
+  float radius_sq = 0; ///< neighbours farther than this (mm²) are left out
+};
+
+/// planeNormal of the indexed points within the radius in the (2w+1)² pixel window around
+/// pixel `src` of an organized cloud.
+Eigen::Vector3f windowNormal(const NormalSources& sources, int w, std::size_t src,
+                             const Eigen::Vector3f& p, float& variation) {
+  const PointCloud& scene_mm = sources.scene_mm;
+  const int width = static_cast<int>(scene_mm.width), height = static_cast<int>(scene_mm.height);
+  const int row = static_cast<int>(src / scene_mm.width);
+  const int col = static_cast<int>(src % scene_mm.width);
+  return planeNormal(p, sources.viewpoint, variation, [&](auto&& add) {
+    for (int r = std::max(0, row - w); r <= std::min(height - 1, row + w); ++r)
+      for (int c = std::max(0, col - w); c <= std::min(width - 1, col + w); ++c) {
+        const std::int32_t j = sources.pixel_index[static_cast<std::size_t>(r) * scene_mm.width +
+                                                   static_cast<std::size_t>(c)];
+        if (j >= 0 &&
+            (sources.indexed[static_cast<std::size_t>(j)] - p).squaredNorm() <= sources.radius_sq)
+          add(sources.indexed[static_cast<std::size_t>(j)]);
+      }
+  });
+}
+
+/// planeNormal of the first `found` neighbours `ids` (squared distances `dists`) of `p` that lie
+/// within the radius.
+Eigen::Vector3f neighbourNormal(const NormalSources& sources, const std::vector<std::uint32_t>& ids,
+                                const std::vector<float>& dists, std::size_t found,
+                                const Eigen::Vector3f& p, float& variation) {
+  return planeNormal(p, sources.viewpoint, variation, [&](auto&& add) {
+    for (std::size_t j = 0; j < found; ++j)
+      if (dists[j] <= sources.radius_sq)
+        add(sources.indexed[ids[j]]);
+  });
+}
+
+/// The median of the positive `values` (the upper middle one of an even count); 0 when none.
+float medianOfPositive(const std::vector<float>& values) {
+  std::vector<float> positive;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (values[i] > 0.0f)
+      positive.push_back(values[i]);
+  if (positive.empty())
+    return 0.0f;
+  const auto middle = positive.begin() + static_cast<std::ptrdiff_t>(positive.size() / 2);
+  std::nth_element(positive.begin(), middle, positive.end());
+  return *middle;
+}
+
 } // namespace
 
 // The points and their kd-tree live on the heap, so the adaptor's pointer survives moves of the
@@ -146,37 +246,22 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
                        const ProgressFn& progress)
     : m_options(options) {
   scene_mm.validate();
-  if (!(options.normal_radius_mm > 0) || options.pixel_half_window < 1 ||
-      options.pixel_half_window > 10 || options.neighbours < 5 || options.neighbours > 100 ||
-      options.normal_stride < 1 || !options.viewpoint_mm.allFinite())
-    throw Error("Scene index options out of range: normal radius must be > 0 mm, pixel half "
-                "window 1-10, neighbours 5-100, normal stride at least 1, and the viewpoint "
-                "finite.");
+  checkOptions(options);
   // Valid points in input order; for an organized cloud (a sensor's image, far fewer than 2^31
   // pixels), where each pixel went.
   const bool organized = scene_mm.isOrganized() &&
                          scene_mm.size() < std::size_t(std::numeric_limits<std::int32_t>::max());
-  std::vector<std::int32_t> pixel_to_index(organized ? scene_mm.size() : 0, -1);
-  std::vector<std::size_t> source_index;
-  std::vector<Eigen::Vector3f> valid;
-  valid.reserve(scene_mm.size());
-  source_index.reserve(scene_mm.size());
-  for (std::size_t i = 0; i < scene_mm.size(); ++i)
-    if (isValid(scene_mm.points_mm[i])) {
-      if (organized)
-        pixel_to_index[i] = static_cast<std::int32_t>(valid.size());
-      valid.push_back(scene_mm.points_mm[i]);
-      source_index.push_back(i);
-    }
-  if (valid.empty())
+  ValidPoints valid = validPoints(scene_mm, organized);
+  if (valid.points.empty())
     throw Error("The cloud to refine against has no valid point (empty or all NaN): check that "
                 "the scan loaded and that the crop or floor removal left points.");
-  m_tree = std::make_unique<Tree>(std::move(valid));
+  m_tree = std::make_unique<Tree>(std::move(valid.points));
   const std::vector<Eigen::Vector3f>& indexed = m_tree->points;
+  const std::vector<std::size_t>& source_index = valid.source_index;
   if (organized) {
     m_width = static_cast<int>(scene_mm.width);
     m_height = static_cast<int>(scene_mm.height);
-    m_pixel_index = std::move(pixel_to_index);
+    m_pixel_index = std::move(valid.pixel_to_index);
     m_pixel_points = PixelCoordinates(m_pixel_index.size());
     for (std::size_t pixel = 0; pixel < m_pixel_index.size(); ++pixel)
       if (m_pixel_index[pixel] >= 0)
@@ -188,11 +273,10 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
 
   m_normals.assign(indexed.size(), invalidPoint());
   m_variation.assign(indexed.size(), 0.0f);
-  const Eigen::Vector3d viewpoint = options.viewpoint_mm;
+  const NormalSources sources{
+      scene_mm, indexed, m_pixel_index, options.viewpoint_mm,
+      static_cast<float>(options.normal_radius_mm * options.normal_radius_mm)};
   const bool own_normals = options.use_cloud_normals && scene_mm.normals.size() == scene_mm.size();
-  const float radius_sq = static_cast<float>(options.normal_radius_mm * options.normal_radius_mm);
-  const int width = static_cast<int>(scene_mm.width), height = static_cast<int>(scene_mm.height);
-  const int w = options.pixel_half_window;
   const std::size_t k = static_cast<std::size_t>(options.neighbours);
 
   if (!options.estimate_normals) {
@@ -209,49 +293,23 @@ SceneIndex::SceneIndex(const PointCloud& scene_mm, const SceneIndexOptions& opti
       const Eigen::Vector3f& p = indexed[i];
       const std::size_t src = source_index[i];
       if (own_normals) {
-        const Eigen::Vector3f n = scene_mm.normals[src];
-        if (n.allFinite() && n.norm() > 0.5f) {
-          Eigen::Vector3f unit = n.normalized();
-          if (options.orient_cloud_normals &&
-              unit.cast<double>().dot(viewpoint - p.cast<double>()) < 0)
-            unit = -unit;
-          m_normals[i] = unit;
+        if (const auto n = cloudNormal(scene_mm.normals[src], p, sources.viewpoint,
+                                       options.orient_cloud_normals)) {
+          m_normals[i] = *n;
           continue;
         }
       }
       if (organized) {
-        const int row = static_cast<int>(src / scene_mm.width);
-        const int col = static_cast<int>(src % scene_mm.width);
-        m_normals[i] = planeNormal(p, viewpoint, m_variation[i], [&](auto&& add) {
-          for (int r = std::max(0, row - w); r <= std::min(height - 1, row + w); ++r)
-            for (int c = std::max(0, col - w); c <= std::min(width - 1, col + w); ++c) {
-              const std::int32_t j = m_pixel_index[static_cast<std::size_t>(r) * scene_mm.width +
-                                                   static_cast<std::size_t>(c)];
-              if (j >= 0 && (indexed[static_cast<std::size_t>(j)] - p).squaredNorm() <= radius_sq)
-                add(indexed[static_cast<std::size_t>(j)]);
-            }
-        });
+        m_normals[i] = windowNormal(sources, options.pixel_half_window, src, p, m_variation[i]);
       } else {
         const std::size_t found = m_tree->kdTree().knnSearch(p.data(), k, ids.data(), dists.data());
-        m_normals[i] = planeNormal(p, viewpoint, m_variation[i], [&](auto&& add) {
-          for (std::size_t j = 0; j < found; ++j)
-            if (dists[j] <= radius_sq)
-              add(indexed[ids[j]]);
-        });
+        m_normals[i] = neighbourNormal(sources, ids, dists, found, p, m_variation[i]);
       }
     }
   });
 
   // Most of a scan is locally flat, so the median variation measures the sensor noise.
-  std::vector<float> estimated;
-  for (std::size_t i = 0; i < m_variation.size(); ++i)
-    if (m_variation[i] > 0.0f)
-      estimated.push_back(m_variation[i]);
-  if (!estimated.empty()) {
-    const auto middle = estimated.begin() + static_cast<std::ptrdiff_t>(estimated.size() / 2);
-    std::nth_element(estimated.begin(), middle, estimated.end());
-    m_typical_variation = *middle;
-  }
+  m_typical_variation = medianOfPositive(m_variation);
 }
 
 const std::vector<Eigen::Vector3f>& SceneIndex::points() const {
