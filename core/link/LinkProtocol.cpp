@@ -159,6 +159,25 @@ std::string binaryMessage(const Response& r, const Pick* pick) {
   return out;
 }
 
+/// The flange pose of a binary TriggerAt request: position from fields 4-6 (0.1 µm, returned in
+/// mm), rotation from fields 7-9 (0.0001°) read as a rotation vector (convention 0) or as Euler
+/// angles Rz·Ry·Rx (convention 1).
+Eigen::Isometry3d triggerAtFlangePose(std::string_view bytes, std::int32_t convention) {
+  const Eigen::Vector3d position(getInt(bytes, 4) / kPositionScale,
+                                 getInt(bytes, 5) / kPositionScale,
+                                 getInt(bytes, 6) / kPositionScale);
+  const Eigen::Vector3d r(getInt(bytes, 7) / kAngleScale, getInt(bytes, 8) / kAngleScale,
+                          getInt(bytes, 9) / kAngleScale);
+  Eigen::Isometry3d T =
+      calib::poseFromRotationVector(position, convention == 0 ? r : Eigen::Vector3d::Zero());
+  if (convention == 1)
+    T.linear() = (Eigen::AngleAxisd(r.z() * kPi / 180, Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(r.y() * kPi / 180, Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(r.x() * kPi / 180, Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+  return T;
+}
+
 } // namespace
 
 const char* toString(Command command) {
@@ -272,23 +291,11 @@ Decoded decodeBinaryRequest(std::string_view bytes) {
         d.message = "fields 10 and 11 of a trigger at a flange pose are reserved and must be 0";
         return d;
       }
-    const Eigen::Vector3d position(getInt(bytes, 4) / kPositionScale,
-                                   getInt(bytes, 5) / kPositionScale,
-                                   getInt(bytes, 6) / kPositionScale);
-    const Eigen::Vector3d r(getInt(bytes, 7) / kAngleScale, getInt(bytes, 8) / kAngleScale,
-                            getInt(bytes, 9) / kAngleScale);
-    Eigen::Isometry3d T =
-        calib::poseFromRotationVector(position, convention == 0 ? r : Eigen::Vector3d::Zero());
-    if (convention == 1)
-      T.linear() = (Eigen::AngleAxisd(r.z() * kPi / 180, Eigen::Vector3d::UnitZ()) *
-                    Eigen::AngleAxisd(r.y() * kPi / 180, Eigen::Vector3d::UnitY()) *
-                    Eigen::AngleAxisd(r.x() * kPi / 180, Eigen::Vector3d::UnitX()))
-                       .toRotationMatrix();
     Request req;
     req.command = d.command;
     req.id = d.id;
     req.binary = true;
-    req.flange_pose = poseArray(T);
+    req.flange_pose = poseArray(triggerAtFlangePose(bytes, convention));
     d.request = req;
     return d;
   }

@@ -71,6 +71,18 @@ std::vector<Eigen::Vector3f> kmeansPlusPlus(const std::vector<Eigen::Vector3f>& 
   return centres;
 }
 
+/// Up to k initial centres (points, mm) chosen by `init`: farthest-first traversal seeded by one
+/// draw from `rng`, or k-means++ drawing from `rng` directly.
+std::vector<Eigen::Vector3f> initialCentres(const std::vector<Eigen::Vector3f>& points, int k,
+                                            ClusteringParams::Init init, std::mt19937_64& rng) {
+  if (init != ClusteringParams::Init::FarthestFirst)
+    return kmeansPlusPlus(points, k, rng);
+  std::vector<Eigen::Vector3f> centres;
+  for (int i : farthestFirstTraversal(points, k, rng()))
+    centres.push_back(points[static_cast<std::size_t>(i)]);
+  return centres;
+}
+
 } // namespace
 
 std::vector<int> farthestFirstTraversal(const std::vector<Eigen::Vector3f>& points, int k,
@@ -100,12 +112,7 @@ KMeansResult kmeans(const std::vector<Eigen::Vector3f>& points, int k,
   if (points.empty())
     return result;
   std::mt19937_64 rng(seed);
-  if (params.init == ClusteringParams::Init::FarthestFirst) {
-    for (int i : farthestFirstTraversal(points, k, rng()))
-      result.centres.push_back(points[static_cast<std::size_t>(i)]);
-  } else {
-    result.centres = kmeansPlusPlus(points, k, rng);
-  }
+  result.centres = initialCentres(points, k, params.init, rng);
   const std::size_t kc = result.centres.size(), chunks = chunkCount(points.size());
 
   struct Partial {
