@@ -10,6 +10,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <pcl/kdtree/kdtree_flann.h>
@@ -425,32 +426,87 @@ double medianSpacing(const Cloud::Ptr& cloud) {
   return spacing[spacing.size() / 2];
 }
 
-} // namespace
-
-FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_mm,
-                                  const FeatureParams& params, std::uint64_t seed,
-                                  const ProgressFn& progress) {
+/// Throws Error for thresholds that are not positive or circle radius limits in the wrong order.
+void checkFeatureParams(const FeatureParams& params) {
   if (!(params.line_threshold_mm > 0) || !(params.circle_threshold_mm > 0))
     throw Error("feature extraction needs positive RANSAC thresholds (features.line_threshold_mm, "
                 "features.circle_threshold_mm)");
   if (params.min_circle_radius_mm > params.max_circle_radius_mm)
     throw Error("the minimum circle radius is larger than the maximum: check "
                 "features.min_circle_radius_mm and features.max_circle_radius_mm");
-  logger(); // PCL's console verbosity follows scanpick's log level (core/common/Log.h)
-  FeatureExtraction result;
-  auto cloud = std::make_shared<Cloud>();
+}
+
+/// The valid keypoints as a cloud, all of them remaining, and the caller's index of each.
+struct ValidKeypoints {
+  std::shared_ptr<Cloud> cloud = std::make_shared<Cloud>();
   Remaining remaining;
+  std::vector<int> original; ///< from the cloud (valid keypoints only) to the caller's indices
+};
+
+ValidKeypoints validKeypoints(const std::vector<Eigen::Vector3f>& keypoints_mm) {
+  ValidKeypoints valid;
+  Cloud& cloud = *valid.cloud;
   for (std::size_t i = 0; i < keypoints_mm.size(); ++i)
     if (isValid(keypoints_mm[i])) {
-      cloud->push_back(
-          pcl::PointXYZ(keypoints_mm[i].x(), keypoints_mm[i].y(), keypoints_mm[i].z()));
-      remaining.push_back(static_cast<int>(cloud->size() - 1), cloud->back());
+      cloud.push_back(pcl::PointXYZ(keypoints_mm[i].x(), keypoints_mm[i].y(), keypoints_mm[i].z()));
+      valid.remaining.push_back(static_cast<int>(cloud.size() - 1), cloud.back());
     }
-  // Map from the cloud (valid keypoints only) back to the caller's indices.
-  std::vector<int> original;
   for (std::size_t i = 0; i < keypoints_mm.size(); ++i)
     if (isValid(keypoints_mm[i]))
-      original.push_back(static_cast<int>(i));
+      valid.original.push_back(static_cast<int>(i));
+  return valid;
+}
+
+/// The keypoints a round's RANSAC searches score their trials on, drawn from the remaining ones
+/// with `round_seed`.
+std::vector<int> searchSample(const Remaining& remaining, const FeatureParams& params,
+                              std::uint64_t round_seed) {
+  // PROSAC draws from a growing prefix; without a quality order a seeded shuffle keeps it fair.
+  std::vector<int> candidates = remaining.ids;
+  if (params.estimator == FeatureParams::Estimator::Prosac) {
+    std::mt19937_64 rng(round_seed);
+    std::shuffle(candidates.begin(), candidates.end(), rng);
+  }
+  // Each RANSAC trial counts its inliers over the candidates, so a large object (or a whole
+  // Kinect scene) with tens of thousands of keypoints cost trials x keypoints per round. The
+  // trials are therefore scored on a seeded sample of at most kMaxSearchPoints keypoints; the
+  // winner's inliers are then selected among all remaining keypoints. Below the bound this is
+  // exactly the thesis's search.
+  if (candidates.size() > kMaxSearchPoints) {
+    std::mt19937_64 rng(mix(round_seed + 3));
+    std::vector<int> sample;
+    sample.reserve(kMaxSearchPoints);
+    std::sample(candidates.begin(), candidates.end(), std::back_inserter(sample), kMaxSearchPoints,
+                rng);
+    candidates.swap(sample);
+  }
+  return candidates;
+}
+
+/// The round's winner: the line or the circle with at least `min_support` inliers, the circle
+/// when it has more than the line; null when neither qualifies.
+Candidate* roundWinner(std::optional<Candidate>& line, std::optional<Candidate>& circle,
+                       std::size_t min_support) {
+  Candidate* best = nullptr;
+  if (line && line->inliers.size() >= min_support)
+    best = &*line;
+  if (circle && circle->inliers.size() >= min_support &&
+      (!best || circle->inliers.size() > best->inliers.size()))
+    best = &*circle;
+  return best;
+}
+
+} // namespace
+
+FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_mm,
+                                  const FeatureParams& params, std::uint64_t seed,
+                                  const ProgressFn& progress) {
+  checkFeatureParams(params);
+  logger(); // PCL's console verbosity follows scanpick's log level (core/common/Log.h)
+  FeatureExtraction result;
+  ValidKeypoints valid = validKeypoints(keypoints_mm);
+  const std::shared_ptr<Cloud>& cloud = valid.cloud;
+  Remaining& remaining = valid.remaining;
   const std::size_t total = remaining.size();
   const double spacing = params.run_gap_mm > 0 ? 0.0 : medianSpacing(cloud);
   const auto autoGap = [&](double threshold) {
@@ -471,26 +527,8 @@ FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_
                          : 1.0);
     if (remaining.size() < min_support)
       break;
-    // PROSAC draws from a growing prefix; without a quality order a seeded shuffle keeps it fair.
-    std::vector<int> candidates = remaining.ids;
     const std::uint64_t round_seed = mix(seed ^ mix(static_cast<std::uint64_t>(round)));
-    if (params.estimator == FeatureParams::Estimator::Prosac) {
-      std::mt19937_64 rng(round_seed);
-      std::shuffle(candidates.begin(), candidates.end(), rng);
-    }
-    // Each RANSAC trial counts its inliers over the candidates, so a large object (or a whole
-    // Kinect scene) with tens of thousands of keypoints cost trials x keypoints per round. The
-    // trials are therefore scored on a seeded sample of at most kMaxSearchPoints keypoints; the
-    // winner's inliers are then selected among all remaining keypoints. Below the bound this is
-    // exactly the thesis's search.
-    if (candidates.size() > kMaxSearchPoints) {
-      std::mt19937_64 rng(mix(round_seed + 3));
-      std::vector<int> sample;
-      sample.reserve(kMaxSearchPoints);
-      std::sample(candidates.begin(), candidates.end(), std::back_inserter(sample),
-                  kMaxSearchPoints, rng);
-      candidates.swap(sample);
-    }
+    const std::vector<int> candidates = searchSample(remaining, params, round_seed);
     // Localized sampling: the sample's other points come from the candidates near its first.
     if (grid) {
       auto ids = std::make_shared<pcl::Indices>(candidates.begin(), candidates.end());
@@ -512,20 +550,14 @@ FeatureExtraction extractFeatures(const std::vector<Eigen::Vector3f>& keypoints_
             circle = bestCircle(cloud, candidates, remaining, params, circle_gap,
                                 mix(round_seed + 2), near);
         });
-    std::optional<Candidate>* best = nullptr;
-    if (line && line->inliers.size() >= min_support)
-      best = &line;
-    if (circle && circle->inliers.size() >= min_support &&
-        (!best || circle->inliers.size() > (*best)->inliers.size()))
-      best = &circle;
-    if (!best)
+    Candidate* accepted = roundWinner(line, circle, min_support);
+    if (!accepted)
       break;
-    Candidate& accepted = **best;
-    remaining.remove(accepted.inliers);
-    for (int& i : accepted.inliers)
-      i = original[static_cast<std::size_t>(i)];
-    result.features.push_back(accepted.feature);
-    result.inliers.push_back(std::move(accepted.inliers));
+    remaining.remove(accepted->inliers);
+    for (int& i : accepted->inliers)
+      i = valid.original[static_cast<std::size_t>(i)];
+    result.features.push_back(accepted->feature);
+    result.inliers.push_back(std::move(accepted->inliers));
   }
   reportProgress(progress, 1.0);
   return result;
