@@ -5,11 +5,90 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <optional>
 
 namespace scanpick::core {
 namespace {
 /// cos 25°: a normal this close to the axis direction faces along the axis.
 constexpr double kAlongAxisCos = 0.906;
+
+/// An axis about the centroid of the points: unit direction `a` and the axis point `c` (mm,
+/// relative to the centroid, perpendicular to `a`).
+struct CentredAxis {
+  Eigen::Vector3d a, c;
+};
+
+/// The least-squares axis of the `fitted` points about `centroid` (mm); none when their normals
+/// are all (nearly) parallel: a plane, whose axis point is free.
+std::optional<CentredAxis> solveAxis(const std::vector<Eigen::Vector3f>& points_mm,
+                                     const std::vector<Eigen::Vector3f>& normals,
+                                     const std::vector<std::size_t>& fitted,
+                                     const Eigen::Vector3d& centroid) {
+  // Residual of point i for the complex (a, b): m_i · a + n_i · b, with m_i = q_i × n_i, q_i the
+  // point about the centroid and b = c × a (c the axis point about the centroid).
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero(), B = Eigen::Matrix3d::Zero(),
+                  C = Eigen::Matrix3d::Zero();
+  for (const std::size_t i : fitted) {
+    const Eigen::Vector3d n = normals[i].cast<double>().normalized();
+    const Eigen::Vector3d m = (points_mm[i].cast<double>() - centroid).cross(n);
+    A += m * m.transpose();
+    B += m * n.transpose();
+    C += n * n.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> normal_spread(C);
+  if (normal_spread.eigenvalues()(1) < 0.02 * double(fitted.size()))
+    return std::nullopt;
+  Eigen::Matrix3d C_pinv = Eigen::Matrix3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const double lambda = normal_spread.eigenvalues()(k);
+    if (lambda > 1e-9 * double(fitted.size()))
+      C_pinv += normal_spread.eigenvectors().col(k) *
+                normal_spread.eigenvectors().col(k).transpose() / lambda;
+  }
+  // For a fixed direction a the best b is −C⁺Bᵀa; what is left is the Schur complement.
+  const Eigen::Matrix3d schur = A - B * C_pinv * B.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> axis_solver(schur);
+  CentredAxis axis;
+  axis.a = axis_solver.eigenvectors().col(0).normalized();
+  const Eigen::Vector3d b = -C_pinv * B.transpose() * axis.a;
+  axis.c = axis.a.cross(b); // b = c × a with c ⊥ a
+  return axis;
+}
+
+/// The `used` points that fit `axis` (about `centroid`): those whose normal lies within
+/// `angle_tolerance_rad` of the plane through the axis and the point, and those that cannot tell
+/// (on the axis, or facing along it). `counted` and `inliers` count the points that can tell and
+/// those of them that fit.
+std::vector<std::size_t> axisInliers(const std::vector<Eigen::Vector3f>& points_mm,
+                                     const std::vector<Eigen::Vector3f>& normals,
+                                     const std::vector<std::size_t>& used,
+                                     const Eigen::Vector3d& centroid, const CentredAxis& axis,
+                                     double angle_tolerance_rad, std::size_t& counted,
+                                     std::size_t& inliers) {
+  const Eigen::Vector3d &a = axis.a, &c = axis.c;
+  const double max_sin = std::sin(angle_tolerance_rad);
+  counted = inliers = 0;
+  std::vector<std::size_t> next;
+  for (const std::size_t i : used) {
+    const Eigen::Vector3d d = points_mm[i].cast<double>() - centroid - c;
+    const Eigen::Vector3d radial = d - d.dot(a) * a;
+    const Eigen::Vector3d n = normals[i].cast<double>().normalized();
+    // On the axis, or facing along it (a flat end face), every normal passes: such points
+    // cannot tell a surface of revolution from any other.
+    if (radial.norm() < 1.0 || std::abs(n.dot(a)) > kAlongAxisCos) {
+      next.push_back(i);
+      continue;
+    }
+    ++counted;
+    const Eigen::Vector3d out_of_meridian = a.cross(radial.normalized());
+    if (std::abs(n.dot(out_of_meridian)) <= max_sin) {
+      ++inliers;
+      next.push_back(i);
+    }
+  }
+  return next;
+}
+
 } // namespace
 
 std::optional<RevolutionAxis> fitRevolutionAxis(const std::vector<Eigen::Vector3f>& points_mm,
@@ -31,68 +110,24 @@ std::optional<RevolutionAxis> fitRevolutionAxis(const std::vector<Eigen::Vector3
   // Fitted on all the points, then twice again on the inliers of the last fit: a detail off the
   // surface (a cup's handle) pulls the first fit off the axis by a few millimetres.
   std::vector<std::size_t> fitted = used;
-  Eigen::Vector3d a, c;
+  CentredAxis fit_axis;
   std::size_t counted = 0, inliers = 0;
   constexpr int kFits = 3;
   for (int fit = 0; fit < kFits; ++fit) {
     if (fitted.size() < kMinPoints)
       return std::nullopt;
-    // Residual of point i for the complex (a, b): m_i · a + n_i · b, with m_i = q_i × n_i, q_i the
-    // point about the centroid and b = c × a (c the axis point about the centroid).
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero(), B = Eigen::Matrix3d::Zero(),
-                    C = Eigen::Matrix3d::Zero();
-    for (const std::size_t i : fitted) {
-      const Eigen::Vector3d n = normals[i].cast<double>().normalized();
-      const Eigen::Vector3d m = (points_mm[i].cast<double>() - centroid).cross(n);
-      A += m * m.transpose();
-      B += m * n.transpose();
-      C += n * n.transpose();
-    }
-    // Normals all (nearly) parallel: a plane, whose axis point is free.
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> normal_spread(C);
-    if (normal_spread.eigenvalues()(1) < 0.02 * double(fitted.size()))
+    const std::optional<CentredAxis> solved = solveAxis(points_mm, normals, fitted, centroid);
+    if (!solved)
       return std::nullopt;
-    Eigen::Matrix3d C_pinv = Eigen::Matrix3d::Zero();
-    for (int k = 0; k < 3; ++k) {
-      const double lambda = normal_spread.eigenvalues()(k);
-      if (lambda > 1e-9 * double(fitted.size()))
-        C_pinv += normal_spread.eigenvectors().col(k) *
-                  normal_spread.eigenvectors().col(k).transpose() / lambda;
-    }
-    // For a fixed direction a the best b is −C⁺Bᵀa; what is left is the Schur complement.
-    const Eigen::Matrix3d schur = A - B * C_pinv * B.transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> axis_solver(schur);
-    a = axis_solver.eigenvectors().col(0).normalized();
-    const Eigen::Vector3d b = -C_pinv * B.transpose() * a;
-    c = a.cross(b); // b = c × a with c ⊥ a
-
-    const double max_sin = std::sin(angle_tolerance_rad);
-    counted = inliers = 0;
-    std::vector<std::size_t> next;
-    for (const std::size_t i : used) {
-      const Eigen::Vector3d d = points_mm[i].cast<double>() - centroid - c;
-      const Eigen::Vector3d radial = d - d.dot(a) * a;
-      const Eigen::Vector3d n = normals[i].cast<double>().normalized();
-      // On the axis, or facing along it (a flat end face), every normal passes: such points
-      // cannot tell a surface of revolution from any other.
-      if (radial.norm() < 1.0 || std::abs(n.dot(a)) > kAlongAxisCos) {
-        next.push_back(i);
-        continue;
-      }
-      ++counted;
-      const Eigen::Vector3d out_of_meridian = a.cross(radial.normalized());
-      if (std::abs(n.dot(out_of_meridian)) <= max_sin) {
-        ++inliers;
-        next.push_back(i);
-      }
-    }
-    fitted = std::move(next);
+    fit_axis = *solved;
+    fitted = axisInliers(points_mm, normals, used, centroid, fit_axis, angle_tolerance_rad, counted,
+                         inliers);
   }
   if (counted < kMinPoints)
     return std::nullopt;
   RevolutionAxis axis;
-  axis.point_mm = centroid + c;
-  axis.direction = a;
+  axis.point_mm = centroid + fit_axis.c;
+  axis.direction = fit_axis.a;
   axis.inlier_share = double(inliers) / double(counted);
   if (axis.inlier_share < min_inlier_share)
     return std::nullopt;
