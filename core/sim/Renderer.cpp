@@ -7,6 +7,7 @@
 #include <cmath>
 #include <embree3/rtcore.h>
 #include <limits>
+#include <optional>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -129,20 +130,10 @@ std::array<int, 4> projectedRect(const TriangleMesh& mesh, const SensorModel& s)
           clampTo(std::floor(v0) - 1, s.height), clampTo(std::ceil(v1) + 2, s.height)};
 }
 
-} // namespace
-
-RenderResult renderScene(const Scene& scene, const SensorModel& sensor, const SensorNoise& noise,
-                         std::uint64_t seed, const ProgressFn& progress) {
-  if (sensor.width <= 0 || sensor.height <= 0 || sensor.fx <= 0 || sensor.fy <= 0)
-    throw Error("the sensor '" + sensor.preset + "' has no valid image size or focal length");
-  const int W = sensor.width, H = sensor.height;
-  const std::size_t N = static_cast<std::size_t>(W) * static_cast<std::size_t>(H);
-  const Eigen::Vector3f projector = sensor.projectorPosition().cast<float>();
-  const auto grazing = static_cast<float>(noise.grazing_cos);
-  const std::size_t count = scene.instances.size();
-
-  std::vector<TriangleMesh> posed(count);
-  RayScene rays;
+/// The posed meshes of the scene's instances (camera frame, by instance id), added to `rays` with
+/// the environment's.
+std::vector<TriangleMesh> addSceneMeshes(RayScene& rays, const Scene& scene) {
+  std::vector<TriangleMesh> posed(scene.instances.size());
   rays.add(transformed(scene.environment_mm, scene.T_camera_world), kLabelEnvironment);
   for (const auto& inst : scene.instances) {
     posed[static_cast<std::size_t>(inst.id)] =
@@ -150,7 +141,16 @@ RenderResult renderScene(const Scene& scene, const SensorModel& sensor, const Se
     rays.add(posed[static_cast<std::size_t>(inst.id)], inst.id);
   }
   rays.commit();
+  return posed;
+}
 
+/// What every pixel of the sensor sees in `rays` (row-major), in chunks of rows; the chunks take
+/// the first 60 % of `progress`.
+std::vector<RayScene::Sample> traceImage(const RayScene& rays, const SensorModel& sensor,
+                                         const Eigen::Vector3f& projector, float grazing,
+                                         const ProgressFn& progress) {
+  const int W = sensor.width, H = sensor.height;
+  const std::size_t N = static_cast<std::size_t>(W) * static_cast<std::size_t>(H);
   std::vector<RayScene::Sample> samples(N);
   constexpr int kRowsPerChunk = 64;
   for (int row0 = 0; row0 < H; row0 += kRowsPerChunk) {
@@ -163,19 +163,16 @@ RenderResult renderScene(const Scene& scene, const SensorModel& sensor, const Se
                       });
     reportProgress(progress, 0.6 * std::min(H, row0 + kRowsPerChunk) / H);
   }
+  return samples;
+}
 
-  RenderResult out;
-  out.labels.resize(N);
-  out.lit_pixels.assign(count, 0);
-  out.visible_points.assign(count, 0);
-  for (std::size_t i = 0; i < N; ++i) {
-    out.labels[i] = samples[i].label;
-    if (samples[i].lit && samples[i].label >= 0)
-      ++out.lit_pixels[static_cast<std::size_t>(samples[i].label)];
-  }
-
-  // Each instance alone, only over the pixels its bounding box can cover.
-  out.lit_pixels_alone.assign(count, 0);
+/// The lit pixels of each of the `posed` instances were it alone in the scene, traced only over
+/// the pixels its bounding box can cover; reports progress from 0.6 to 0.9.
+std::vector<std::size_t> litPixelsAlone(const std::vector<TriangleMesh>& posed,
+                                        const SensorModel& sensor, const Eigen::Vector3f& projector,
+                                        float grazing, const ProgressFn& progress) {
+  const std::size_t count = posed.size();
+  std::vector<std::size_t> lit(count, 0);
   for (std::size_t id = 0; id < count; ++id) {
     const auto rect = projectedRect(posed[id], sensor);
     if (rect[1] <= rect[0] || rect[3] <= rect[2])
@@ -193,9 +190,83 @@ RenderResult renderScene(const Scene& scene, const SensorModel& sensor, const Se
         }
     });
     for (std::size_t c : per_row)
-      out.lit_pixels_alone[id] += c;
+      lit[id] += c;
     reportProgress(progress, 0.6 + 0.3 * static_cast<double>(id + 1) / static_cast<double>(count));
   }
+  return lit;
+}
+
+/// The depth jump (mm) from `z` to the 4-neighbour of pixel (u, v) that sees a surface and
+/// differs most from it; 0 when none does.
+double largestDepthJump(const std::vector<RayScene::Sample>& samples, int W, int H, int u, int v,
+                        double z) {
+  double jump = 0;
+  const int du[4] = {1, -1, 0, 0}, dv[4] = {0, 0, 1, -1};
+  for (int k = 0; k < 4; ++k) {
+    const int nu = u + du[k], nv = v + dv[k];
+    if (nu < 0 || nv < 0 || nu >= W || nv >= H)
+      continue;
+    const auto& ns = samples[static_cast<std::size_t>(nv) * W + nu];
+    if (ns.label != kLabelNothing && std::abs(ns.z_mm - z) > std::abs(jump))
+      jump = ns.z_mm - z;
+  }
+  return jump;
+}
+
+/// The point (camera frame, mm) that pixel (u, v) measures with `noise`: dropouts, flying pixels
+/// at depth edges and depth noise, drawn from `seed`. None where it measures nothing.
+std::optional<Eigen::Vector3f> measuredPoint(const std::vector<RayScene::Sample>& samples,
+                                             const SensorModel& sensor, const SensorNoise& noise,
+                                             double baseline_mm, std::uint64_t seed, int u, int v) {
+  const int W = sensor.width, H = sensor.height;
+  const std::size_t i = static_cast<std::size_t>(v) * W + u;
+  if (!samples[i].lit)
+    return std::nullopt;
+  if (noise.dropout_probability > 0 && hashUniform(seed, i, 10) < noise.dropout_probability)
+    return std::nullopt;
+  double z = samples[i].z_mm;
+  if (noise.flying_probability > 0) {
+    const double jump = largestDepthJump(samples, W, H, u, v, z);
+    // A mixed pixel: the sensor averages the two depths seen across the edge.
+    if (std::abs(jump) > noise.flying_edge_mm &&
+        hashUniform(seed, i, 11) < noise.flying_probability)
+      z += jump * (0.2 + 0.6 * hashUniform(seed, i, 12));
+  }
+  z = noisyDepth(z, noise, sensor.fx, baseline_mm, seed, i);
+  return Eigen::Vector3f(static_cast<float>((u - sensor.cx) / sensor.fx * z),
+                         static_cast<float>((v - sensor.cy) / sensor.fy * z),
+                         static_cast<float>(z));
+}
+
+} // namespace
+
+RenderResult renderScene(const Scene& scene, const SensorModel& sensor, const SensorNoise& noise,
+                         std::uint64_t seed, const ProgressFn& progress) {
+  if (sensor.width <= 0 || sensor.height <= 0 || sensor.fx <= 0 || sensor.fy <= 0)
+    throw Error("the sensor '" + sensor.preset + "' has no valid image size or focal length");
+  const int W = sensor.width, H = sensor.height;
+  const std::size_t N = static_cast<std::size_t>(W) * static_cast<std::size_t>(H);
+  const Eigen::Vector3f projector = sensor.projectorPosition().cast<float>();
+  const auto grazing = static_cast<float>(noise.grazing_cos);
+  const std::size_t count = scene.instances.size();
+
+  RayScene rays;
+  const std::vector<TriangleMesh> posed = addSceneMeshes(rays, scene);
+  const std::vector<RayScene::Sample> samples =
+      traceImage(rays, sensor, projector, grazing, progress);
+
+  RenderResult out;
+  out.labels.resize(N);
+  out.lit_pixels.assign(count, 0);
+  out.visible_points.assign(count, 0);
+  for (std::size_t i = 0; i < N; ++i) {
+    out.labels[i] = samples[i].label;
+    if (samples[i].lit && samples[i].label >= 0)
+      ++out.lit_pixels[static_cast<std::size_t>(samples[i].label)];
+  }
+
+  // Each instance alone, only over the pixels its bounding box can cover.
+  out.lit_pixels_alone = litPixelsAlone(posed, sensor, projector, grazing, progress);
   out.visible_fraction.resize(count);
   for (std::size_t id = 0; id < count; ++id)
     out.visible_fraction[id] =
@@ -211,34 +282,9 @@ RenderResult renderScene(const Scene& scene, const SensorModel& sensor, const Se
   out.cloud.points_mm.assign(N, invalidPoint());
   tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const auto& r) {
     for (int v = r.begin(); v != r.end(); ++v)
-      for (int u = 0; u < W; ++u) {
-        const std::size_t i = static_cast<std::size_t>(v) * W + u;
-        if (!samples[i].lit)
-          continue;
-        if (noise.dropout_probability > 0 && hashUniform(seed, i, 10) < noise.dropout_probability)
-          continue;
-        double z = samples[i].z_mm;
-        if (noise.flying_probability > 0) {
-          double jump = 0;
-          const int du[4] = {1, -1, 0, 0}, dv[4] = {0, 0, 1, -1};
-          for (int k = 0; k < 4; ++k) {
-            const int nu = u + du[k], nv = v + dv[k];
-            if (nu < 0 || nv < 0 || nu >= W || nv >= H)
-              continue;
-            const auto& ns = samples[static_cast<std::size_t>(nv) * W + nu];
-            if (ns.label != kLabelNothing && std::abs(ns.z_mm - z) > std::abs(jump))
-              jump = ns.z_mm - z;
-          }
-          // A mixed pixel: the sensor averages the two depths seen across the edge.
-          if (std::abs(jump) > noise.flying_edge_mm &&
-              hashUniform(seed, i, 11) < noise.flying_probability)
-            z += jump * (0.2 + 0.6 * hashUniform(seed, i, 12));
-        }
-        z = noisyDepth(z, noise, sensor.fx, baseline_mm, seed, i);
-        out.cloud.points_mm[i] = Eigen::Vector3f(
-            static_cast<float>((u - sensor.cx) / sensor.fx * z),
-            static_cast<float>((v - sensor.cy) / sensor.fy * z), static_cast<float>(z));
-      }
+      for (int u = 0; u < W; ++u)
+        if (const auto p = measuredPoint(samples, sensor, noise, baseline_mm, seed, u, v))
+          out.cloud.points_mm[static_cast<std::size_t>(v) * W + u] = *p;
   });
   for (std::size_t i = 0; i < N; ++i)
     if (out.labels[i] >= 0 && isValid(out.cloud.points_mm[i]))

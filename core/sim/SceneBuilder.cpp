@@ -95,9 +95,9 @@ Eigen::Matrix3d teachRotation(const SceneSpec& spec, const Part& part, const Pro
   return poses[static_cast<std::size_t>(side)].R_table_part;
 }
 
-} // namespace
-
-Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const ProgressFn& progress) {
+/// Throws Error for a spec that names no part, an instance count out of range, or a teach or
+/// resting side that does not exist or does not apply.
+void checkSceneSpec(const SceneSpec& spec) {
   if (spec.parts.empty())
     throw Error("no part to place: give a built-in part name or a mesh file");
   if (spec.count < 1)
@@ -119,6 +119,100 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
                 ")");
   if (spec.count > 200)
     throw Error("at most 200 instances per scene (count is " + std::to_string(spec.count) + ")");
+}
+
+/// The physics world of a scene being built: its parts' shapes, and the instances' bodies from
+/// `first_dynamic` on (instance k uses part k % parts).
+struct DropWorld {
+  World& w;
+  const std::vector<Part>& parts;
+  std::vector<btCollisionShape*> shapes;
+  std::size_t first_dynamic = 0;
+
+  /// Adds instance `id`'s body, turned by `R`, its part's centre at `center_world_mm`.
+  void spawn(int id, const Eigen::Matrix3d& R, const Eigen::Vector3d& center_world_mm) {
+    const Part& part = parts[static_cast<std::size_t>(id) % parts.size()];
+    Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
+    T_world_body.linear() = R;
+    T_world_body.translation() = center_world_mm;
+    addPartBody(w, shapes[static_cast<std::size_t>(id) % shapes.size()], part, T_world_body);
+  }
+};
+
+/// Drops the instances into the bin one at a time, from just above the pile, so no two start
+/// overlapping; the drops take the first 80 % of `progress`.
+void dropIntoBin(DropWorld& drop, const SceneSpec& spec, std::mt19937_64& rng,
+                 std::uniform_real_distribution<double>& unit, const ProgressFn& progress) {
+  const int n = spec.count;
+  for (int id = 0; id < n; ++id) {
+    const Part& part = drop.parts[static_cast<std::size_t>(id) % drop.parts.size()];
+    const double r = part.diameter_mm() / 2;
+    const double mx = std::max(0.0, spec.bin.inner_x_mm / 2 - r),
+                 my = std::max(0.0, spec.bin.inner_y_mm / 2 - r);
+    const Eigen::Matrix3d R = randomRotation(rng);
+    const double x = (2 * unit(rng) - 1) * mx, y = (2 * unit(rng) - 1) * my;
+    drop.spawn(id, R, {x, y, pileTop_mm(drop.w, drop.first_dynamic) + r + 5});
+    simulate(drop.w, 0.35, drop.first_dynamic, false);
+    reportProgress(progress, 0.8 * (id + 1) / n);
+  }
+  simulate(drop.w, 3.0, drop.first_dynamic, true);
+}
+
+/// Drops the instances onto the table from grid cells larger than the biggest part, shuffled, so
+/// instances start apart.
+void scatterOnTable(DropWorld& drop, const SceneSpec& spec, std::mt19937_64& rng,
+                    std::uniform_real_distribution<double>& unit) {
+  const int n = spec.count;
+  double d = 0;
+  for (const auto& p : drop.parts)
+    d = std::max(d, p.diameter_mm());
+  const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  std::vector<int> cells(static_cast<std::size_t>(side * side));
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    cells[i] = static_cast<int>(i);
+  std::shuffle(cells.begin(), cells.end(), rng);
+  const double pitch = d + 15;
+  for (int id = 0; id < n; ++id) {
+    const double gx = (cells[static_cast<std::size_t>(id)] % side - (side - 1) / 2.0) * pitch;
+    const double gy = (cells[static_cast<std::size_t>(id)] / side - (side - 1) / 2.0) * pitch;
+    const Eigen::Matrix3d R = randomRotation(rng);
+    drop.spawn(id, R, {gx + (unit(rng) - 0.5) * 10, gy + (unit(rng) - 0.5) * 10, d / 2 + 3});
+  }
+  simulate(drop.w, 3.0, drop.first_dynamic, true);
+}
+
+/// Sets the teach scene's one part down on the table, turned per the spec and by a random yaw.
+void placeForTeach(DropWorld& drop, const SceneSpec& spec, std::mt19937_64& rng,
+                   std::uniform_real_distribution<double>& unit, const ProgressFn& progress) {
+  const Part& part = drop.parts.front();
+  const double yaw = unit(rng) * 2 * 3.14159265358979323846;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                            teachRotation(spec, part, progress);
+  // Lowest point of the part in this orientation, relative to its centre.
+  double low = 0;
+  for (const auto& c : part.components)
+    for (const auto& v : c.vertices_mm)
+      low = std::min(low, (R * (v - part.center_mm())).z());
+  drop.spawn(0, R, {(unit(rng) - 0.5) * 40, (unit(rng) - 0.5) * 40, -low + 1.0});
+  simulate(drop.w, 2.0, drop.first_dynamic, true);
+}
+
+/// The operator's box of a teach scene: the part's extent plus 10 mm around, starting 1 mm above
+/// the table so the table itself stays out (world frame).
+Eigen::AlignedBox3d teachCropBox(const Scene& scene) {
+  const auto& inst = scene.instances.front();
+  Eigen::AlignedBox3d box =
+      boundingBox(transformed(scene.parts[inst.part].mesh(), inst.T_world_part));
+  box.min() -= Eigen::Vector3d(10, 10, 0);
+  box.max() += Eigen::Vector3d(10, 10, 10);
+  box.min().z() = 1.0;
+  return box;
+}
+
+} // namespace
+
+Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const ProgressFn& progress) {
+  checkSceneSpec(spec);
 
   Scene scene;
   scene.layout = spec.layout;
@@ -131,68 +225,19 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
 
   World w;
   addEnvironment(w, spec.layout, spec.bin);
-  const std::size_t first_dynamic = w.bodies.size();
-  std::vector<btCollisionShape*> shapes;
+  DropWorld drop{w, scene.parts, {}, w.bodies.size()};
   for (const auto& p : scene.parts)
-    shapes.push_back(partShape(w, p, kMargin_units));
-
-  auto spawn = [&](int id, const Eigen::Matrix3d& R, const Eigen::Vector3d& center_world_mm) {
-    const Part& part = scene.parts[static_cast<std::size_t>(id) % scene.parts.size()];
-    Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
-    T_world_body.linear() = R;
-    T_world_body.translation() = center_world_mm;
-    addPartBody(w, shapes[static_cast<std::size_t>(id) % shapes.size()], part, T_world_body);
-  };
-  const int n = spec.count;
-  if (spec.layout == LayoutKind::Bin) {
-    // One at a time, from just above the pile, so no two start overlapping.
-    for (int id = 0; id < n; ++id) {
-      const Part& part = scene.parts[static_cast<std::size_t>(id) % scene.parts.size()];
-      const double r = part.diameter_mm() / 2;
-      const double mx = std::max(0.0, spec.bin.inner_x_mm / 2 - r),
-                   my = std::max(0.0, spec.bin.inner_y_mm / 2 - r);
-      const Eigen::Matrix3d R = randomRotation(rng);
-      const double x = (2 * unit(rng) - 1) * mx, y = (2 * unit(rng) - 1) * my;
-      spawn(id, R, {x, y, pileTop_mm(w, first_dynamic) + r + 5});
-      simulate(w, 0.35, first_dynamic, false);
-      reportProgress(progress, 0.8 * (id + 1) / n);
-    }
-    simulate(w, 3.0, first_dynamic, true);
-  } else if (spec.layout == LayoutKind::Scatter) {
-    // Grid cells larger than the biggest part, shuffled, so instances start apart.
-    double d = 0;
-    for (const auto& p : scene.parts)
-      d = std::max(d, p.diameter_mm());
-    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
-    std::vector<int> cells(static_cast<std::size_t>(side * side));
-    for (std::size_t i = 0; i < cells.size(); ++i)
-      cells[i] = static_cast<int>(i);
-    std::shuffle(cells.begin(), cells.end(), rng);
-    const double pitch = d + 15;
-    for (int id = 0; id < n; ++id) {
-      const double gx = (cells[static_cast<std::size_t>(id)] % side - (side - 1) / 2.0) * pitch;
-      const double gy = (cells[static_cast<std::size_t>(id)] / side - (side - 1) / 2.0) * pitch;
-      const Eigen::Matrix3d R = randomRotation(rng);
-      spawn(id, R, {gx + (unit(rng) - 0.5) * 10, gy + (unit(rng) - 0.5) * 10, d / 2 + 3});
-    }
-    simulate(w, 3.0, first_dynamic, true);
-  } else {
-    const Part& part = scene.parts.front();
-    const double yaw = unit(rng) * 2 * 3.14159265358979323846;
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-                              teachRotation(spec, part, progress);
-    // Lowest point of the part in this orientation, relative to its centre.
-    double low = 0;
-    for (const auto& c : part.components)
-      for (const auto& v : c.vertices_mm)
-        low = std::min(low, (R * (v - part.center_mm())).z());
-    spawn(0, R, {(unit(rng) - 0.5) * 40, (unit(rng) - 0.5) * 40, -low + 1.0});
-    simulate(w, 2.0, first_dynamic, true);
-  }
+    drop.shapes.push_back(partShape(w, p, kMargin_units));
+  if (spec.layout == LayoutKind::Bin)
+    dropIntoBin(drop, spec, rng, unit, progress);
+  else if (spec.layout == LayoutKind::Scatter)
+    scatterOnTable(drop, spec, rng, unit);
+  else
+    placeForTeach(drop, spec, rng, unit, progress);
   reportProgress(progress, 1.0);
 
-  for (int id = 0; id < n; ++id) {
-    const btRigidBody& body = *w.bodies[first_dynamic + static_cast<std::size_t>(id)];
+  for (int id = 0; id < spec.count; ++id) {
+    const btRigidBody& body = *w.bodies[drop.first_dynamic + static_cast<std::size_t>(id)];
     PartInstance inst;
     inst.id = id;
     inst.part = static_cast<std::size_t>(id) % scene.parts.size();
@@ -210,17 +255,8 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
   T_world_camera.translation() = Eigen::Vector3d(0, 0, height);
   scene.T_camera_world = T_world_camera.inverse();
 
-  if (spec.layout == LayoutKind::Teach) {
-    // The operator's box: the part's extent plus 10 mm around, starting 1 mm above the table so the
-    // table itself stays out.
-    const auto& inst = scene.instances.front();
-    Eigen::AlignedBox3d box =
-        boundingBox(transformed(scene.parts[inst.part].mesh(), inst.T_world_part));
-    box.min() -= Eigen::Vector3d(10, 10, 0);
-    box.max() += Eigen::Vector3d(10, 10, 10);
-    box.min().z() = 1.0;
-    scene.crop_box_world = box;
-  }
+  if (spec.layout == LayoutKind::Teach)
+    scene.crop_box_world = teachCropBox(scene);
   return scene;
 }
 
