@@ -97,17 +97,11 @@ std::pair<float, float> depthRange(const PointCloud& scan) {
   return {lo, std::max(hi, lo + 1.0f)};
 }
 
-} // namespace
-
-double depthOverlayTolerance_mm(const RecognitionParams& params) {
-  return std::max({params.matching.verify_tolerance_mm, params.refine.inlier_distance_mm, 1.0});
-}
-
-DepthOverlay renderDepthOverlay(const PointCloud& scan,
-                                const std::vector<const PointCloud*>& models,
-                                const std::vector<Detection>& detections,
-                                const std::vector<Rgb8>& colours, double tolerance_mm,
-                                const ProgressFn& progress) {
+/// Throws Error for an unorganized scan, a tolerance that is not positive, detections without a
+/// colour, or a detection naming a model that was not given.
+void checkOverlayInputs(const PointCloud& scan, const std::vector<const PointCloud*>& models,
+                        const std::vector<Detection>& detections, const std::vector<Rgb8>& colours,
+                        double tolerance_mm) {
   if (!scan.isOrganized() || scan.size() != std::size_t(scan.width) * scan.height)
     throw Error("the depth image needs an organized scan (a sensor's grid of width x height); "
                 "this one is a list of " +
@@ -121,12 +115,11 @@ DepthOverlay renderDepthOverlay(const PointCloud& scan,
         !models[std::size_t(d.model_index)])
       throw Error("a detection names model " + std::to_string(d.model_index) +
                   ", which was not given for the depth image");
-  DepthOverlay out;
-  out.width = int(scan.width);
-  out.height = int(scan.height);
-  out.rgb.assign(scan.size(), kNoDepthColour);
-  out.marks.resize(detections.size());
+}
 
+/// The valid model points of every detection at its pose, indexed in cells of `tolerance_mm`.
+PosedModels poseModels(const std::vector<const PointCloud*>& models,
+                       const std::vector<Detection>& detections, double tolerance_mm) {
   PosedModels posed(tolerance_mm);
   for (std::size_t k = 0; k < detections.size(); ++k) {
     const Detection& d = detections[k];
@@ -136,11 +129,27 @@ DepthOverlay renderDepthOverlay(const PointCloud& scan,
         posed.add(T * p, int(k));
   }
   posed.index();
-  reportProgress(progress, 0.2);
+  return posed;
+}
 
-  const auto [near_z, far_z] = depthRange(scan);
-  std::vector<Eigen::Vector2d> tinted_sum(detections.size(), Eigen::Vector2d::Zero());
-  std::vector<std::int32_t> owner(detections.empty() ? 0 : scan.size(), -1);
+/// Which detection tinted each cell (-1: none; empty without detections), and the sum of each
+/// detection's tinted pixels (column, row).
+struct Tinting {
+  std::vector<std::int32_t> owner;
+  std::vector<Eigen::Vector2d> pixel_sum;
+};
+
+/// Colours `out.rgb` (grey by depth between `near_z` and `far_z`, or the colour of the detection
+/// whose posed model explains the point) and counts each detection's pixels in `out.marks`.
+/// Reports progress from 0.2 to 0.9.
+Tinting shadeAndTint(const PointCloud& scan, const PosedModels& posed, std::size_t detections,
+                     const std::vector<Rgb8>& colours, float near_z, float far_z,
+                     const ProgressFn& progress, DepthOverlay& out) {
+  Tinting tinting;
+  std::vector<Eigen::Vector2d>& tinted_sum = tinting.pixel_sum;
+  std::vector<std::int32_t>& owner = tinting.owner;
+  tinted_sum.assign(detections, Eigen::Vector2d::Zero());
+  owner.assign(detections == 0 ? 0 : scan.size(), -1);
   for (std::uint32_t row = 0; row < scan.height; ++row) {
     if (row % 64 == 0)
       reportProgress(progress, 0.2 + 0.7 * double(row) / scan.height);
@@ -151,7 +160,7 @@ DepthOverlay renderDepthOverlay(const PointCloud& scan,
         continue;
       // Near light, far dark; beyond the range clamped.
       const float shade = std::clamp((far_z - p.z()) / (far_z - near_z), 0.0f, 1.0f);
-      const int k = detections.empty() ? -1 : posed.nearest(p);
+      const int k = detections == 0 ? -1 : posed.nearest(p);
       if (k < 0) {
         const auto grey = static_cast<std::uint8_t>(std::lround(45.0f + 195.0f * shade));
         out.rgb[i] = {grey, grey, grey};
@@ -168,53 +177,96 @@ DepthOverlay renderDepthOverlay(const PointCloud& scan,
       tinted_sum[std::size_t(k)] += Eigen::Vector2d(col, row);
     }
   }
+  return tinting;
+}
 
-  // Pixels towards a point: the camera is at the scan frame's origin, so the cell whose point's
-  // direction is nearest to the point's direction is where it appears.
+/// Each scan point's unit direction from the camera (the scan frame's origin); zero where none.
+std::vector<Eigen::Vector3f> pixelDirections(const PointCloud& scan) {
   std::vector<Eigen::Vector3f> directions(scan.size(), Eigen::Vector3f::Zero());
   for (std::size_t i = 0; i < scan.size(); ++i)
     if (isValid(scan.points_mm[i]) && scan.points_mm[i].norm() > 0)
       directions[i] = scan.points_mm[i].normalized();
-  const auto pixelTowards = [&](const Eigen::Vector3d& target) {
-    Eigen::Vector2d best_px(-1, -1);
-    if (!target.allFinite() || target.norm() <= 0)
-      return best_px;
-    const Eigen::Vector3f dir = target.normalized().cast<float>();
-    float best = -2.0f;
-    for (std::size_t i = 0; i < directions.size(); ++i) {
-      const float c = directions[i].dot(dir);
-      if (c > best) {
-        best = c;
-        best_px = Eigen::Vector2d(double(i % scan.width), double(i / scan.width));
-      }
+  return directions;
+}
+
+/// The pixel (column, row) of a scan `width` cells wide whose point's direction is nearest to
+/// the direction towards `target` (scan frame, mm): where it appears. (-1, -1) when none lies
+/// within 90° of it.
+Eigen::Vector2d pixelTowards(const std::vector<Eigen::Vector3f>& directions, std::uint32_t width,
+                             const Eigen::Vector3d& target) {
+  Eigen::Vector2d best_px(-1, -1);
+  if (!target.allFinite() || target.norm() <= 0)
+    return best_px;
+  const Eigen::Vector3f dir = target.normalized().cast<float>();
+  float best = -2.0f;
+  for (std::size_t i = 0; i < directions.size(); ++i) {
+    const float c = directions[i].dot(dir);
+    if (c > best) {
+      best = c;
+      best_px = Eigen::Vector2d(double(i % width), double(i / width));
     }
-    return best > 0 ? best_px : Eigen::Vector2d(-1, -1);
-  };
-  // The middle of a detection's pixels may fall in a gap of the part (a frame, a bracket): its ID
-  // goes on the detection's pixel nearest to it.
-  std::vector<Eigen::Vector2d> middle(detections.size());
-  std::vector<double> nearest_d2(detections.size(), std::numeric_limits<double>::max());
-  for (std::size_t k = 0; k < detections.size(); ++k) {
-    const std::size_t n = out.marks[k].pixels;
-    middle[k] = n > 0 ? Eigen::Vector2d(tinted_sum[k] / double(n)) : Eigen::Vector2d(-1, -1);
   }
-  for (std::size_t i = 0; i < owner.size(); ++i) {
-    if (owner[i] < 0)
+  return best > 0 ? best_px : Eigen::Vector2d(-1, -1);
+}
+
+/// Puts each mark's label on its detection's tinted pixel nearest to the middle of them: the
+/// middle itself may fall in a gap of the part (a frame, a bracket).
+void placeLabels(const Tinting& tinting, std::uint32_t width,
+                 std::vector<DepthOverlayMark>& marks) {
+  std::vector<Eigen::Vector2d> middle(marks.size());
+  std::vector<double> nearest_d2(marks.size(), std::numeric_limits<double>::max());
+  for (std::size_t k = 0; k < marks.size(); ++k) {
+    const std::size_t n = marks[k].pixels;
+    middle[k] = n > 0 ? Eigen::Vector2d(tinting.pixel_sum[k] / double(n)) : Eigen::Vector2d(-1, -1);
+  }
+  for (std::size_t i = 0; i < tinting.owner.size(); ++i) {
+    if (tinting.owner[i] < 0)
       continue;
-    const auto k = std::size_t(owner[i]);
-    const Eigen::Vector2d px(double(i % scan.width), double(i / scan.width));
+    const auto k = std::size_t(tinting.owner[i]);
+    const Eigen::Vector2d px(double(i % width), double(i / width));
     const double d2 = (px - middle[k]).squaredNorm();
     if (d2 < nearest_d2[k]) {
       nearest_d2[k] = d2;
-      out.marks[k].label_px = px;
+      marks[k].label_px = px;
     }
   }
+}
+
+} // namespace
+
+double depthOverlayTolerance_mm(const RecognitionParams& params) {
+  return std::max({params.matching.verify_tolerance_mm, params.refine.inlier_distance_mm, 1.0});
+}
+
+DepthOverlay renderDepthOverlay(const PointCloud& scan,
+                                const std::vector<const PointCloud*>& models,
+                                const std::vector<Detection>& detections,
+                                const std::vector<Rgb8>& colours, double tolerance_mm,
+                                const ProgressFn& progress) {
+  checkOverlayInputs(scan, models, detections, colours, tolerance_mm);
+  DepthOverlay out;
+  out.width = int(scan.width);
+  out.height = int(scan.height);
+  out.rgb.assign(scan.size(), kNoDepthColour);
+  out.marks.resize(detections.size());
+
+  const PosedModels posed = poseModels(models, detections, tolerance_mm);
+  reportProgress(progress, 0.2);
+
+  const auto [near_z, far_z] = depthRange(scan);
+  const Tinting tinting =
+      shadeAndTint(scan, posed, detections.size(), colours, near_z, far_z, progress, out);
+
+  // Pixels towards a point: the camera is at the scan frame's origin, so the cell whose point's
+  // direction is nearest to the point's direction is where it appears.
+  const std::vector<Eigen::Vector3f> directions = pixelDirections(scan);
+  placeLabels(tinting, scan.width, out.marks);
   for (std::size_t k = 0; k < detections.size(); ++k) {
     DepthOverlayMark& mark = out.marks[k];
     if (mark.pixels == 0)
-      mark.label_px = pixelTowards(detections[k].centre_mm);
+      mark.label_px = pixelTowards(directions, scan.width, detections[k].centre_mm);
     for (const GripPoint& g : detections[k].grip_points_scene)
-      mark.grips_px.push_back(pixelTowards(g.position_mm));
+      mark.grips_px.push_back(pixelTowards(directions, scan.width, g.position_mm));
   }
   reportProgress(progress, 1.0);
   return out;
