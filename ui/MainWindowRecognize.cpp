@@ -131,9 +131,9 @@ void MainWindow::setResult(std::shared_ptr<const core::RecognitionResult> result
   if (m_framed_scan != m_scan && !(m_live && m_live_cycles > 0)) {
     // The camera frames the bin: the scene without its floor (the parts and the bin's walls).
     m_framed_scan = m_scan;
-    lookFromSensor(m_result->preprocessed && m_result->preprocessed->hasValidPoint()
-                       ? core::boundingBox(*m_result->preprocessed)
-                       : Eigen::AlignedBox3f());
+    const auto& preprocessed = m_result->scene ? m_result->scene->preprocessed : nullptr;
+    lookFromSensor(preprocessed && preprocessed->hasValidPoint() ? core::boundingBox(*preprocessed)
+                                                                 : Eigen::AlignedBox3f());
   }
 }
 

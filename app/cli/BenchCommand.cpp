@@ -89,19 +89,19 @@ int run(const Options& o) {
     ref.push_back(t.refine_ms);
     total.push_back(t.total_ms);
     detections = result.detections.size();
-    if (r == 0 && result.objects) {
+    if (r == 0 && result.scene) {
+      const core::SceneAnalysis& analysis = *result.scene;
       std::size_t keypoints = 0, features = 0;
-      for (const auto& k : *result.object_keypoints)
+      for (const auto& k : *analysis.keypoints)
         keypoints += k.points_mm.size();
-      for (const auto& f : *result.object_features)
+      for (const auto& f : *analysis.features)
         features += f.size();
       std::printf("%zu object(s) after the split, %zu keypoints, %zu features; largest object %zu "
                   "keypoints\n",
-                  result.objects->size(), keypoints, features,
-                  result.object_keypoints->empty()
+                  analysis.objects->size(), keypoints, features,
+                  analysis.keypoints->empty()
                       ? std::size_t{0}
-                      : std::max_element(result.object_keypoints->begin(),
-                                         result.object_keypoints->end(),
+                      : std::max_element(analysis.keypoints->begin(), analysis.keypoints->end(),
                                          [](const auto& a, const auto& b) {
                                            return a.points_mm.size() < b.points_mm.size();
                                          })

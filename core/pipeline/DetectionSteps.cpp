@@ -155,11 +155,45 @@ void moveTo(Detection& d, const Eigen::Isometry3d& T_scene_model, std::optional<
   }
 }
 
+/// An alternative pose refined as a pose of its own (the turn that made it fits the view onto
+/// itself only to a millimetre or two): ICP, and with `verify` also ICP with twice its final pair
+/// distance and with the final distance itself (from that far off, pairs as far apart as the ICP
+/// distance can hold a neighbour's surface and pull the pose away), the best verified pose taken
+/// when it verifies as well as the start (keepsRefinedPose). Returns the pose and its score, when
+/// verified.
+std::pair<Eigen::Isometry3d, std::optional<double>>
+refinedAlternative(const RefineModel& icp_model, const SceneIndex& scene_index,
+                   const Eigen::Isometry3d& T_alternative, const RefineParams& params,
+                   const PoseVerifier& verify) {
+  Eigen::Isometry3d refined =
+      refinePose(icp_model, scene_index, T_alternative, params).T_scene_model;
+  if (!verify)
+    return {refined, std::nullopt};
+  const double before = verify(T_alternative);
+  double after = verify(refined);
+  for (const double distance_mm :
+       {2.0 * params.min_correspondence_mm, params.min_correspondence_mm}) {
+    if (!(distance_mm < params.max_correspondence_mm))
+      continue;
+    RefineParams narrow = params;
+    narrow.max_correspondence_mm = distance_mm;
+    const Eigen::Isometry3d T =
+        refinePose(icp_model, scene_index, T_alternative, narrow).T_scene_model;
+    if (const double score = verify(T); score > after) {
+      after = score;
+      refined = T;
+    }
+  }
+  if (keepsRefinedPose(before, after))
+    return {refined, after};
+  return {T_alternative, before};
+}
+
 } // namespace
 
-void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
-                      const SceneIndex& scene_index, const RefineParams& params,
-                      const PoseVerifier& verify) {
+std::vector<Detection> refineDetections(std::vector<Detection> detections, const ModelPrep& prep,
+                                        const SceneIndex& scene_index, const RefineParams& params,
+                                        const PoseVerifier& verify) {
   const RefineModel& icp_model = prep.joined_refine ? *prep.joined_refine : *prep.refine;
   const bool revolution = prep.axis || prep.near_axis;
   // Where the outline places the directions ICP hardly pins, ICP leaves them as they came: on
@@ -205,62 +239,43 @@ void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
     // Each alternative pose is refined as a pose of its own: the turn that made it fits the view
     // onto itself only to a millimetre or two.
     for (auto& T_alternative : d.alternative_poses) {
-      std::optional<double> verified;
-      bool keep = true;
-      Eigen::Isometry3d refined =
-          refinePose(icp_model, scene_index, T_alternative, params).T_scene_model;
-      if (verify) {
-        const double before = verify(T_alternative);
-        double after = verify(refined);
-        // From that far off, pairs as far apart as the ICP distance can hold a neighbour's surface
-        // and pull the pose away: ICP also starts with twice its final distance and with the final
-        // distance itself, and the best verified pose is taken.
-        for (const double distance_mm :
-             {2.0 * params.min_correspondence_mm, params.min_correspondence_mm}) {
-          if (!(distance_mm < params.max_correspondence_mm))
-            continue;
-          RefineParams narrow = params;
-          narrow.max_correspondence_mm = distance_mm;
-          const Eigen::Isometry3d T =
-              refinePose(icp_model, scene_index, T_alternative, narrow).T_scene_model;
-          if (const double score = verify(T); score > after) {
-            after = score;
-            refined = T;
-          }
-        }
-        keep = keepsRefinedPose(before, after);
-        verified = keep ? after : before;
-      }
-      if (keep)
-        T_alternative = refined;
+      const auto [refined, verified] =
+          refinedAlternative(icp_model, scene_index, T_alternative, params, verify);
+      T_alternative = refined;
       if (const auto T = slid(T_alternative, verified))
         T_alternative = *T;
     }
   });
   sortBestFirst(detections);
+  return detections;
 }
 
-void resolveDetectionTurns(std::vector<Detection>& detections, const ModelPrep& prep,
-                           const VerifyScene& scene, const MatchingParams& params,
-                           const PoseVerifier& verify, const PosePolisher& polish,
-                           double min_distance_mm) {
+std::vector<Detection> resolveDetectionTurns(std::vector<Detection> detections,
+                                             const ModelPrep& prep, const VerifyScene& scene,
+                                             const MatchingParams& params,
+                                             const PoseVerifier& verify, const PosePolisher& polish,
+                                             double min_distance_mm) {
   if (!verify)
-    return;
+    return detections;
   if (prep.near_axis) {
     const auto t0 = Clock::now();
-    detail::resolveDetailTurns(detections, prep, scene, params, verify, polish);
+    detections =
+        detail::resolveDetailTurns(std::move(detections), prep, scene, params, verify, polish);
     logger()->debug("the handle's turn of {} detections: {:.0f} ms", detections.size(),
                     msSince(t0));
   }
   if (!prep.symmetries.empty()) {
-    detail::resolveNearSymmetries(detections, prep, scene, params, verify, polish);
+    detections =
+        detail::resolveNearSymmetries(std::move(detections), prep, scene, params, verify, polish);
     sortBestFirst(detections);
     detections = suppressDuplicates(std::move(detections), min_distance_mm);
   }
+  return detections;
 }
 
-void placeDetections(std::vector<Detection>& detections, const TaughtModel& model,
-                     const ModelPrep* prep, const VerifyScene* scene, double tolerance_mm) {
+std::vector<Detection> placeDetections(std::vector<Detection> detections, const TaughtModel& model,
+                                       const ModelPrep* prep, const VerifyScene* scene,
+                                       double tolerance_mm) {
   // The turn about the view's axis is not seen at a pose where the view is a surface of
   // revolution, or one but for a detail that the scan does not confirm there.
   const auto freeTurnAt = [&](const Eigen::Isometry3d& T) -> std::optional<FreeTurnAxis> {
@@ -288,6 +303,7 @@ void placeDetections(std::vector<Detection>& detections, const TaughtModel& mode
                      [](const auto& axis) { return axis.has_value(); }))
       d.alternative_free_turn_axes.clear();
   }
+  return detections;
 }
 
 std::vector<Detection>

@@ -36,22 +36,24 @@ bool keepsRefinedPose(double coverage_before, double coverage_after);
 /// refines each alternative pose as a pose of its own in the same way (ICP also with narrower
 /// pair distances, the best verified pose taken: an alternative starts a millimetre or two off).
 /// Best first again.
-void refineDetections(std::vector<Detection>& detections, const ModelPrep& prep,
-                      const SceneIndex& scene_index, const RefineParams& params,
-                      const PoseVerifier& verify);
+std::vector<Detection> refineDetections(std::vector<Detection> detections, const ModelPrep& prep,
+                                        const SceneIndex& scene_index, const RefineParams& params,
+                                        const PoseVerifier& verify);
 
 /// The turns matching cannot tell (a view's detail about its near axis, its near symmetries) of
 /// `detections` (sorted best first, none of them within `min_distance_mm` of a better one):
 /// resolved by the scan, best first again, duplicates the turns made dropped.
-void resolveDetectionTurns(std::vector<Detection>& detections, const ModelPrep& prep,
-                           const VerifyScene& scene, const MatchingParams& params,
-                           const PoseVerifier& verify, const PosePolisher& polish,
-                           double min_distance_mm);
+std::vector<Detection> resolveDetectionTurns(std::vector<Detection> detections,
+                                             const ModelPrep& prep, const VerifyScene& scene,
+                                             const MatchingParams& params,
+                                             const PoseVerifier& verify, const PosePolisher& polish,
+                                             double min_distance_mm);
 
 /// What each detection reports at its pose: its centre, its grip points in the scene frame and the
 /// turns about the view's axis the scan does not see (`scene`: null without verification).
-void placeDetections(std::vector<Detection>& detections, const TaughtModel& model,
-                     const ModelPrep* prep, const VerifyScene* scene, double tolerance_mm);
+std::vector<Detection> placeDetections(std::vector<Detection> detections, const TaughtModel& model,
+                                       const ModelPrep* prep, const VerifyScene* scene,
+                                       double tolerance_mm);
 
 /// Another try for a pose that verified under the minimum but at least half of it: may replace
 /// the detection's pose and coverage.

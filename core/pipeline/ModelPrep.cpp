@@ -244,6 +244,92 @@ constexpr double kMinDistinguishingShare = 0.02;
 /// its differing points than of the turned pose's (contradictedShare).
 constexpr double kTurnMargin = 0.1;
 
+/// The view's axis: a surface of revolution (ModelPrep::axis), or one but for a detail
+/// (ModelPrep::near_axis and its detail); then the body its points make turned about it and the
+/// ends of its wall. `surface`: the view's points with their normals.
+void fitAxes(ModelPrep& prep, const TaughtModel& model, const SceneIndex& surface) {
+  prep.axis = fitRevolutionAxis(prep.verify->points, prep.verify->normals);
+  if (prep.axis)
+    prep.axis = refineRevolutionAxis(prep.verify->points, prep.verify->normals, *prep.axis);
+  if (prep.axis)
+    logger()->debug("model '{}' is a surface of revolution ({:.0f} % of its normals), its turn "
+                    "is not seen: axis through ({:.1f}, {:.1f}, {:.1f}) mm along ({:.3f}, "
+                    "{:.3f}, {:.3f})",
+                    model.name, 100.0 * prep.axis->inlier_share, prep.axis->point_mm.x(),
+                    prep.axis->point_mm.y(), prep.axis->point_mm.z(), prep.axis->direction.x(),
+                    prep.axis->direction.y(), prep.axis->direction.z());
+  else if (auto near = fitRevolutionAxis(prep.verify->points, prep.verify->normals,
+                                         kRevolutionTolerance, kNearRevolutionShare);
+           near || (near = rimAxis(prep.verify->points, prep.verify->normals))) {
+    // The axis is refined on the surface without the detail, which is then found again.
+    auto detail = detailPoints(prep.verify->points, *near, kDetailCellMm);
+    near = refineRevolutionAxis(prep.verify->points, prep.verify->normals, *near, detail);
+    detail = detailPoints(prep.verify->points, *near, kDetailCellMm);
+    const std::size_t count = prep.verify->points.size();
+    if (double(detail.size()) <= kMaxDetailShare * double(count)) {
+      prep.near_axis = near;
+      prep.near_axis_detail = std::move(detail);
+      logger()->debug("model '{}' is a surface of revolution but for a detail ({:.0f} % of its "
+                      "normals; {} of its {} points off the surface): its turn is seen only "
+                      "where a scan confirms the detail",
+                      model.name, 100.0 * near->inlier_share, prep.near_axis_detail.size(), count);
+    } else {
+      logger()->debug("model '{}' fits an axis with {:.0f} % of its normals, but {} of its {} "
+                      "points lie off the surface they turn: not a surface of revolution",
+                      model.name, 100.0 * near->inlier_share, detail.size(), count);
+    }
+  }
+  if (prep.axis || prep.near_axis) {
+    auto verify = std::make_shared<VerifyModel>(*prep.verify);
+    verify->body = std::make_shared<const RevolvedBody>(verify->points,
+                                                        prep.axis ? *prep.axis : *prep.near_axis,
+                                                        kBodyCellMm, prep.near_axis_detail);
+    prep.verify = std::move(verify);
+    findWallEnds(prep, surface);
+  }
+}
+
+/// The view's near symmetries (findNearSymmetries) less the turns about its axis, and what each
+/// moves off the joined body.
+void findSymmetries(ModelPrep& prep, const TaughtModel& model, const RecognitionParams& params,
+                    double tolerance_mm) {
+  prep.symmetries = findNearSymmetries(model, *prep.verify, *prep.refine, params.refine,
+                                       tolerance_mm, params.matching.symmetry_overlap);
+  // A surface of revolution reports its turn about the axis as free instead, and one but for a
+  // detail as seen or free by the detail (seesDetail); their other near symmetries (a cup or a
+  // pipe turned end over end) stay.
+  if (prep.axis || prep.near_axis) {
+    const RevolutionAxis& axis = prep.axis ? *prep.axis : *prep.near_axis;
+    const auto turns = std::erase_if(
+        prep.symmetries, [&](const NearSymmetry& s) { return isTurnAbout(axis, s.S_model); });
+    logger()->debug("model '{}': {} near symmetries are turns about its axis, {} others",
+                    model.name, turns, prep.symmetries.size());
+  }
+  prep.joined_body_differing.clear();
+  if (prep.joined_body)
+    for (const NearSymmetry& s : prep.symmetries) {
+      prep.joined_body_differing.push_back({movedOffBody(*prep.joined_body, s.S_model),
+                                            movedOffBody(*prep.joined_body, s.S_model.inverse())});
+      logger()->debug(
+          "model '{}': a near symmetry moves {} / {} of the joined body's {} points off it",
+          model.name, prep.joined_body_differing.back().differing.size(),
+          prep.joined_body_differing.back().differing_inverse.size(),
+          prep.joined_body->points.size());
+    }
+}
+
+/// What the near symmetries are found with: none without a search (matching.symmetry_overlap) or
+/// verification. The symmetries' ICP is the same whether the detections are refined in the end or
+/// not.
+std::optional<SymmetryKey> symmetryKey(const RecognitionParams& params) {
+  const double tolerance = params.matching.verify_tolerance_mm;
+  if (!(params.matching.symmetry_overlap > 0 && tolerance > 0))
+    return std::nullopt;
+  RefineParams symmetry_icp = params.refine;
+  symmetry_icp.enabled = false;
+  return SymmetryKey{params.matching.symmetry_overlap, tolerance, symmetry_icp};
+}
+
 } // namespace
 
 bool needsModelPrep(const RecognitionParams& params) {
@@ -257,13 +343,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
   const double radius = params.keypoints.normal_radius_mm;
   const double sampling = params.matching.surface_sampling_mm;
   const double tolerance = params.matching.verify_tolerance_mm;
-  // The symmetries' ICP is the same whether the detections are refined in the end or not.
-  RefineParams symmetry_icp = params.refine;
-  symmetry_icp.enabled = false;
-  const std::optional<SymmetryKey> symmetry_key =
-      params.matching.symmetry_overlap > 0 && tolerance > 0
-          ? std::optional(SymmetryKey{params.matching.symmetry_overlap, tolerance, symmetry_icp})
-          : std::nullopt;
+  const std::optional<SymmetryKey> symmetry_key = symmetryKey(params);
   // ICP needs the model prepared: for refinement, to polish surface voting's poses, and to fit
   // near symmetries.
   const bool needs_refine = params.refine.enabled || sampling > 0 || symmetry_key;
@@ -295,46 +375,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     prep->normal_radius_mm = radius;
     surface = modelSurface(*model, radius);
     prep->verify = makeVerifyModel(*model, *surface, points);
-    prep->axis = fitRevolutionAxis(prep->verify->points, prep->verify->normals);
-    if (prep->axis)
-      prep->axis = refineRevolutionAxis(prep->verify->points, prep->verify->normals, *prep->axis);
-    if (prep->axis)
-      logger()->debug("model '{}' is a surface of revolution ({:.0f} % of its normals), its turn "
-                      "is not seen: axis through ({:.1f}, {:.1f}, {:.1f}) mm along ({:.3f}, "
-                      "{:.3f}, {:.3f})",
-                      model->name, 100.0 * prep->axis->inlier_share, prep->axis->point_mm.x(),
-                      prep->axis->point_mm.y(), prep->axis->point_mm.z(), prep->axis->direction.x(),
-                      prep->axis->direction.y(), prep->axis->direction.z());
-    else if (auto near = fitRevolutionAxis(prep->verify->points, prep->verify->normals,
-                                           kRevolutionTolerance, kNearRevolutionShare);
-             near || (near = rimAxis(prep->verify->points, prep->verify->normals))) {
-      // The axis is refined on the surface without the detail, which is then found again.
-      auto detail = detailPoints(prep->verify->points, *near, kDetailCellMm);
-      near = refineRevolutionAxis(prep->verify->points, prep->verify->normals, *near, detail);
-      detail = detailPoints(prep->verify->points, *near, kDetailCellMm);
-      const std::size_t count = prep->verify->points.size();
-      if (double(detail.size()) <= kMaxDetailShare * double(count)) {
-        prep->near_axis = near;
-        prep->near_axis_detail = std::move(detail);
-        logger()->debug("model '{}' is a surface of revolution but for a detail ({:.0f} % of its "
-                        "normals; {} of its {} points off the surface): its turn is seen only "
-                        "where a scan confirms the detail",
-                        model->name, 100.0 * near->inlier_share, prep->near_axis_detail.size(),
-                        count);
-      } else {
-        logger()->debug("model '{}' fits an axis with {:.0f} % of its normals, but {} of its {} "
-                        "points lie off the surface they turn: not a surface of revolution",
-                        model->name, 100.0 * near->inlier_share, detail.size(), count);
-      }
-    }
-    if (prep->axis || prep->near_axis) {
-      auto verify = std::make_shared<VerifyModel>(*prep->verify);
-      verify->body = std::make_shared<const RevolvedBody>(
-          verify->points, prep->axis ? *prep->axis : *prep->near_axis, kBodyCellMm,
-          prep->near_axis_detail);
-      prep->verify = std::move(verify);
-      findWallEnds(*prep, *surface);
-    }
+    fitAxes(*prep, *model, *surface);
     if (prep->near_axis && !model->joined_views.empty()) {
       std::tie(prep->joined_detail, prep->joined_body) =
           joinedDetailAndBody(joined(), *prep->verify, *prep->near_axis);
@@ -362,30 +403,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     prep->surface_sampling_mm = sampling;
   }
   if (symmetry_key && prep->symmetry_key != symmetry_key) {
-    prep->symmetries = findNearSymmetries(*model, *prep->verify, *prep->refine, params.refine,
-                                          tolerance, params.matching.symmetry_overlap);
-    // A surface of revolution reports its turn about the axis as free instead, and one but for a
-    // detail as seen or free by the detail (seesDetail); their other near symmetries (a cup or a
-    // pipe turned end over end) stay.
-    if (prep->axis || prep->near_axis) {
-      const RevolutionAxis& axis = prep->axis ? *prep->axis : *prep->near_axis;
-      const auto turns = std::erase_if(
-          prep->symmetries, [&](const NearSymmetry& s) { return isTurnAbout(axis, s.S_model); });
-      logger()->debug("model '{}': {} near symmetries are turns about its axis, {} others",
-                      model->name, turns, prep->symmetries.size());
-    }
-    prep->joined_body_differing.clear();
-    if (prep->joined_body)
-      for (const NearSymmetry& s : prep->symmetries) {
-        prep->joined_body_differing.push_back(
-            {movedOffBody(*prep->joined_body, s.S_model),
-             movedOffBody(*prep->joined_body, s.S_model.inverse())});
-        logger()->debug(
-            "model '{}': a near symmetry moves {} / {} of the joined body's {} points off it",
-            model->name, prep->joined_body_differing.back().differing.size(),
-            prep->joined_body_differing.back().differing_inverse.size(),
-            prep->joined_body->points.size());
-      }
+    findSymmetries(*prep, *model, params, tolerance);
     prep->symmetry_key = symmetry_key;
   }
   constexpr std::size_t kKeptModels = 8;
@@ -536,9 +554,9 @@ std::optional<DetailTurn> turnByDetail(const ModelPrep& prep, const VerifyScene&
   return turn;
 }
 
-void resolveDetailTurns(std::vector<Detection>& detections, const ModelPrep& prep,
-                        const VerifyScene& scene, const MatchingParams& params,
-                        const PoseVerifier& verify, const PosePolisher& polish) {
+std::vector<Detection> resolveDetailTurns(std::vector<Detection> detections, const ModelPrep& prep,
+                                          const VerifyScene& scene, const MatchingParams& params,
+                                          const PoseVerifier& verify, const PosePolisher& polish) {
   tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
     Detection& d = detections[k];
     const auto turn =
@@ -550,6 +568,7 @@ void resolveDetailTurns(std::vector<Detection>& detections, const ModelPrep& pre
                     k, turn->detail_as_found, turn->detail_confirmed, d.coverage, turn->coverage);
     takeTurn(d, *turn);
   });
+  return detections;
 }
 
 void takeTurn(Detection& detection, const DetailTurn& turn) {
@@ -561,9 +580,91 @@ void takeTurn(Detection& detection, const DetailTurn& turn) {
   detection.alternative_poses.clear();
 }
 
-void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& prep,
-                           const VerifyScene& scene, const MatchingParams& params,
-                           const PoseVerifier& verify, const PosePolisher& polish) {
+namespace {
+
+/// How the scan rules between a detection's pose and its pose turned by one near symmetry.
+struct SymmetryRuling {
+  Ruling ruling = Ruling::Neither;
+  const char* ruled_by = "the view's differing points";
+  double as_found = 0.0, turned = 0.0; ///< the view's differing points contradicted
+  Eigen::Isometry3d T_turned;          ///< T·S, polished (and turned by its detail)
+  double coverage = 0.0;               ///< T_turned's verification score
+};
+
+/// The ruling between detection `d` (number `k`, for the log) at T and T·S for the view's near
+/// symmetry `j` (resolveNearSymmetries). `turn_unseen`: the turn about the view's near axis is not
+/// seen at T. `min_seen`: fewer differing points seen tell nothing (contradictedShare).
+SymmetryRuling ruleSymmetry(const ModelPrep& prep, std::size_t j, const VerifyScene& scene,
+                            const MatchingParams& params, const PoseVerifier& verify,
+                            const PosePolisher& polish, const Detection& d, std::size_t k,
+                            bool turn_unseen, std::size_t min_seen) {
+  const NearSymmetry& s = prep.symmetries[j];
+  SymmetryRuling r;
+  r.as_found = contradictedShare(
+      tallyPoints(*prep.verify, scene, d.T_scene_model, params.verify_tolerance_mm,
+                  {.subset = &s.differing_inverse, .stop = {}, .sort_unmeasured = true}),
+      min_seen);
+  r.T_turned = polish(d.T_scene_model * s.S_model);
+  r.coverage = verify(r.T_turned);
+  // Turned end over end, a cup's handle lies at another turn about its axis: its detail says
+  // which.
+  if (const auto turn = turnByDetail(prep, scene, params, verify, polish, r.T_turned, r.coverage)) {
+    logger()->trace("detection {} turned by a near symmetry: then about its axis by its "
+                    "detail, {:.2f} -> {:.2f} of it confirmed",
+                    k, turn->detail_as_found, turn->detail_confirmed);
+    r.T_turned = turn->T_scene_model;
+    r.coverage = turn->coverage;
+  }
+  r.turned =
+      contradictedShare(tallyPoints(*prep.verify, scene, r.T_turned, params.verify_tolerance_mm,
+                                    {.subset = &s.differing, .stop = {}, .sort_unmeasured = true}),
+                        min_seen);
+  logger()->trace("detection {}: {:.2f} of the differing points contradicted as found, {:.2f} "
+                  "turned",
+                  k, r.as_found, r.turned);
+  // The view's differing points rule a pose out only where they are seen at a known turn.
+  if (!turn_unseen && r.turned > r.as_found + kTurnMargin)
+    r.ruling = Ruling::Turned;
+  else if (!turn_unseen && r.as_found > r.turned + kTurnMargin)
+    r.ruling = Ruling::Found;
+  // With views joined, the body they saw tells at any turn what the view cannot: a cup's
+  // mouth from its bottom (the scan sees into the one and onto the other). It decides when it
+  // can.
+  if (prep.joined_body) {
+    const auto& body = prep.joined_body_differing[j];
+    const double tolerance = params.verify_tolerance_mm;
+    const double body_found = bodyScore(*prep.joined_body, *prep.near_axis, scene, d.T_scene_model,
+                                        tolerance, body.differing_inverse);
+    const double body_turned =
+        bodyScore(*prep.joined_body, *prep.near_axis, scene, r.T_turned, tolerance, body.differing);
+    logger()->trace("detection {}: the joined body's differing points score {:.2f} as found, "
+                    "{:.2f} turned",
+                    k, body_found, body_turned);
+    if (body_found > body_turned + kTurnMargin)
+      r.ruling = Ruling::Turned;
+    else if (body_turned > body_found + kTurnMargin)
+      r.ruling = Ruling::Found;
+    if (std::abs(body_found - body_turned) > kTurnMargin)
+      r.ruled_by = "the joined body";
+  }
+  // The found pose's detail is confirmed at no turn about its axis (resolveDetailTurns); a
+  // turned pose whose detail the scan confirms explains the handle the found one leaves
+  // unexplained.
+  if (r.ruling == Ruling::Neither && turn_unseen &&
+      seesDetail(prep, scene, r.T_turned, params.verify_tolerance_mm)) {
+    r.ruling = Ruling::Found;
+    r.ruled_by = "the turned pose's detail";
+  }
+  return r;
+}
+
+} // namespace
+
+std::vector<Detection> resolveNearSymmetries(std::vector<Detection> detections,
+                                             const ModelPrep& prep, const VerifyScene& scene,
+                                             const MatchingParams& params,
+                                             const PoseVerifier& verify,
+                                             const PosePolisher& polish) {
   const std::size_t min_seen = std::max<std::size_t>(
       8, static_cast<std::size_t>(kMinDistinguishingShare * double(prep.verify->points.size())));
   tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
@@ -581,81 +682,27 @@ void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& 
         d.alternative_poses.push_back(d.T_scene_model * s.S_model);
         continue;
       }
-      const double as_found = contradictedShare(
-          tallyPoints(*prep.verify, scene, d.T_scene_model, params.verify_tolerance_mm,
-                      {.subset = &s.differing_inverse, .stop = {}, .sort_unmeasured = true}),
-          min_seen);
-      Eigen::Isometry3d T_turned = polish(d.T_scene_model * s.S_model);
-      double coverage = verify(T_turned);
-      // Turned end over end, a cup's handle lies at another turn about its axis: its detail says
-      // which.
-      if (const auto turn = turnByDetail(prep, scene, params, verify, polish, T_turned, coverage)) {
-        logger()->trace("detection {} turned by a near symmetry: then about its axis by its "
-                        "detail, {:.2f} -> {:.2f} of it confirmed",
-                        k, turn->detail_as_found, turn->detail_confirmed);
-        T_turned = turn->T_scene_model;
-        coverage = turn->coverage;
-      }
-      const double turned = contradictedShare(
-          tallyPoints(*prep.verify, scene, T_turned, params.verify_tolerance_mm,
-                      {.subset = &s.differing, .stop = {}, .sort_unmeasured = true}),
-          min_seen);
-      logger()->trace("detection {}: {:.2f} of the differing points contradicted as found, {:.2f} "
-                      "turned",
-                      k, as_found, turned);
-      // The view's differing points rule a pose out only where they are seen at a known turn.
-      Ruling ruling = Ruling::Neither;
-      const char* ruled_by = "the view's differing points";
-      if (!turn_unseen && turned > as_found + kTurnMargin)
-        ruling = Ruling::Turned;
-      else if (!turn_unseen && as_found > turned + kTurnMargin)
-        ruling = Ruling::Found;
-      // With views joined, the body they saw tells at any turn what the view cannot: a cup's
-      // mouth from its bottom (the scan sees into the one and onto the other). It decides when it
-      // can.
-      if (prep.joined_body) {
-        const auto& body = prep.joined_body_differing[j];
-        const double tolerance = params.verify_tolerance_mm;
-        const double body_found = bodyScore(*prep.joined_body, *prep.near_axis, scene,
-                                            d.T_scene_model, tolerance, body.differing_inverse);
-        const double body_turned = bodyScore(*prep.joined_body, *prep.near_axis, scene, T_turned,
-                                             tolerance, body.differing);
-        logger()->trace("detection {}: the joined body's differing points score {:.2f} as found, "
-                        "{:.2f} turned",
-                        k, body_found, body_turned);
-        if (body_found > body_turned + kTurnMargin)
-          ruling = Ruling::Turned;
-        else if (body_turned > body_found + kTurnMargin)
-          ruling = Ruling::Found;
-        if (std::abs(body_found - body_turned) > kTurnMargin)
-          ruled_by = "the joined body";
-      }
-      // The found pose's detail is confirmed at no turn about its axis (resolveDetailTurns); a
-      // turned pose whose detail the scan confirms explains the handle the found one leaves
-      // unexplained.
-      if (ruling == Ruling::Neither && turn_unseen &&
-          seesDetail(prep, scene, T_turned, params.verify_tolerance_mm)) {
-        ruling = Ruling::Found;
-        ruled_by = "the turned pose's detail";
-      }
-      if (ruling == Ruling::Turned || coverage < params.min_coverage)
+      const SymmetryRuling r =
+          ruleSymmetry(prep, j, scene, params, verify, polish, d, k, turn_unseen, min_seen);
+      if (r.ruling == Ruling::Turned || r.coverage < params.min_coverage)
         continue;
-      if (ruling == Ruling::Found) {
+      if (r.ruling == Ruling::Found) {
         logger()->debug("detection {} turned by a near symmetry, ruled by {} ({:.2f} of the "
                         "view's differing points contradicted as found, {:.2f} turned); coverage "
                         "{:.3f} -> {:.3f}",
-                        k, ruled_by, as_found, turned, d.coverage, coverage);
-        d.T_scene_model = T_turned;
-        d.coverage = coverage;
-        d.score = coverage;
+                        k, r.ruled_by, r.as_found, r.turned, d.coverage, r.coverage);
+        d.T_scene_model = r.T_turned;
+        d.coverage = r.coverage;
+        d.score = r.coverage;
         d.refined = true;
         d.matched_features.clear();  // they supported the pose it had,
         d.alternative_poses.clear(); // and so did these
       } else {
-        d.alternative_poses.push_back(T_turned);
+        d.alternative_poses.push_back(r.T_turned);
       }
     }
   });
+  return detections;
 }
 
 } // namespace scanpick::core::detail

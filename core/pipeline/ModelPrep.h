@@ -127,9 +127,9 @@ void takeTurn(Detection& detection, const DetailTurn& turn);
 /// alone (the rest of the view lies on the same surface at any turn; only which of it the
 /// projector lit differs), and the detection takes the turn whose detail the scan confirms most,
 /// when that confirms a clear share more than the turn found; `polish` (ICP) then finishes it.
-void resolveDetailTurns(std::vector<Detection>& detections, const ModelPrep& prep,
-                        const VerifyScene& scene, const MatchingParams& params,
-                        const PoseVerifier& verify, const PosePolisher& polish);
+std::vector<Detection> resolveDetailTurns(std::vector<Detection> detections, const ModelPrep& prep,
+                                          const VerifyScene& scene, const MatchingParams& params,
+                                          const PoseVerifier& verify, const PosePolisher& polish);
 
 /// For each detection and each near symmetry S of the view, tries the turned pose T·S (polished by
 /// ICP). The differing points decide: where one pose puts material and the other does not, the
@@ -145,8 +145,10 @@ void resolveDetailTurns(std::vector<Detection>& detections, const ModelPrep& pre
 /// scan would see through). Failing that, a detection whose detail is confirmed at no turn takes
 /// T·S when T·S's detail is confirmed. A symmetry under which the view repeats itself (too few
 /// differing points to tell) always gives an alternative: T·S as it is.
-void resolveNearSymmetries(std::vector<Detection>& detections, const ModelPrep& prep,
-                           const VerifyScene& scene, const MatchingParams& params,
-                           const PoseVerifier& verify, const PosePolisher& polish);
+std::vector<Detection> resolveNearSymmetries(std::vector<Detection> detections,
+                                             const ModelPrep& prep, const VerifyScene& scene,
+                                             const MatchingParams& params,
+                                             const PoseVerifier& verify,
+                                             const PosePolisher& polish);
 
 } // namespace scanpick::core::detail

@@ -47,25 +47,22 @@ double prepareViews(Recognizer& recognizer,
   return msSince(t0);
 }
 
-RecognitionResult recognizeViews(Recognizer& recognizer,
+namespace {
+
+/// Each view's detections in `scene_mm` (Recognizer::detect, turns left as matching found them),
+/// Detection::model_index naming the view, best first; the timings summed over the views and the
+/// last view's scene analysis (the scene stages are shared; the last view's has what any view
+/// needed).
+RecognitionResult detectEachView(Recognizer& recognizer,
                                  const std::vector<std::shared_ptr<const TaughtModel>>& models,
                                  const PointCloud& scene_mm, const SensorModel& sensor,
                                  const RecognitionParams& params, const ProgressFn& progress) {
-  if (models.empty())
-    throw Error("no model to recognize: give at least one .spmodel");
   RecognitionResult merged;
-  double diameter_mm = 0.0;
-  // Refinement waits for the merge (Recognizer::refine).
-  RecognitionParams unrefined = params;
-  unrefined.refine.enabled = false;
+  const double share = 1.0 / double(models.size());
   for (std::size_t m = 0; m < models.size(); ++m) {
-    const double begin = double(m) / double(models.size());
-    // Turns are resolved after the merge, once per instance however many views found it.
-    RecognitionResult r =
-        recognizer.recognize(models[m], scene_mm, sensor, unrefined,
-                             subProgress(progress, begin, begin + 1.0 / double(models.size())),
-                             Recognizer::Turns::Leave);
-    diameter_mm = std::max(diameter_mm, models[m]->diameter_mm);
+    const double begin = double(m) * share;
+    RecognitionResult r = recognizer.detect(models[m], scene_mm, sensor, params,
+                                            subProgress(progress, begin, begin + share));
     for (auto& d : r.detections) {
       d.model_index = static_cast<int>(m);
       merged.detections.push_back(std::move(d));
@@ -79,21 +76,27 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
     sum.matching_ms += t.matching_ms;
     sum.refine_ms += t.refine_ms;
     sum.total_ms += t.total_ms;
-    if (m == 0) {
-      merged.preprocessed = r.preprocessed;
-      merged.floor_points_removed = r.floor_points_removed;
-      merged.objects = r.objects;
-      merged.object_keypoints = r.object_keypoints;
-      merged.object_features = r.object_features;
-    }
+    merged.scene = r.scene;
   }
   sortBestFirst(merged.detections);
-  const auto t_merge = Clock::now();
+  return merged;
+}
+
+/// The views' detections of one instance merged (mergeViewDetections), their turns resolved per
+/// view (Recognizer::resolveTurns), and merged again when a turn moved one onto an instance
+/// another view's detection holds. Best first.
+std::vector<Detection> mergeAndResolve(
+    Recognizer& recognizer, const std::vector<std::shared_ptr<const TaughtModel>>& models,
+    std::vector<Detection> detections, const std::shared_ptr<const SceneAnalysis>& scene,
+    const RecognitionParams& params) {
+  double diameter_mm = 0.0;
+  for (const auto& model : models)
+    diameter_mm = std::max(diameter_mm, model->diameter_mm);
   // Two views' poses of one instance that differ: the one the whole part bears out better.
   PartScorer on_part; // made when first needed
   const SameInstanceArbiter prefer = [&](const Detection& kept, const Detection& candidate) {
     if (!on_part)
-      on_part = recognizer.partScorer(models, scene_mm, sensor, unrefined);
+      on_part = recognizer.partScorer(models, scene, params);
     const double kept_score = on_part(kept), candidate_score = on_part(candidate);
     const bool take = candidate_score > kept_score + kPartScoreMargin; // false for NaN
     logger()->debug("view {}'s pose at ({:.0f}, {:.0f}, {:.0f}) mm scores {:.3f} on the whole "
@@ -103,29 +106,46 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
                     take ? "it takes the other's place" : "it is dropped");
     return take;
   };
-  const std::size_t found = merged.detections.size();
-  merged.detections = mergeViewDetections(std::move(merged.detections), models,
-                                          kViewMergeShare * diameter_mm, prefer);
+  detections =
+      mergeViewDetections(std::move(detections), models, kViewMergeShare * diameter_mm, prefer);
   // Whether a turn moved any detection.
-  const auto poses = [](const std::vector<Detection>& detections) {
+  const auto poses = [](const std::vector<Detection>& of_view) {
     std::vector<Eigen::Matrix4d> out;
-    for (const Detection& d : detections)
+    for (const Detection& d : of_view)
       out.push_back(d.T_scene_model.matrix());
     return out;
   };
   bool turned = false;
-  merged.detections =
-      ofEachView(std::move(merged.detections), models.size(),
-                 [&](std::size_t m, std::vector<Detection>& of_view) {
-                   const auto before = poses(of_view);
-                   recognizer.resolveTurns(models[m], of_view, scene_mm, sensor, unrefined);
-                   turned = turned || poses(of_view) != before;
-                 });
-  // A turn may have moved a detection onto an instance another view's detection holds.
+  detections = ofEachView(
+      std::move(detections), models.size(), [&](std::size_t m, std::vector<Detection>& of_view) {
+        const auto before = poses(of_view);
+        of_view = recognizer.resolveTurns(models[m], std::move(of_view), *scene, params);
+        turned = turned || poses(of_view) != before;
+      });
   if (turned)
-    merged.detections = mergeViewDetections(std::move(merged.detections), models,
-                                            kViewMergeShare * diameter_mm, prefer);
-  sortBestFirst(merged.detections);
+    detections =
+        mergeViewDetections(std::move(detections), models, kViewMergeShare * diameter_mm, prefer);
+  sortBestFirst(detections);
+  return detections;
+}
+
+} // namespace
+
+RecognitionResult recognizeViews(Recognizer& recognizer,
+                                 const std::vector<std::shared_ptr<const TaughtModel>>& models,
+                                 const PointCloud& scene_mm, const SensorModel& sensor,
+                                 const RecognitionParams& params, const ProgressFn& progress) {
+  if (models.empty())
+    throw Error("no model to recognize: give at least one .spmodel");
+  // Refinement waits for the merge (Recognizer::refine).
+  RecognitionParams unrefined = params;
+  unrefined.refine.enabled = false;
+  RecognitionResult merged =
+      detectEachView(recognizer, models, scene_mm, sensor, unrefined, progress);
+  const auto t_merge = Clock::now();
+  const std::size_t found = merged.detections.size();
+  merged.detections =
+      mergeAndResolve(recognizer, models, std::move(merged.detections), merged.scene, unrefined);
   const double merge_ms = msSince(t_merge);
   logger()->debug("the views' {} detections merged into {}, their turns resolved, in {:.1f} ms",
                   found, merged.detections.size(), merge_ms);
@@ -136,12 +156,12 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
     merged.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
   if (params.refine.enabled) {
     const auto t0 = Clock::now();
-    merged.detections =
-        ofEachView(std::move(merged.detections), models.size(),
-                   [&](std::size_t m, std::vector<Detection>& of_view) {
-                     recognizer.refine(models[m], of_view, scene_mm, sensor, params);
-                     reportProgress(progress, 1.0); // a last chance to stop
-                   });
+    merged.detections = ofEachView(std::move(merged.detections), models.size(),
+                                   [&](std::size_t m, std::vector<Detection>& of_view) {
+                                     of_view = recognizer.refine(models[m], std::move(of_view),
+                                                                 *merged.scene, params);
+                                     reportProgress(progress, 1.0); // a last chance to stop
+                                   });
     merged.timings.refine_ms = msSince(t0);
     merged.timings.total_ms += merged.timings.refine_ms;
   }

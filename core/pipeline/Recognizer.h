@@ -10,11 +10,10 @@
 #include "core/cloud/PointCloud.h"
 #include "core/cloud/Sensor.h"
 #include "core/common/Progress.h"
-#include "core/features/Feature.h"
-#include "core/keypoints/Keypoints.h"
 #include "core/model/TaughtModel.h"
 #include "core/params/Parameters.h"
 #include "core/pipeline/Detection.h"
+#include "core/pipeline/SceneAnalysis.h"
 
 #include <functional>
 #include <memory>
@@ -23,23 +22,24 @@
 
 namespace scanpick::core {
 
+namespace detail {
+struct StageMemo;
+struct ModelPrep;
+} // namespace detail
+
 /// Wall-clock time of each stage of the last run, milliseconds (0 for a stage served from cache).
 struct StageTimings {
   double preprocess_ms = 0, clustering_ms = 0, keypoints_ms = 0, features_ms = 0, matching_ms = 0,
          refine_ms = 0, total_ms = 0;
 };
 
-/// What one recognition produced, intermediate results included (for previews).
+/// What one recognition produced, the scene analysis included (for previews and later stages).
 struct RecognitionResult {
   std::vector<Detection> detections; ///< best first
   StageTimings timings;
-  /// The scene after floor removal and downsampling.
-  std::shared_ptr<const PointCloud> preprocessed;
-  std::size_t floor_points_removed = 0;
-  /// One cloud per object (cluster), then per object its keypoints and features.
-  std::shared_ptr<const std::vector<PointCloud>> objects;
-  std::shared_ptr<const std::vector<Keypoints>> object_keypoints;
-  std::shared_ptr<const std::vector<FeatureList>> object_features;
+  /// What the scene stages made of the scan (preprocessed cloud, objects, keypoints, features,
+  /// the indexes verification uses); it refers to the scan given to recognize().
+  std::shared_ptr<const SceneAnalysis> scene;
 };
 
 /// A detection's score on the whole part (Recognizer::partScorer).
@@ -69,6 +69,12 @@ public:
   RecognitionResult recognize(const std::shared_ptr<const TaughtModel>& model,
                               const PointCloud& scene_mm, const SensorModel& sensor,
                               const RecognitionParams& params, const ProgressFn& progress = {});
+  /// As recognize(model, …), but the turns matching cannot tell are left as matching found them
+  /// (resolveTurns resolves them): recognizeViews resolves them after the views' merge, once per
+  /// instance.
+  RecognitionResult detect(const std::shared_ptr<const TaughtModel>& model,
+                           const PointCloud& scene_mm, const SensorModel& sensor,
+                           const RecognitionParams& params, const ProgressFn& progress = {});
 
   /// Prepares the model for matching as recognize() would with these parameters (verification
   /// points, ICP model, surface pair table, axis fit, near symmetries), so that the first scene
@@ -80,36 +86,35 @@ public:
   /// null `model`.
   void prepare(const std::shared_ptr<const TaughtModel>& model, const RecognitionParams& params);
 
-  /// Refines `detections` of `model` found in `scene_mm` by the last recognize() call (its scene
-  /// stages cached), as recognize() does with params.refine.enabled: ICP from each detection not
-  /// polished yet, kept when it verifies as well; then their centres, grip points and free turns
-  /// again. Nothing is done when params.refine.enabled is false. Throws Error without a model or
-  /// when `scene_mm` is not the scene last recognized with these parameters.
-  void refine(const std::shared_ptr<const TaughtModel>& model, std::vector<Detection>& detections,
-              const PointCloud& scene_mm, const SensorModel& sensor,
-              const RecognitionParams& params);
+  /// `detections` of `model` in `scene` (RecognitionResult::scene) refined as recognize() does with
+  /// params.refine.enabled: ICP from each detection not polished yet, kept when it verifies as
+  /// well; then their centres, grip points and free turns again. Returned as they are when
+  /// params.refine.enabled is false. `params`: those the scene was analysed with. Throws Error
+  /// without a model.
+  [[nodiscard]] std::vector<Detection> refine(const std::shared_ptr<const TaughtModel>& model,
+                                              std::vector<Detection> detections,
+                                              const SceneAnalysis& scene,
+                                              const RecognitionParams& params);
 
-  /// Resolves the turns that matching cannot tell of `detections` of `model`, found in `scene_mm`
-  /// by the last recognize() call (its scene stages cached), as recognize() does: the turn about
-  /// the view's near axis that its detail (a cup's handle) says, and its near symmetries; then
-  /// their centres, grip points and free turns again, best first. recognizeViews resolves the
-  /// views' detections after their merge, so that an instance several views found is resolved
-  /// once. Nothing is done without verification or without such turns. Throws Error as refine()
-  /// does.
-  void resolveTurns(const std::shared_ptr<const TaughtModel>& model,
-                    std::vector<Detection>& detections, const PointCloud& scene_mm,
-                    const SensorModel& sensor, const RecognitionParams& params);
+  /// The turns matching cannot tell of `detections` of `model` in `scene` resolved as recognize()
+  /// does: the turn about the view's near axis that its detail (a cup's handle) says, and its near
+  /// symmetries; then their centres, grip points and free turns again, best first. Returned as
+  /// they are without verification or without such turns. Throws Error as refine() does.
+  [[nodiscard]] std::vector<Detection> resolveTurns(const std::shared_ptr<const TaughtModel>& model,
+                                                    std::vector<Detection> detections,
+                                                    const SceneAnalysis& scene,
+                                                    const RecognitionParams& params);
 
   /// Scores detections of the views `models` (Detection::model_index naming the view) on the
-  /// whole part, in `scene_mm` as the last recognize() call found it: of the points of the view
-  /// and of the views joined to it (TaughtModel::joined_views) at the detection's pose, every few
-  /// of them (about kPartScorePoints), (confirmed − violations) ÷ those the camera should see
-  /// (tallyPoints; neither hidden, turned away nor shadowed). Two views' poses of one instance
-  /// verify each on its own view's points, so their scores do not compare; these do. The scorer
-  /// gives NaN for a view without joined views, throws Error for a view index out of range, and
-  /// holds `scene_mm` and `sensor` by reference. Throws Error as refine() does.
+  /// whole part in `scene`: of the points of the view and of the views joined to it
+  /// (TaughtModel::joined_views) at the detection's pose, every few of them (about
+  /// kPartScorePoints), (confirmed − violations) ÷ those the camera should see (tallyPoints;
+  /// neither hidden, turned away nor shadowed). Two views' poses of one instance verify each on
+  /// its own view's points, so their scores do not compare; these do. The scorer gives NaN for a
+  /// view without joined views, throws Error for a view index out of range, and keeps `scene`
+  /// alive (and so needs the scan it refers to). Throws Error without a model.
   [[nodiscard]] PartScorer partScorer(const std::vector<std::shared_ptr<const TaughtModel>>& models,
-                                      const PointCloud& scene_mm, const SensorModel& sensor,
+                                      const std::shared_ptr<const SceneAnalysis>& scene,
                                       const RecognitionParams& params);
 
   /// How many model preparations the cache holds (at most 8: views alternate scene after scene).
@@ -119,34 +124,20 @@ public:
   void clearCache();
 
 private:
-  friend RecognitionResult recognizeViews(Recognizer&,
-                                          const std::vector<std::shared_ptr<const TaughtModel>>&,
-                                          const PointCloud&, const SensorModel&,
-                                          const RecognitionParams&, const ProgressFn&);
-  /// Whether recognize() resolves the detections' turns (resolveTurns) or leaves them.
-  enum class Turns { Resolve, Leave };
-  /// The public recognize(model, …), leaving the turns with Turns::Leave: recognizeViews resolves
-  /// them after the views' merge.
-  RecognitionResult recognize(const std::shared_ptr<const TaughtModel>& model,
-                              const PointCloud& scene_mm, const SensorModel& sensor,
-                              const RecognitionParams& params, const ProgressFn& progress,
-                              Turns turns);
-  struct Cache;
-  /// A copy of the cache, taken under the lock.
-  [[nodiscard]] Cache cacheSnapshot() const;
-  /// recognizedScene() with `model` prepared in it (and the cache stored with it), and how poses
-  /// are verified there; throws Error as recognizedScene() does.
-  struct PreparedScene;
-  [[nodiscard]] PreparedScene preparedScene(const std::shared_ptr<const TaughtModel>& model,
-                                            const PointCloud& scene_mm, const SensorModel& sensor,
-                                            const RecognitionParams& params, const char* action);
-  /// The cache of `scene_mm` as the last recognize() call left it, with the scene indexed for
-  /// verification; throws Error naming `action` when that call recognized another scene.
-  [[nodiscard]] Cache recognizedScene(const PointCloud& scene_mm, const SensorModel& sensor,
-                                      const RecognitionParams& params, const char* action) const;
+  /// recognize() (`resolve_turns`) or detect().
+  RecognitionResult run(const std::shared_ptr<const TaughtModel>& model, const PointCloud& scene_mm,
+                        const SensorModel& sensor, const RecognitionParams& params,
+                        const ProgressFn& progress, bool resolve_turns);
+  /// A copy of the memo, taken under the lock.
+  [[nodiscard]] detail::StageMemo memoSnapshot() const;
+  /// Stores `memo`'s model preparations, keeping the memoized scene stages.
+  void storePreparations(const detail::StageMemo& memo);
+  /// `model` prepared for `params` (a view's), from the memo or made and stored there.
+  [[nodiscard]] std::shared_ptr<const detail::ModelPrep>
+  prepared(const std::shared_ptr<const TaughtModel>& model, const RecognitionParams& params);
   mutable std::mutex m_mutex;
   std::shared_ptr<const TaughtModel> m_model;
-  std::shared_ptr<Cache> m_cache;
+  std::shared_ptr<detail::StageMemo> m_memo;
 };
 
 /// Recognizer::prepare for each of `models` (views of one part), in turn; the recognizer's own

@@ -52,14 +52,14 @@ TEST(Recognizer, ChangingAMatchingToleranceReusesTheKeypoints) {
   const auto first = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
   params.matching.position_tolerance_mm = 3.0;
   const auto second = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
-  EXPECT_EQ(first.object_keypoints, second.object_keypoints); // same cached object
-  EXPECT_EQ(first.object_features, second.object_features);
+  EXPECT_EQ(first.scene->keypoints, second.scene->keypoints); // same cached object
+  EXPECT_EQ(first.scene->features, second.scene->features);
   EXPECT_EQ(second.timings.keypoints_ms, 0.0);
   EXPECT_EQ(second.detections.size(), 3u);
   params.keypoints.neighbourhood_radius_mm = 4.0; // invalidates keypoints and later
   const auto third = recognizer.recognize(scene, sensorPreset("phoxi-m-1032"), params);
-  EXPECT_NE(third.object_keypoints, second.object_keypoints);
-  EXPECT_EQ(third.preprocessed, second.preprocessed);
+  EXPECT_NE(third.scene->keypoints, second.scene->keypoints);
+  EXPECT_EQ(third.scene->preprocessed, second.scene->preprocessed);
 }
 
 TEST(Recognizer, CancellingWhileTheSceneIsIndexedKeepsTheRecognizerUsable) {
