@@ -904,6 +904,14 @@
         <translation>derivato</translation>
     </message>
     <message>
+        <source>Show advanced parameters</source>
+        <translation>Mostra i parametri avanzati</translation>
+    </message>
+    <message>
+        <source>Shown first are the parameters tuned for a cell: the floor, the split into objects, verification, how many detections and ICP. Teach derives the others from the part and the scan.</source>
+        <translation>Per primi si vedono i parametri che si regolano per una cella: il pavimento, la divisione in oggetti, la verifica, quante rilevazioni e l&apos;ICP. Gli altri li deriva l&apos;apprendimento dal pezzo e dalla scansione.</translation>
+    </message>
+    <message>
         <source>Derived from the part: %1</source>
         <translation>Derivato dal pezzo: %1</translation>
     </message>

@@ -83,6 +83,13 @@ std::string parametersMarkdown(const std::optional<RecognitionParams>& preset,
          "ones only.\n";
   if (preset)
     out << "\nValues of preset **" << preset_name << "** are in the *value* column.\n";
+  out << "\n## Tuned for a cell\n\n"
+      << "Teach derives the others from the part and the scan; these are the ones an engineer "
+         "sets for a cell (the GUI shows them first, the rest under *Show advanced "
+         "parameters*):\n\n";
+  for (const std::string_view key : kTunedParameters)
+    if (const ParamInfo* info = findParameter(key))
+      out << "- `" << info->key << "` (" << info->label << ")\n";
   // Grouped by stage in pipeline order (the seed is listed last in the table but belongs to
   // clustering).
   std::set<Stage> stages;

@@ -364,6 +364,9 @@ std::vector<ParamInfo> buildTable() {
     p.seed = static_cast<std::uint64_t>(std::clamp(v, 0.0, 2147483647.0));
   };
   t.push_back(std::move(seed));
+  for (ParamInfo& info : t)
+    info.tuned = std::find(std::begin(kTunedParameters), std::end(kTunedParameters), info.key) !=
+                 std::end(kTunedParameters);
   return t;
 }
 

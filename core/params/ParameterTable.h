@@ -26,6 +26,9 @@ struct ParamInfo {
   std::string label;       ///< short name as in the thesis, e.g. "Neig. position range Δp"
   std::string unit;        ///< "mm", "rad", "deg", "points", "" ...
   std::string description; ///< what it does, for tooltips and docs
+  /// One of the few an engineer tunes for a cell (kTunedParameters; the GUI shows them first).
+  /// The others are advanced: teach derives them from the part and the scan.
+  bool tuned = false;
   Stage stage;
   ParamType type;
   double min_value;
@@ -35,6 +38,18 @@ struct ParamInfo {
   std::function<double(const RecognitionParams&)> get;
   std::function<void(RecognitionParams&, double)> set; ///< clamps to [min, max]
 };
+
+/// The keys of the parameters an engineer tunes for a cell, in the order the GUI shows them: the
+/// floor, the split into objects, how much of the part a detection must show and within what
+/// tolerance, how many detections, and ICP. The rest is derived at teach (or set by a preset).
+inline constexpr std::string_view kTunedParameters[] = {"floor.enabled",
+                                                        "floor.distance_mm",
+                                                        "floor.max_planes",
+                                                        "clustering.enabled",
+                                                        "matching.verify_tolerance_mm",
+                                                        "matching.min_coverage",
+                                                        "matching.max_detections",
+                                                        "refine.enabled"};
 
 /// All parameters, grouped by stage in pipeline order.
 std::span<const ParamInfo> parameterTable();

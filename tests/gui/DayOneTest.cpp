@@ -5,6 +5,7 @@
 // shows that it is working.
 #include "core/cloud/CloudIo.h"
 #include "core/model/ModelFile.h"
+#include "core/params/ParameterTable.h"
 #include "core/params/ParamsJson.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "tests/unit/pipeline/IdealScene.h"
@@ -17,11 +18,13 @@
 #include "ui/viewport/QtVtkViewport.h"
 
 #include <QAbstractScrollArea>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDesktopServices>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QFileDialog>
+#include <QGroupBox>
 #include <QLabel>
 #include <QLineEdit>
 #include <QListWidget>
@@ -33,6 +36,7 @@
 #include <QScrollArea>
 #include <QScrollBar>
 #include <QSignalSpy>
+#include <QSpinBox>
 #include <QTableWidgetItem>
 #include <QTest>
 #include <QTextBrowser>
@@ -41,6 +45,7 @@
 #include <QUndoStack>
 #include <QWheelEvent>
 #include <QtTest/qtestspontaneevent.h>
+#include <algorithm>
 #include <gtest/gtest.h>
 #include <vtkPropAssembly.h>
 #include <vtkPropCollection.h>
@@ -154,8 +159,44 @@ TEST_F(DayOne, SavedModelsAndResultsGetTheirExtension) {
   EXPECT_TRUE(QFile::exists(dir + "/typed.spmodel"));
 }
 
+TEST_F(DayOne, TheFewTunedParametersComeFirstTheOthersOnDemand) {
+  ui::ParameterPanel* panel = window.parameterPanel();
+  auto* advanced = panel->findChild<QCheckBox*>(QStringLiteral("showAdvanced"));
+  ASSERT_NE(advanced, nullptr);
+  EXPECT_FALSE(advanced->isChecked());
+  const auto shown = [&] {
+    std::vector<std::string> keys;
+    for (const core::ParamInfo& info : core::parameterTable())
+      if (panel->editor(info.key)->isVisibleTo(panel))
+        keys.push_back(info.key);
+    return keys;
+  };
+  const std::vector<std::string> tuned(std::begin(core::kTunedParameters),
+                                       std::end(core::kTunedParameters));
+  std::vector<std::string> first = shown();
+  std::sort(first.begin(), first.end());
+  std::vector<std::string> expected = tuned;
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(first, expected) << "only the tuned parameters at first";
+  // Stages with no tuned parameter show no empty group.
+  for (auto* group : panel->findChildren<QGroupBox*>()) {
+    if (!group->isVisibleTo(panel))
+      continue;
+    EXPECT_TRUE(std::any_of(tuned.begin(), tuned.end(), [&](const std::string& key) {
+      return group->isAncestorOf(panel->editor(key));
+    })) << group->title().toStdString();
+  }
+  advanced->click();
+  EXPECT_EQ(shown().size(), core::parameterTable().size()) << "every parameter on demand";
+  EXPECT_TRUE(panel->findChild<QSpinBox*>(QStringLiteral("seed"))->isVisibleTo(panel));
+  advanced->click();
+  EXPECT_EQ(shown().size(), tuned.size());
+}
+
 TEST_F(DayOne, TheWheelChangesOnlyAFocusedParameter) {
   window.resize(1024, 700);
+  window.parameterPanel()->findChild<QCheckBox*>(QStringLiteral("showAdvanced"))->click();
+  QTest::qWait(50); // the rows shown are laid out
   auto* spin = qobject_cast<QDoubleSpinBox*>(
       window.parameterPanel()->editor("features.circle_threshold_mm"));
   ASSERT_NE(spin, nullptr);

@@ -12,6 +12,7 @@
 #include "ui/panels/LogDock.h"
 #include "ui/panels/ParameterPanel.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QFileInfo>
 #include <QLabel>
@@ -109,6 +110,10 @@ TEST_F(DerivedTeach, DerivedByDefaultHandEditsWinPresetsDeriveNothing) {
   const QString reason = QString::fromStdString(derived->param_reasons.at(kKey));
   EXPECT_TRUE(tooltip(kKey).contains(reason)) << tooltip(kKey).toStdString();
   ASSERT_NE(marker(kKey), nullptr);
+  EXPECT_FALSE(marker(kKey)->isVisibleTo(panel)) << "a derived value is advanced: hidden at first";
+  auto* advanced = panel->findChild<QCheckBox*>(QStringLiteral("showAdvanced"));
+  ASSERT_NE(advanced, nullptr);
+  advanced->click();
   EXPECT_TRUE(marker(kKey)->isVisibleTo(panel));
   EXPECT_EQ(panel->reasons(), derived->param_reasons);
   const auto* note = panel->findChild<QLabel*>(QStringLiteral("derivedNote"));

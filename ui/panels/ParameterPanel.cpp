@@ -22,6 +22,7 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 #include <cmath>
+#include <set>
 
 #ifndef SCANPICK_PRESETS_DIR
 #define SCANPICK_PRESETS_DIR ""
@@ -104,6 +105,11 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   m_derived_note->setWordWrap(true);
   m_derived_note->setVisible(false);
   outer->addWidget(m_derived_note);
+  // The few parameters tuned for a cell are shown; the rest (derived at teach) on demand.
+  m_show_advanced = new QCheckBox(this);
+  m_show_advanced->setObjectName(QStringLiteral("showAdvanced"));
+  outer->addWidget(m_show_advanced);
+  connect(m_show_advanced, &QCheckBox::toggled, this, [this] { showAdvanced(); });
   fillPresetList();
   connect(m_presets, &QComboBox::activated, this, [this](int index) {
     if (index == 0)
@@ -171,6 +177,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
     label->setBuddy(editor);
     m_labels[info.key] = label;
     form->addRow(label, row);
+    m_forms[info.key] = form;
   }
   auto* misc = m_misc_group = new QGroupBox(body);
   auto* misc_form = new QFormLayout(misc);
@@ -196,7 +203,22 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   scroll->setWidget(body);
   outer->addWidget(scroll, 1);
   refreshEditors();
+  showAdvanced();
   retranslateUi();
+}
+
+void ParameterPanel::showAdvanced() {
+  const bool all = m_show_advanced->isChecked();
+  std::set<core::Stage> shown;
+  for (const core::ParamInfo& info : core::parameterTable()) {
+    const bool visible = all || info.tuned;
+    m_forms.at(info.key)->setRowVisible(m_labels.at(info.key), visible);
+    if (visible)
+      shown.insert(info.stage);
+  }
+  for (const auto& [group, stage] : m_groups)
+    group->setVisible(shown.count(stage) > 0);
+  m_misc_group->setVisible(all);
 }
 
 QString ParameterPanel::translatedParamText(const std::string& english) {
@@ -220,6 +242,10 @@ void ParameterPanel::retranslateUi() {
   m_derived_note->setText(tr("Values marked “derived” come from the part and the scan at "
                              "teach: hover one for its reason. Values you change override "
                              "them at the next teach."));
+  m_show_advanced->setText(tr("Show advanced parameters"));
+  m_show_advanced->setToolTip(tr("Shown first are the parameters tuned for a cell: the floor, the "
+                                 "split into objects, verification, how many detections and "
+                                 "ICP. Teach derives the others from the part and the scan."));
   for (const auto& [group, stage] : m_groups)
     group->setTitle(translatedStage(stage));
   for (const core::ParamInfo& info : core::parameterTable()) {

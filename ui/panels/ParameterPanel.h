@@ -20,7 +20,9 @@
 #include <utility>
 #include <vector>
 
+class QCheckBox;
 class QComboBox;
+class QFormLayout;
 class QGroupBox;
 class QLabel;
 class QPushButton;
@@ -90,6 +92,9 @@ private:
   QWidget* makeEditor(const core::ParamInfo& info);
   void editorChanged(const core::ParamInfo& info, double value);
   void refreshEditors();
+  /// Shows the tuned parameters' rows (core::ParamInfo::tuned), and the others too while
+  /// m_show_advanced is checked; a stage's group only while one of its rows is shown.
+  void showAdvanced();
   /// Shows m_reasons: the editors' tooltips, the "derived" markers and the note above them.
   void refreshReasons();
   void fillPresetList();
@@ -104,8 +109,10 @@ private:
 
   core::RecognitionParams m_params;
   std::map<std::string, QWidget*> m_editors;
-  std::map<std::string, QLabel*> m_markers; // "derived", beside each editor
-  std::map<std::string, QLabel*> m_labels;  // each editor's label
+  std::map<std::string, QLabel*> m_markers;    // "derived", beside each editor
+  std::map<std::string, QLabel*> m_labels;     // each editor's label
+  std::map<std::string, QFormLayout*> m_forms; // the form holding each editor's row
+  QCheckBox* m_show_advanced = nullptr;
   std::vector<std::pair<QGroupBox*, core::Stage>> m_groups;
   QGroupBox* m_misc_group = nullptr;
   QLabel* m_seed_label = nullptr;

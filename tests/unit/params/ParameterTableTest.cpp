@@ -28,6 +28,21 @@ TEST(ParameterTable, KeysAreUniqueAndDefaultsLieInRange) {
   EXPECT_GE(keys.size(), 30u);
 }
 
+TEST(ParameterTable, AFewParametersAreTunedTheRestAdvanced) {
+  std::set<std::string> tuned;
+  for (const auto& key : core::kTunedParameters) {
+    const core::ParamInfo* info = core::findParameter(key);
+    ASSERT_NE(info, nullptr) << key;
+    EXPECT_TRUE(info->tuned) << key;
+    tuned.insert(info->key);
+  }
+  std::size_t flagged = 0;
+  for (const auto& info : core::parameterTable())
+    flagged += info.tuned ? 1 : 0;
+  EXPECT_EQ(flagged, tuned.size()) << "only the listed keys are tuned";
+  EXPECT_LE(flagged, core::parameterTable().size() / 4) << "a few, not most";
+}
+
 TEST(ParameterTable, SetClampsAndChangedStageIsReported) {
   core::RecognitionParams p;
   const auto* info = core::findParameter("matching.position_tolerance_mm");
