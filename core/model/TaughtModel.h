@@ -6,12 +6,12 @@
 #include "core/cloud/PointCloud.h"
 #include "core/cloud/Sensor.h"
 #include "core/cloud/Units.h"
+#include "core/common/GripPoint.h"
 #include "core/common/Progress.h"
 #include "core/features/Feature.h"
 #include "core/model/AutoParams.h"
 #include "core/params/Parameters.h"
 #include "core/params/ViewParams.h"
-#include "core/pipeline/Detection.h"
 
 #include <Eigen/Geometry>
 #include <map>
