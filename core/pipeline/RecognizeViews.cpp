@@ -245,10 +245,22 @@ mergeViewDetections(std::vector<Detection> detections,
     const auto& candidate = part(sample, d);
     bool duplicate = false;
     for (std::size_t k = 0; k < kept.size() && !duplicate; ++k) {
-      if ((kept[k].centre_mm - d.centre_mm).norm() >= min_distance_mm)
-        continue;
       const auto& kept_points = part(surface, kept[k]);
-      if (candidate.empty() || kept_points.empty()) {
+      const bool whole_part = !candidate.empty() && !kept_points.empty();
+      // With the whole part known, the shared surface decides wherever the two views' centres may
+      // lie on one instance: anywhere within the part's diameter (two sides of a plate, or one
+      // view at a symmetric pose). Beyond min_distance_mm it must be most of the part: two
+      // neighbours lying face to face share a face.
+      const double distance_mm = (kept[k].centre_mm - d.centre_mm).norm();
+      const double within_mm =
+          whole_part ? std::max({min_distance_mm, models[std::size_t(d.model_index)]->diameter_mm,
+                                 models[std::size_t(kept[k].model_index)]->diameter_mm})
+                     : min_distance_mm;
+      if (distance_mm >= within_mm)
+        continue;
+      const double same_share =
+          distance_mm < min_distance_mm ? kSameInstanceShare : kSameInstanceFarShare;
+      if (!whole_part) {
         duplicate = true; // the part's other sides are unknown: near is the same
         break;
       }
@@ -260,7 +272,7 @@ mergeViewDetections(std::vector<Detection> detections,
       for (const auto& p : candidate)
         shared += kept_surface[k]->nearest(T * p, max_sq) >= 0 ? 1 : 0;
       const double share = double(shared) / double(candidate.size());
-      duplicate = share >= kSameInstanceShare;
+      duplicate = share >= same_share;
       logger()->debug("view {}'s detection at ({:.0f}, {:.0f}, {:.0f}) mm shares {:.2f} of the "
                       "part's surface with view {}'s there: {}",
                       d.model_index, d.centre_mm.x(), d.centre_mm.y(), d.centre_mm.z(), share,

@@ -181,6 +181,9 @@ inline constexpr double kVoteClusterShare = 0.14;
 /// lie within kSameSurfaceMm of the earlier one's (mergeViewDetections). On phoxi-bin the same
 /// instance found through two views shares 0.7–1.0, two neighbours 0.0.
 inline constexpr double kSameInstanceShare = 0.2;
+/// The share for two detections whose centres lie farther apart than the merge distance but within
+/// the part's diameter (two views seeing opposite sides of one instance share most of it).
+inline constexpr double kSameInstanceFarShare = 0.5;
 inline constexpr double kSameSurfaceMm = 3.0;
 /// About this many of a candidate's part points are compared (mergeViewDetections).
 inline constexpr std::size_t kSameInstanceSample = 400;
@@ -205,8 +208,10 @@ using SameInstanceArbiter = std::function<bool(const Detection& kept, const Dete
 /// Detection::model_index naming the view in `models`): a detection whose Detection::centre_mm
 /// lies within `min_distance_mm` of a kept one's is dropped as the same instance, except where the
 /// views are joined (TaughtModel::joined_views), which give each view the part's other sides: then
-/// it is dropped only when its part's points, at its pose, lie on the kept one's surface
-/// (kSameInstanceShare within kSameSurfaceMm). Parts cannot pass through each other, so two lying
+/// a detection whose centre lies within the larger of the two views' diameters is dropped only when
+/// its part's points, at its pose, lie on the kept one's surface (kSameInstanceShare within
+/// kSameSurfaceMm; kSameInstanceFarShare beyond `min_distance_mm`). Parts cannot pass through each
+/// other, so two lying
 /// close together share little of their surface, while a view's pose of an instance another view
 /// found, right or wrong, shares a face or more. Where the two poses differ (kSameInstanceMm,
 /// kSameInstanceDeg), `prefer` (when set) may give the later one the earlier one's place (and its

@@ -8,6 +8,7 @@
 #include "tests/support/TempDir.h"
 #include "tests/unit/pipeline/IdealScene.h"
 
+#include <cmath>
 #include <gtest/gtest.h>
 
 using namespace scanpick;
@@ -170,6 +171,7 @@ std::vector<std::shared_ptr<const TaughtModel>> blockViews(bool joined) {
   auto top = std::make_shared<TaughtModel>(), side = std::make_shared<TaughtModel>();
   top->cloud_mm = blockFace(true);
   side->cloud_mm = blockFace(false);
+  top->diameter_mm = side->diameter_mm = std::sqrt(60.0 * 60.0 + 40.0 * 40.0 + 10.0 * 10.0);
   if (joined) {
     top->joined_views = {{"side.pcd", side->cloud_mm, Eigen::Vector3d(-500, 20, 5)}};
     side->joined_views = {{"top.pcd", top->cloud_mm, Eigen::Vector3d(30, 20, 500)}};
@@ -201,6 +203,28 @@ TEST(Recognizer, JoinedViewsKeepTwoPartsLyingCloseButDropOneInstanceFoundTwice) 
   ASSERT_EQ(alone.size(), 1u);
   EXPECT_EQ(alone[0].score, 0.9);
   EXPECT_THROW(mergeViewDetections({detectionAt(2, 0.5, beside)}, views, 50.0), Error);
+}
+
+TEST(Recognizer, JoinedViewsOfOneInstanceAreMergedWhereverTheirCentresLieOnIt) {
+  // The side view's centre is its face's, 30 mm from the top view's: beyond a merge distance of
+  // 20 mm, within the block's diameter. The whole block at one pose is one instance.
+  const std::vector<std::shared_ptr<const TaughtModel>> views = blockViews(true);
+  Detection side = detectionAt(1, 0.8, Eigen::Isometry3d::Identity());
+  side.centre_mm = Eigen::Vector3d(0, 20, 5);
+  Eigen::Isometry3d beside = Eigen::Isometry3d::Identity();
+  beside.translation() = Eigen::Vector3d(0, 45, 0);
+  Detection neighbour = detectionAt(1, 0.7, beside);
+  neighbour.centre_mm = beside * Eigen::Vector3d(0, 20, 5); // 45 mm away, sharing no surface
+  const auto kept = mergeViewDetections(
+      {detectionAt(0, 0.9, Eigen::Isometry3d::Identity()), side, neighbour}, views, 20.0);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].score, 0.9);
+  EXPECT_EQ(kept[1].score, 0.7);
+  // Unjoined views know nothing beyond the merge distance.
+  EXPECT_EQ(mergeViewDetections({detectionAt(0, 0.9, Eigen::Isometry3d::Identity()), side},
+                                blockViews(false), 20.0)
+                .size(),
+            2u);
 }
 
 TEST(Recognizer, ATieBetweenTwoViewsDifferingPosesOfOneInstanceIsLeftToPrefer) {
