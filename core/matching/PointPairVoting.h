@@ -112,8 +112,8 @@ private:
 class PointPairModel;
 
 /// The keys of one or more point pair tables: the scene pairs that any of them votes with. Most
-/// scene pairs have a key no view of a part holds (nine in ten for the phoxi-bin parts), and a
-/// pairing that keeps only the others needs their angles only.
+/// scene pairs have a key no view of a part holds, and a pairing that keeps only the others needs
+/// their angles only.
 class PairKeySet {
 public:
   /// The keys of `model`'s table, added.

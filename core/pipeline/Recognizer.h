@@ -178,8 +178,8 @@ inline constexpr double kViewMergeShare = 0.45;
 inline constexpr double kVoteClusterShare = 0.14;
 
 /// Two detections near each other are one instance when this share of the later one's part points
-/// lie within kSameSurfaceMm of the earlier one's (mergeViewDetections). On phoxi-bin the same
-/// instance found through two views shares 0.7–1.0, two neighbours 0.0.
+/// lie within kSameSurfaceMm of the earlier one's (mergeViewDetections; the shares measured are in
+/// docs/design-notes.md, "Merging the views' detections").
 inline constexpr double kSameInstanceShare = 0.2;
 /// The share for two detections whose centres lie farther apart than the merge distance but within
 /// the part's diameter (two views seeing opposite sides of one instance share most of it).
