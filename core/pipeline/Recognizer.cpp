@@ -57,7 +57,8 @@ SceneAnalysis withIndex(const SceneAnalysis& scene, const RecognitionParams& par
 }
 
 /// A view of a part in one analysed scene: its preparation and how its poses are verified and
-/// polished there. Refers into `scene`, which must outlive it.
+/// polished there. Refers into the analysis and the parameters it is made with, which must outlive
+/// it and the verifiers and polishers it hands out.
 struct ViewInScene {
   const TaughtModel& model;
   std::shared_ptr<const ModelPrep> prep; ///< null: the parameters need no preparation
