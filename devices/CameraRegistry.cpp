@@ -34,14 +34,6 @@ template <typename F> void tryBackend(const char* name, std::vector<std::string>
 
 } // namespace
 
-std::vector<std::string> cameraIdPrefixes() {
-  std::vector<std::string> p{"phoxi", "kinect", "oni", "file"};
-#ifdef SCANPICK_WITH_PHOXI_API
-  p.push_back("phoxi-api");
-#endif
-  return p;
-}
-
 std::vector<DeviceInfo> enumerateDevices(const EnumerateOptions& options,
                                          std::vector<std::string>* warnings) {
   std::vector<DeviceInfo> out;

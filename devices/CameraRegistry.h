@@ -32,7 +32,4 @@ std::vector<DeviceInfo> enumerateDevices(const EnumerateOptions& options = {},
 /// message lists the valid forms), and the backend's errors (Busy, Permission ...).
 std::unique_ptr<Camera> openCamera(const std::string& id);
 
-/// The id prefixes this build understands ("phoxi", "kinect", "oni", "file", ...).
-std::vector<std::string> cameraIdPrefixes();
-
 } // namespace scanpick::devices

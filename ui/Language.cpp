@@ -20,10 +20,6 @@ Installed& installed() {
 
 } // namespace
 
-QStringList availableLanguages() {
-  return {QStringLiteral("en"), QStringLiteral("it")};
-}
-
 bool applyLanguage(const QString& code) {
   Installed& state = installed();
   for (QPointer<QTranslator>* t : {&state.own, &state.qt})

@@ -7,12 +7,9 @@
 /// the standard dialogs and buttons when installed.
 
 #include <QString>
-#include <QStringList>
 
 namespace scanpick::ui {
 
-/// The languages offered: "en", "it".
-QStringList availableLanguages();
 /// Makes `code` the application's language (an unknown code means English): removes the
 /// translators installed by an earlier call, installs those of `code`. Returns false, and leaves
 /// the application in English, when the translation does not load. Needs a QCoreApplication.

@@ -110,10 +110,6 @@ bool openCvSolution(const std::vector<PoseData>& poses, bool shah, Solution& sol
   return true;
 }
 
-double solutionCost(const std::vector<PoseData>& poses, const Solution& solution) {
-  return residuals(poses, solution).squaredNorm();
-}
-
 double refineSolution(const std::vector<PoseData>& poses, Solution& solution, int max_iterations) {
   using Vector12d = Eigen::Matrix<double, 12, 1>;
   Eigen::VectorXd r = residuals(poses, solution);

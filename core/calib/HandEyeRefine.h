@@ -38,7 +38,4 @@ bool openCvSolution(const std::vector<PoseData>& poses, bool shah, Solution& sol
 /// squared residuals, mm².
 double refineSolution(const std::vector<PoseData>& poses, Solution& solution, int max_iterations);
 
-/// The sum of squared sphere-centre residuals of `solution`, mm².
-double solutionCost(const std::vector<PoseData>& poses, const Solution& solution);
-
 } // namespace scanpick::core::calib::detail

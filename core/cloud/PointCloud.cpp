@@ -72,12 +72,6 @@ PointCloud dropInvalid(const PointCloud& cloud) {
   return selectPoints(cloud, [&](std::size_t i) { return isValid(cloud.points_mm[i]); });
 }
 
-PointCloud cropToBox(const PointCloud& cloud, const Eigen::AlignedBox3f& box_mm) {
-  return selectPoints(cloud, [&](std::size_t i) {
-    return isValid(cloud.points_mm[i]) && box_mm.contains(cloud.points_mm[i]);
-  });
-}
-
 PointCloud transformed(const PointCloud& cloud, const Eigen::Isometry3f& T) {
   PointCloud out = cloud;
   for (auto& p : out.points_mm)

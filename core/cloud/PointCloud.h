@@ -64,7 +64,4 @@ PointCloud dropInvalid(const PointCloud& cloud);
 /// Applies a rigid transform (millimetres) to points and normals; NaN points stay NaN.
 PointCloud transformed(const PointCloud& cloud, const Eigen::Isometry3f& T);
 
-/// Keeps the points inside `box_mm` (in the cloud's frame), unorganized.
-PointCloud cropToBox(const PointCloud& cloud, const Eigen::AlignedBox3f& box_mm);
-
 } // namespace scanpick::core

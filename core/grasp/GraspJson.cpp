@@ -239,14 +239,4 @@ json toJson(const PickList& list) {
   return {{"picks", picks}, {"rejected", rejected}};
 }
 
-json toJson(const BinBox& bin) {
-  json j = pose(bin.T_scene_bin);
-  j["half_size_mm"] = {bin.half_size_mm.x(), bin.half_size_mm.y()};
-  j["rim_height_mm"] = bin.rim_height_mm;
-  j["floor_found"] = bin.floor_found;
-  j["walls_found"] = {bin.walls_found[0], bin.walls_found[1], bin.walls_found[2],
-                      bin.walls_found[3]};
-  return j;
-}
-
 } // namespace scanpick::core::grasp

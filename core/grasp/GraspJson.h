@@ -36,7 +36,5 @@ BinEstimateParams binParamsFromJson(const nlohmann::json& j, const BinEstimatePa
 nlohmann::json toJson(const GraspCandidate& candidate);
 /// {"picks": [...], "rejected": [...]}
 nlohmann::json toJson(const PickList& list);
-/// The bin's pose, inner half sizes, rim and which walls were found.
-nlohmann::json toJson(const BinBox& bin);
 
 } // namespace scanpick::core::grasp

@@ -27,7 +27,6 @@ public:
                    const std::function<bool(std::uint32_t)>& visit) const;
 
   [[nodiscard]] const std::vector<Eigen::Vector3f>& points() const { return m_points; }
-  [[nodiscard]] double cellSize() const { return m_cell_mm; }
 
 private:
   [[nodiscard]] std::int64_t key(std::int64_t x, std::int64_t y, std::int64_t z) const;

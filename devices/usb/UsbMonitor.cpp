@@ -80,18 +80,6 @@ std::vector<KinectUsbDevice> list(libusb_context* ctx) {
 
 } // namespace
 
-const char* toString(KinectUsbRole role) {
-  switch (role) {
-  case KinectUsbRole::Camera:
-    return "camera";
-  case KinectUsbRole::Motor:
-    return "motor";
-  case KinectUsbRole::Audio:
-    return "audio";
-  }
-  return "unknown";
-}
-
 std::vector<KinectUsbDevice> listKinectUsbDevices() {
   UsbContext usb;
   return list(usb.ctx);
@@ -205,10 +193,6 @@ UsbMonitor::UsbMonitor(UsbEventCallback callback, int poll_interval_ms)
 
 UsbMonitor::~UsbMonitor() {
   stop();
-}
-
-bool UsbMonitor::usesHotplug() const {
-  return m_impl->hotplug;
 }
 
 void UsbMonitor::stop() {

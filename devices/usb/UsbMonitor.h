@@ -13,7 +13,6 @@ namespace scanpick::devices {
 
 /// Which function of a Kinect v1 a USB device is.
 enum class KinectUsbRole { Camera, Motor, Audio };
-const char* toString(KinectUsbRole role);
 
 inline constexpr std::uint16_t kMicrosoftVendorId = 0x045e;
 inline constexpr std::uint16_t kKinectCameraProductId = 0x02ae;
@@ -64,8 +63,6 @@ public:
   UsbMonitor(const UsbMonitor&) = delete;
   UsbMonitor& operator=(const UsbMonitor&) = delete;
 
-  /// True when libusb hotplug is used, false for the polling fallback.
-  [[nodiscard]] bool usesHotplug() const;
   /// Stops the thread (also done by the destructor).
   void stop();
 

@@ -25,7 +25,6 @@ public:
   JobPool& operator=(const JobPool&) = delete;
 
   [[nodiscard]] QThreadPool* threadPool() { return &m_threads; }
-  [[nodiscard]] int maxJobs() const { return m_threads.maxThreadCount(); }
   /// Runs a job's `work` on the calling (pool) thread, in the jobs' arena (JobArena::execute).
   void execute(const std::function<void()>& work) { m_arena->execute(work); }
 

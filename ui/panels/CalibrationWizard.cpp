@@ -177,10 +177,6 @@ void CalibrationWizard::setTargetFile(const QString& path) {
   m_target->setText(path);
 }
 
-void CalibrationWizard::setMode(core::calib::HandEyeMode mode) {
-  m_mode->setCurrentIndex(m_mode->findData(QString::fromStdString(core::calib::modeName(mode))));
-}
-
 void CalibrationWizard::setUnits(const QString& scan_units, const QString& pose_units) {
   m_scan_units->setCurrentIndex(m_scan_units->findData(scan_units));
   m_pose_units->setCurrentIndex(m_pose_units->findData(pose_units));

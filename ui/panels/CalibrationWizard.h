@@ -55,7 +55,6 @@ public:
   bool loadPosesFile(const QString& path);
   /// The target file (the CLI's --target); empty for the built-in target.
   void setTargetFile(const QString& path);
-  void setMode(core::calib::HandEyeMode mode);
   /// Units of the scans ("mm" or "m") and of the robot positions ("mm", "m", or empty for the
   /// scans' units).
   void setUnits(const QString& scan_units, const QString& pose_units = {});

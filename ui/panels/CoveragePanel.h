@@ -44,10 +44,7 @@ public:
   [[nodiscard]] State state() const { return m_state; }
   /// The coverage shown (null unless state() is Shown).
   [[nodiscard]] const core::ViewCoverage* coverage() const { return m_coverage.get(); }
-  /// The options it was measured with (the core's defaults, as `scanpick-cli recognize` uses).
-  [[nodiscard]] const core::ViewCoverageOptions& options() const { return m_options; }
   [[nodiscard]] CoverageSphere* sphere() const { return m_sphere; }
-  [[nodiscard]] JobRunner* jobs() const { return m_jobs; }
   /// The summary line and the suggestions as shown, in the current language.
   [[nodiscard]] QString summaryText() const;
   [[nodiscard]] QString suggestionsText() const;

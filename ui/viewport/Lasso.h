@@ -41,9 +41,6 @@ class LassoOverlay : public QWidget {
 public:
   LassoOverlay(QWidget* viewport, std::function<void(const QPolygonF&)> on_finished);
   void setActive(bool active);
-  [[nodiscard]] bool isActive() const { return m_active; }
-  /// The polygon being drawn (empty when none).
-  [[nodiscard]] const QPolygonF& polygon() const { return m_polygon; }
 
 protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
