@@ -1,8 +1,8 @@
 // Recognize and live: background recognition with progress and cancel, the detections drawn in
 // distinct colours over the grey scene, the results table, export, and capture → recognize loops.
 #include "core/common/Log.h"
-#include "core/pipeline/DepthOverlay.h"
-#include "core/pipeline/ResultsJson.h"
+#include "core/output/DepthOverlay.h"
+#include "core/output/ResultsJson.h"
 #include "ui/FileDialogs.h"
 #include "ui/MainWindow.h"
 #include "ui/jobs/JobRunner.h"

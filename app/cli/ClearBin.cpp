@@ -1,7 +1,7 @@
 #include "app/cli/ClearBin.h"
 
 #include "core/common/Error.h"
-#include "core/pipeline/OverlayPicture.h"
+#include "core/output/OverlayPicture.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/sim/Renderer.h"
 #include "core/sim/SensorNoise.h"

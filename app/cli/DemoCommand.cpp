@@ -10,9 +10,9 @@
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 #include "core/model/ModelFile.h"
-#include "core/pipeline/OverlayPicture.h"
+#include "core/output/OverlayPicture.h"
+#include "core/output/ResultsJson.h"
 #include "core/pipeline/Recognizer.h"
-#include "core/pipeline/ResultsJson.h"
 #include "core/sim/Suite.h"
 
 #include <cstdio>

@@ -4,7 +4,7 @@
 
 #include "core/common/Error.h"
 #include "core/model/ModelFile.h"
-#include "core/pipeline/ResultsJson.h"
+#include "core/output/ResultsJson.h"
 
 #include <memory>
 #include <string>

@@ -8,9 +8,9 @@
 #include "core/common/JsonText.h"
 #include "core/model/ModelFile.h"
 #include "core/model/ViewCoverage.h"
-#include "core/pipeline/OverlayPicture.h"
+#include "core/output/OverlayPicture.h"
+#include "core/output/ResultsJson.h"
 #include "core/pipeline/Recognizer.h"
-#include "core/pipeline/ResultsJson.h"
 
 #include <algorithm>
 #include <cstdio>

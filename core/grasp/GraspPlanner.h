@@ -5,10 +5,10 @@
 /// limit, and the pick list that ranks the grasps that pass and says why the others fail.
 
 #include "core/cloud/PointCloud.h"
+#include "core/common/Detection.h"
 #include "core/grasp/BinBox.h"
 #include "core/grasp/GraspPoint.h"
 #include "core/grasp/Gripper.h"
-#include "core/pipeline/Detection.h"
 
 #include <Eigen/Geometry>
 #include <optional>

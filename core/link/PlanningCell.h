@@ -6,10 +6,10 @@
 
 #include "core/calib/BaseFrame.h"
 #include "core/cloud/PointCloud.h"
+#include "core/common/Detection.h"
 #include "core/grasp/BinBox.h"
 #include "core/grasp/GraspPlanner.h"
 #include "core/link/CellBackend.h"
-#include "core/pipeline/Detection.h"
 
 #include <Eigen/Geometry>
 #include <functional>

@@ -5,14 +5,14 @@
 /// and what each detection reports at its pose. Internal to the Recognizer
 /// (core/pipeline/Recognizer.cpp), in its own file to keep that one small.
 
+#include "core/ambiguity/AmbiguityResolution.h"
+#include "core/common/Detection.h"
 #include "core/features/Feature.h"
 #include "core/matching/PointPairVoting.h"
 #include "core/model/TaughtModel.h"
 #include "core/params/Parameters.h"
-#include "core/pipeline/Detection.h"
-#include "core/pipeline/ModelPrep.h"
-#include "core/pipeline/PoseVerification.h"
 #include "core/refine/SceneIndex.h"
+#include "core/verification/PoseVerification.h"
 
 #include <functional>
 #include <vector>

@@ -5,6 +5,7 @@
 #include "core/common/Error.h"
 #include "core/common/Log.h"
 #include "core/common/Progress.h"
+#include "core/pipeline/ProgressShares.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/refine/SceneIndex.h"
 
@@ -156,12 +157,12 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
     merged.detections.resize(static_cast<std::size_t>(params.matching.max_detections));
   if (params.refine.enabled) {
     const auto t0 = Clock::now();
-    merged.detections = ofEachView(std::move(merged.detections), models.size(),
-                                   [&](std::size_t m, std::vector<Detection>& of_view) {
-                                     of_view = recognizer.refine(models[m], std::move(of_view),
-                                                                 *merged.scene, params);
-                                     reportProgress(progress, 1.0); // a last chance to stop
-                                   });
+    merged.detections = ofEachView(
+        std::move(merged.detections), models.size(),
+        [&](std::size_t m, std::vector<Detection>& of_view) {
+          of_view = recognizer.refine(models[m], std::move(of_view), *merged.scene, params);
+          reportProgress(progress, kProgressShares.after_matching.end); // a last chance to stop
+        });
     merged.timings.refine_ms = msSince(t0);
     merged.timings.total_ms += merged.timings.refine_ms;
   }

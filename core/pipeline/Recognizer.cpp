@@ -5,16 +5,17 @@
 
 #include "core/pipeline/Recognizer.h"
 
+#include "core/ambiguity/AmbiguityResolution.h"
 #include "core/common/Error.h"
 #include "core/common/Log.h"
 #include "core/common/ParallelProgress.h"
 #include "core/matching/FeatureMatcher.h"
 #include "core/matching/PointPairVoting.h"
 #include "core/pipeline/DetectionSteps.h"
-#include "core/pipeline/ModelPrep.h"
-#include "core/pipeline/PoseVerification.h"
+#include "core/pipeline/ProgressShares.h"
 #include "core/pipeline/StageMemo.h"
 #include "core/refine/PoseRefinement.h"
+#include "core/verification/PoseVerification.h"
 
 #include <algorithm>
 #include <chrono>
@@ -95,8 +96,8 @@ struct ViewInScene {
 };
 
 /// Feature matching (Algorithm 8) of the view in each object of the scene: one detection per
-/// candidate, scored by its coverage with verification, else by its feature score (progress
-/// 0.8 → 0.95).
+/// candidate, scored by its coverage with verification, else by its feature score (progress:
+/// kProgressShares.feature_matching).
 std::vector<Detection> featureDetections(const ViewInScene& view, const SceneAnalysis& scene,
                                          const PoseVerifier& verify, const ProgressFn& progress) {
   const MatchingParams& matching = view.params.matching;
@@ -106,9 +107,11 @@ std::vector<Detection> featureDetections(const ViewInScene& view, const SceneAna
   const std::vector<FeatureList>& features = *scene.features;
   const auto t0 = Clock::now();
   std::vector<std::vector<MatchCandidate>> candidates(features.size());
-  parallelForWithProgress(features.size(), subProgress(progress, 0.8, 0.95), [&](std::size_t i) {
-    candidates[i] = matchFeatures(view.model.features, features[i], matching, {}, verify_pooled);
-  });
+  parallelForWithProgress(
+      features.size(), subProgress(progress, kProgressShares.feature_matching), [&](std::size_t i) {
+        candidates[i] =
+            matchFeatures(view.model.features, features[i], matching, {}, verify_pooled);
+      });
   logger()->debug("feature matching: {} model features, {:.0f} ms", view.model.features.size(),
                   msSince(t0));
   std::vector<Detection> out;
@@ -142,9 +145,10 @@ PoseRescue detailRescue(const ViewInScene& view, const PoseVerifier& verify,
   };
 }
 
-/// Surface point pair voting of the view over the whole sampled scene (progress 0.95 → 0.98). A
-/// voted pose under half the minimum coverage is neither polished nor rescued, and ICP's pose
-/// replaces it only within kIcpCoverageSlack: under that, its score only has to stay under.
+/// Surface point pair voting of the view over the whole sampled scene (progress:
+/// kProgressShares.surface_voting). A voted pose under half the minimum coverage is neither
+/// polished nor rescued, and ICP's pose replaces it only within kIcpCoverageSlack: under that, its
+/// score only has to stay under.
 std::vector<Detection> votedDetections(const ViewInScene& view, const SceneAnalysis& scene,
                                        const OrientedPoints& sampled, const ScenePairs* pairs,
                                        const PosePolisher& polish, const PoseRescue& rescue,
@@ -153,7 +157,7 @@ std::vector<Detection> votedDetections(const ViewInScene& view, const SceneAnaly
   const PoseVerifier verify_voted = view.verifier(0.5 * matching.min_coverage - kIcpCoverageSlack);
   return surfaceDetections(*view.prep->pairs, sampled, pairs, view.model.features, *scene.features,
                            matching, kVoteClusterShare * view.model.diameter_mm, verify_voted,
-                           polish, rescue, subProgress(progress, 0.95, 0.98));
+                           polish, rescue, subProgress(progress, kProgressShares.surface_voting));
 }
 
 /// What surface voting needs of the scene for one view: the scene sampled and paired (the memo's,
@@ -170,10 +174,10 @@ VotingScene votingScene(StageMemo& memo, const ModelPrep& prep, const Recognitio
   PairKeySet keys;
   keys.add(view);
   VotingScene out;
-  out.pairs =
-      memo.pairScene(*memo.pre_key, params.matching.surface_sampling_mm,
-                     std::max(1, params.matching.surface_reference_stride), view.quantizer(),
-                     view.diameter(), std::move(keys), false, subProgress(progress, 0.8, 0.8));
+  out.pairs = memo.pairScene(*memo.pre_key, params.matching.surface_sampling_mm,
+                             std::max(1, params.matching.surface_reference_stride),
+                             view.quantizer(), view.diameter(), std::move(keys), false,
+                             subProgress(progress, kProgressShares.scene_pairing));
   out.sampled = memo.surface_scene;
   return out;
 }
@@ -323,9 +327,9 @@ RecognitionResult Recognizer::run(const std::shared_ptr<const TaughtModel>& mode
   }
   const ViewInScene view(*model, prep, params, *scene);
   result.detections = findDetections(view, *scene, voting, resolve_turns, progress, result.timings);
-  reportProgress(progress, 1.0);
+  reportProgress(progress, kProgressShares.after_matching.end);
   result.timings.total_ms = msSince(t_start);
-  reportProgress(progress, 1.0);
+  reportProgress(progress, kProgressShares.after_matching.end);
   return result;
 }
 

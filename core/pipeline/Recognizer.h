@@ -9,10 +9,10 @@
 
 #include "core/cloud/PointCloud.h"
 #include "core/cloud/Sensor.h"
+#include "core/common/Detection.h"
 #include "core/common/Progress.h"
 #include "core/model/TaughtModel.h"
 #include "core/params/Parameters.h"
-#include "core/pipeline/Detection.h"
 #include "core/pipeline/SceneAnalysis.h"
 
 #include <functional>

@@ -4,11 +4,12 @@
 #include "core/common/Log.h"
 #include "core/common/ParallelProgress.h"
 #include "core/features/FeatureExtraction.h"
-#include "core/pipeline/PoseVerification.h"
+#include "core/pipeline/ProgressShares.h"
 #include "core/pipeline/StageMemo.h"
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "core/preprocess/SceneSplit.h"
+#include "core/verification/PoseVerification.h"
 
 #include <algorithm>
 #include <chrono>
@@ -133,15 +134,15 @@ sharedPairings(const std::vector<std::shared_ptr<const ModelPrep>>& preps,
 
 namespace {
 
-/// Floor removal and downsampling (progress 0 → 0.1).
+/// Floor removal and downsampling (progress: kProgressShares.preprocess).
 void preprocessStage(StageMemo& memo, const PreKey& key, const PointCloud& scan_mm,
                      const RecognitionParams& params, const ProgressFn& progress,
                      StageTimings& timings) {
   if (memo.pre_key == key)
     return;
   const auto t0 = Clock::now();
-  FloorRemovalResult floor =
-      removeFloor(scan_mm, params.floor, params.seed, subProgress(progress, 0.0, 0.1));
+  FloorRemovalResult floor = removeFloor(scan_mm, params.floor, params.seed,
+                                         subProgress(progress, kProgressShares.preprocess));
   memo.floor_removed = floor.removed_points;
   memo.floor_plane = floor.planes.empty() ? std::nullopt : std::optional(floor.planes.front());
   // Without a voxel size the scan stays as it is: moved, not copied (a PhoXi scan is 9 MB).
@@ -200,7 +201,7 @@ void startSceneTasks(tbb::task_group& tasks, StageMemo& memo, const PreKey& pre_
   }
 }
 
-/// The split into objects (progress 0.1 → 0.3).
+/// The split into objects (progress: kProgressShares.split).
 void splitStage(StageMemo& memo, const SplitKey& key, const SensorModel& sensor,
                 const RecognitionParams& params, const ProgressFn& progress,
                 StageTimings& timings) {
@@ -208,14 +209,14 @@ void splitStage(StageMemo& memo, const SplitKey& key, const SensorModel& sensor,
     return;
   const auto t0 = Clock::now();
   SceneSplit split = splitIntoObjects(*memo.pre, sensor, params.clustering, params.seed,
-                                      subProgress(progress, 0.1, 0.3));
+                                      subProgress(progress, kProgressShares.split));
   memo.objects = std::make_shared<const std::vector<PointCloud>>(std::move(split.objects));
   memo.split_key = key;
   memo.keypoint_key.reset();
   timings.clustering_ms = msSince(t0);
 }
 
-/// Each object's keypoints (progress 0.3 → 0.55).
+/// Each object's keypoints (progress: kProgressShares.keypoints).
 void keypointStage(StageMemo& memo, const KeypointKey& key, const RecognitionParams& params,
                    const ProgressFn& progress, StageTimings& timings) {
   if (memo.keypoint_key == key)
@@ -223,16 +224,16 @@ void keypointStage(StageMemo& memo, const KeypointKey& key, const RecognitionPar
   const auto t0 = Clock::now();
   const auto& objects = *memo.objects;
   std::vector<Keypoints> keypoints(objects.size());
-  parallelForWithProgress(objects.size(), subProgress(progress, 0.3, 0.55), [&](std::size_t i) {
-    keypoints[i] = extractKeypoints(objects[i], params.keypoints);
-  });
+  parallelForWithProgress(
+      objects.size(), subProgress(progress, kProgressShares.keypoints),
+      [&](std::size_t i) { keypoints[i] = extractKeypoints(objects[i], params.keypoints); });
   memo.keypoints = std::make_shared<const std::vector<Keypoints>>(std::move(keypoints));
   memo.keypoint_key = key;
   memo.feature_key.reset();
   timings.keypoints_ms = msSince(t0);
 }
 
-/// Each object's features (progress 0.55 → 0.8).
+/// Each object's features (progress: kProgressShares.features).
 void featureStage(StageMemo& memo, const FeatureKey& key, const RecognitionParams& params,
                   const ProgressFn& progress, StageTimings& timings) {
   if (memo.feature_key == key)
@@ -240,12 +241,13 @@ void featureStage(StageMemo& memo, const FeatureKey& key, const RecognitionParam
   const auto t0 = Clock::now();
   const std::size_t objects = memo.objects->size();
   std::vector<FeatureList> features(objects);
-  parallelForWithProgress(objects, subProgress(progress, 0.55, 0.8), [&](std::size_t i) {
-    // Each object draws from its own stream, so results do not depend on scheduling.
-    features[i] = extractFeatures((*memo.keypoints)[i].points_mm, params.features,
-                                  params.seed + 0x9E3779B97F4A7C15ull * (i + 1))
-                      .features;
-  });
+  parallelForWithProgress(
+      objects, subProgress(progress, kProgressShares.features), [&](std::size_t i) {
+        // Each object draws from its own stream, so results do not depend on scheduling.
+        features[i] = extractFeatures((*memo.keypoints)[i].points_mm, params.features,
+                                      params.seed + 0x9E3779B97F4A7C15ull * (i + 1))
+                          .features;
+      });
   memo.features = std::make_shared<const std::vector<FeatureList>>(std::move(features));
   memo.feature_key = key;
   timings.features_ms = msSince(t0);
@@ -278,14 +280,14 @@ SceneAnalysis analyzeScene(StageMemo& memo, const PointCloud& scan_mm, const Sen
                            const ProgressFn& progress, StageTimings& timings) {
   const PreKey pre_key{sceneHash(scan_mm), params.floor, params.downsample, params.seed};
   preprocessStage(memo, pre_key, scan_mm, params, progress, timings);
-  reportProgress(progress, 0.1);
+  reportProgress(progress, kProgressShares.preprocess.end);
   const bool preparing = needsModelPrep(params) && memo.pre && memo.pre->hasValidPoint();
   tbb::task_group scene_tasks;
   if (preparing)
     startSceneTasks(scene_tasks, memo, pre_key, scan_mm, sensor, params, requested);
   const SplitKey split_key{pre_key, params.clustering, sensorHash(sensor)};
   splitStage(memo, split_key, sensor, params, progress, timings);
-  reportProgress(progress, 0.3);
+  reportProgress(progress, kProgressShares.split.end);
   const KeypointKey keypoint_key{split_key, params.keypoints};
   keypointStage(memo, keypoint_key, params, progress, timings);
   featureStage(memo, {keypoint_key, params.features}, params, progress, timings);

@@ -8,7 +8,7 @@
 #include "core/cloud/Sensor.h"
 #include "core/features/Feature.h"
 #include "core/keypoints/Keypoints.h"
-#include "core/pipeline/PoseVerification.h"
+#include "core/verification/PoseVerification.h"
 
 #include <Eigen/Core>
 #include <cstddef>

@@ -5,10 +5,10 @@
 /// that a stage runs again only when its key changes. analyzeScene fills it and hands on a
 /// SceneAnalysis.
 
+#include "core/ambiguity/ModelPrep.h"
 #include "core/common/Progress.h"
 #include "core/matching/PointPairVoting.h"
 #include "core/params/Parameters.h"
-#include "core/pipeline/ModelPrep.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/pipeline/SceneAnalysis.h"
 #include "core/refine/SceneIndex.h"
@@ -116,7 +116,8 @@ struct StageMemo {
 /// pairing): floor removal and downsampling, the split into objects, keypoints, features, and,
 /// when `params` need a model preparation, the scene index, projector shadows and the edge
 /// check's keypoint index. Runs only the stages whose keys changed, updating `memo`; adds each
-/// stage's time to `timings` (0 for a stage served from the memo). Progress runs 0 → 0.8.
+/// stage's time to `timings` (0 for a stage served from the memo). Progress runs through the shares
+/// kProgressShares.preprocess to kProgressShares.features (ProgressShares.h).
 /// Throws Cancelled when `progress` asks to stop.
 SceneAnalysis analyzeScene(StageMemo& memo, const PointCloud& scan_mm, const SensorModel& sensor,
                            const RecognitionParams& params, const RecognitionParams& requested,

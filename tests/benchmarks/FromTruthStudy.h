@@ -2,12 +2,12 @@
 // What the studies that start at the true pose share (study_icp_from_truth, study_render_pin): the
 // part's views joined and prepared as recognize prepares them, the suite's scenes, the view the
 // scan covers best at a true pose, and ICP from that pose.
+#include "core/ambiguity/ModelPrep.h"
 #include "core/common/Error.h"
 #include "core/eval/GroundTruth.h"
 #include "core/model/ModelFile.h"
 #include "core/params/ParamsJson.h"
 #include "core/params/ViewParams.h"
-#include "core/pipeline/ModelPrep.h"
 #include "core/refine/PoseRefinement.h"
 
 #include <algorithm>

@@ -2,8 +2,8 @@
 // side is a body of revolution and a handle. Where a scan confirms the handle, recognition reports
 // the cup's turn; where it does not, the detection says its turn about the cup's axis is not seen
 // (Detection::free_turn_axis) instead of passing one turn off as found.
+#include "core/ambiguity/AmbiguityResolution.h"
 #include "core/common/Error.h"
-#include "core/pipeline/ModelPrep.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "core/refine/PoseRefinement.h"

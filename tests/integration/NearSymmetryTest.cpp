@@ -2,7 +2,7 @@
 // from its 180° turn only at the lip and the stem. The view's near symmetry is found, the points
 // where the two poses differ tell the true pose from the turned one in a real (simulated) scan,
 // and recognition reports the right turn.
-#include "core/pipeline/NearSymmetry.h"
+#include "core/ambiguity/NearSymmetry.h"
 
 #include "core/pipeline/Recognizer.h"
 #include "core/refine/RefineModel.h"

@@ -3,8 +3,8 @@
 // a part), verification counts the model neither confirmed nor missing there; so also where the
 // part's own body, as a view of a surface of revolution stands for it, hides it. And the same
 // verification looking for scene points in pixel windows of the organized scan.
+#include "core/ambiguity/ModelPrep.h"
 #include "core/keypoints/Keypoints.h"
-#include "core/pipeline/ModelPrep.h"
 #include "core/refine/PoseRefinement.h"
 #include "tests/integration/SynthTeach.h"
 

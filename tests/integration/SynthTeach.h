@@ -2,14 +2,14 @@
 // Helpers of the integration tests: load a bundled preset, teach a built-in part from a virtual
 // teach scan, find a taught view's near symmetries, and tell which simulated instance a detection
 // lies on.
+#include "core/ambiguity/NearSymmetry.h"
+#include "core/common/Detection.h"
 #include "core/model/TaughtModel.h"
 #include "core/params/ParamsJson.h"
-#include "core/pipeline/Detection.h"
-#include "core/pipeline/NearSymmetry.h"
-#include "core/pipeline/PoseVerification.h"
 #include "core/preprocess/FloorRemoval.h"
 #include "core/refine/RefineModel.h"
 #include "core/sim/Synth.h"
+#include "core/verification/PoseVerification.h"
 
 #include <filesystem>
 #include <limits>

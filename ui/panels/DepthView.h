@@ -7,7 +7,7 @@
 /// the background (MainWindow); this widget only shows it, scaled to fit with its aspect kept.
 /// For an unorganized scan, or no scan, it says why it is empty.
 
-#include "core/pipeline/DepthOverlay.h"
+#include "core/output/DepthOverlay.h"
 
 #include <QColor>
 #include <QImage>

@@ -6,7 +6,7 @@
 /// viewport draws that detection in, labelled with the same ID. Selecting a row highlights that
 /// detection.
 
-#include "core/pipeline/Detection.h"
+#include "core/common/Detection.h"
 
 #include <QStringList>
 #include <QTableWidget>

@@ -1,7 +1,7 @@
 #include "ui/viewport/Presenters.h"
 
 #include "core/grasp/GraspPlanner.h"
-#include "core/pipeline/DetectionColours.h"
+#include "core/output/DetectionColours.h"
 
 #include <QString>
 #include <algorithm>

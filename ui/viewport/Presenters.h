@@ -6,8 +6,8 @@
 /// `ratio`.
 
 #include "core/cloud/PointCloud.h"
+#include "core/common/Detection.h"
 #include "core/features/Feature.h"
-#include "core/pipeline/Detection.h"
 
 #include <Eigen/Geometry>
 #include <QColor>

@@ -14,7 +14,7 @@
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"
 #include "core/common/JsonText.h"
-#include "core/pipeline/ResultsJson.h"
+#include "core/output/ResultsJson.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

@@ -3,7 +3,7 @@
 // down its +z axis, so up is -z; the bin's floor lies at z = 1000 mm.
 
 #include "core/cloud/PointCloud.h"
-#include "core/pipeline/Detection.h"
+#include "core/common/Detection.h"
 
 #include <Eigen/Geometry>
 #include <vector>

@@ -3,8 +3,8 @@
 #include "core/cloud/Sensor.h"
 #include "core/common/Error.h"
 #include "core/eval/ResultsFile.h"
-#include "core/pipeline/OverlayPicture.h"
-#include "core/pipeline/ResultsJson.h"
+#include "core/output/OverlayPicture.h"
+#include "core/output/ResultsJson.h"
 #include "tests/support/TempDir.h"
 #include "tests/unit/pipeline/IdealScene.h"
 

@@ -1,95 +1,34 @@
 #pragma once
-/// @file ModelPrep.h
-/// What the Recognizer prepares once per taught view and keeps while views alternate from scene
-/// to scene (verification points, ICP model, surface pair table, axis of revolution, near
-/// symmetries), and how a detection's near symmetries are then resolved. Internal to the
-/// Recognizer (core/pipeline/Recognizer.cpp), in its own file to keep that one small.
+/// @file AmbiguityResolution.h
+/// How the turns of a detection that matching cannot tell are resolved by the scan.
+///
+/// Module core/ambiguity (scanpick::core_ambiguity), symmetry and ambiguity resolution. Contract:
+/// given a view prepared once (ModelPrep: its axis of revolution, or near axis and detail, its
+/// near symmetries, NearSymmetry.h) and detections of it in a scan, each scored by the scan's
+/// verification (core/verification), it decides the turns feature matching cannot tell: the turn
+/// about a near axis that the detail (a cup's handle) shows, and which of a pose and its turn by a
+/// near symmetry the scan rules out. Detections come back turned, or with the poses the scan
+/// cannot tell apart as alternatives; their order and duplicates are the caller's.
+/// The view's preparation (ModelPrep, prepareModel) lives here and not in core/pipeline: most of
+/// what it holds is there to resolve these ambiguities and this module takes it, so with it in the
+/// pipeline the two modules would depend on each other. The pipeline uses this module; it uses
+/// verification, matching, refine, model and features, and nothing of the Recognizer.
 
+#include "core/ambiguity/ModelPrep.h"
+#include "core/common/Detection.h"
 #include "core/matching/FeatureMatcher.h"
-#include "core/matching/PointPairVoting.h"
-#include "core/matching/RevolutionAxis.h"
-#include "core/model/TaughtModel.h"
 #include "core/params/Parameters.h"
-#include "core/pipeline/Detection.h"
-#include "core/pipeline/NearSymmetry.h"
-#include "core/pipeline/PoseVerification.h"
-#include "core/refine/RefineModel.h"
-#include "core/refine/SurfaceEnds.h"
+#include "core/verification/PoseVerification.h"
 
 #include <Eigen/Geometry>
-#include <cstdint>
 #include <functional>
-#include <memory>
 #include <optional>
 #include <vector>
 
 namespace scanpick::core::detail {
 
-/// What a view's near symmetries were found with (findNearSymmetries' parameters).
-struct SymmetryKey {
-  double overlap = 0.0;
-  double tolerance_mm = 0.0;
-  RefineParams icp;
-  bool operator==(const SymmetryKey&) const = default;
-};
-
-/// A model prepared for verification, refinement and surface voting.
-struct ModelPrep {
-  std::shared_ptr<const TaughtModel> model;
-  int points = 0;              ///< refine.model_points it was prepared with
-  double normal_radius_mm = 0; ///< keypoints.normal_radius_mm it was prepared with
-  std::shared_ptr<const VerifyModel> verify;
-  /// The axis about which the model is a surface of revolution, if it is one.
-  std::optional<RevolutionAxis> axis;
-  /// Otherwise, the axis about which it is one but for a detail (a cup's handle), if it is so,
-  /// and the detail's points (indices into verify->points).
-  std::optional<RevolutionAxis> near_axis;
-  std::vector<std::uint32_t> near_axis_detail;
-  /// With `axis` or `near_axis`: the outer radius of the surface they turn (its detail left out)
-  /// and where its wall ends along the axis in the taught cloud (AxialEnds).
-  double wall_radius_mm = 0;
-  AxialEnds wall_ends;
-  /// With views joined (TaughtModel::joined_views), the detail as all of them saw it, in this
-  /// view's frame, with this view's body (null otherwise): a cup's handle from every side, where
-  /// this view alone saw it from one.
-  std::shared_ptr<const VerifyModel> joined_detail;
-  /// With views joined, the body as all of them saw it (their points on the surface this view
-  /// turns about its near axis, in this view's frame, with the body they make turned about it):
-  /// a cup's mouth and its bottom, which a side view alone does not hold. Null otherwise.
-  std::shared_ptr<const VerifyModel> joined_body;
-  /// Per near symmetry (`symmetries[k]`), the points of joined_body it moves off that body and
-  /// those its inverse does (as NearSymmetry::differing and differing_inverse): a cup turned end
-  /// over end puts its bottom where its mouth was.
-  struct BodyDiffering {
-    std::vector<std::uint32_t> differing, differing_inverse;
-  };
-  std::vector<BodyDiffering> joined_body_differing;
-  std::shared_ptr<const RefineModel> refine; ///< when ICP or surface voting needs it
-  /// With views joined and refinement on, the ICP model of all of them in this view's frame: the
-  /// other views hold the surfaces that pin down what this one alone leaves loose (a plate seen
-  /// face-on slides in its own plane).
-  std::shared_ptr<const RefineModel> joined_refine;
-  /// With views joined, the points of all of them in this view's frame (each view's with normals
-  /// facing its own teach camera); null without joined views.
-  std::shared_ptr<const VerifyModel> joined_points;
-  double surface_sampling_mm = 0;              ///< of `pairs`
-  std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on
-  /// Near symmetries, and what they were found with (unset when not searched).
-  std::optional<SymmetryKey> symmetry_key;
-  std::vector<NearSymmetry> symmetries;
-};
-
 /// Moves a pose closer to the scene (ICP).
 using PosePolisher = std::function<Eigen::Isometry3d(const Eigen::Isometry3d&)>;
-
-/// Whether matching with these parameters uses a prepared model (verification or refinement).
-bool needsModelPrep(const RecognitionParams& params);
-
-/// The cached preparation of `model` for these parameters, made (and cached, replacing the
-/// oldest of at most 8) when missing or lacking what the parameters need.
-std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const ModelPrep>>& preps,
-                                              const std::shared_ptr<const TaughtModel>& model,
-                                              const RecognitionParams& params);
 
 /// Whether the scan confirms enough of the detail of a view that is a surface of revolution but
 /// for it (ModelPrep::near_axis_detail) at `T_scene_model`: if not (the handle of a cup is hidden

@@ -6,10 +6,10 @@
 /// markers over it); the result picture (OverlayPicture.h) draws them into it.
 
 #include "core/cloud/PointCloud.h"
+#include "core/common/Detection.h"
 #include "core/common/Progress.h"
+#include "core/output/DetectionColours.h"
 #include "core/params/Parameters.h"
-#include "core/pipeline/Detection.h"
-#include "core/pipeline/DetectionColours.h"
 
 #include <vector>
 

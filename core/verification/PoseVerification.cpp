@@ -1,4 +1,4 @@
-#include "core/pipeline/PoseVerification.h"
+#include "core/verification/PoseVerification.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,6 +2,13 @@
 /// @file ResultsJson.h
 /// The results file ("scanpick-results", docs/file-formats.md). The reader is
 /// core/eval/ResultsFile.h (loadResults), which the evaluator shares.
+///
+/// Module core/output (scanpick::core_output), what is made from a result. Contract: it reads a
+/// RecognitionResult (or detections and their scan) and makes what leaves the library with it:
+/// this results file, the depth overlay (DepthOverlay.h), the result picture (OverlayPicture.h)
+/// and the colours that tell detections apart (DetectionColours.h). It changes nothing of the
+/// result; recognition does not use it. It uses the pipeline; OpenCV, which draws and encodes the
+/// picture, stays private to it.
 
 #include "core/model/TaughtModel.h"
 #include "core/pipeline/Recognizer.h"

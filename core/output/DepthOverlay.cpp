@@ -1,4 +1,4 @@
-#include "core/pipeline/DepthOverlay.h"
+#include "core/output/DepthOverlay.h"
 
 #include "core/common/Error.h"
 

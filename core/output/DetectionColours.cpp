@@ -1,4 +1,4 @@
-#include "core/pipeline/DetectionColours.h"
+#include "core/output/DetectionColours.h"
 
 #include <array>
 #include <cmath>

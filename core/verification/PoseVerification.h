@@ -2,6 +2,13 @@
 /// @file PoseVerification.h
 /// Point-level verification of a pose (beyond the thesis): how much of the model the scan
 /// confirms at that pose, how much it contradicts, and how much it cannot see.
+///
+/// Module core/verification (scanpick::core_verification), hypothesis verification. Contract: a
+/// pose hypothesis of a taught view (VerifyModel) is tallied and scored against one scan
+/// (VerifyScene: the indexed scene, the organized scan, its sensor, floor and projector shadows);
+/// the answer depends on the model, the scan and the pose alone, not on how the pose was found or
+/// what is done with it. It uses base, keypoints, matching (the revolved body), model and refine
+/// (SceneIndex), and nothing of the Recognizer.
 
 #include "core/cloud/PointCloud.h"
 #include "core/cloud/Sensor.h"

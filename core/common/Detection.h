@@ -1,6 +1,8 @@
 #pragma once
 /// @file Detection.h
-/// What recognition reports for each found instance of the taught part.
+/// What recognition reports for each found instance of the taught part. A plain value in
+/// core/common: the resolution of turns (core/ambiguity), the Recognizer (core/pipeline), what is
+/// made from a result (core/output), grasp planning and the robot link all take it.
 
 #include "core/common/GripPoint.h"
 

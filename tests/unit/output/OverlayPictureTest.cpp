@@ -1,4 +1,4 @@
-#include "core/pipeline/OverlayPicture.h"
+#include "core/output/OverlayPicture.h"
 
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"

@@ -1,4 +1,4 @@
-#include "core/pipeline/ResultsJson.h"
+#include "core/output/ResultsJson.h"
 
 #include "core/common/AtomicFile.h"
 #include "core/common/Error.h"

@@ -7,8 +7,8 @@
 
 #include "core/model/TaughtModel.h"
 #include "core/params/Parameters.h"
-#include "core/pipeline/PoseVerification.h"
 #include "core/refine/RefineModel.h"
+#include "core/verification/PoseVerification.h"
 
 #include <Eigen/Geometry>
 #include <cstdint>

@@ -7,8 +7,8 @@
 
 #include "core/cloud/PointCloud.h"
 #include "core/cloud/Sensor.h"
-#include "core/pipeline/DepthOverlay.h"
-#include "core/pipeline/Detection.h"
+#include "core/common/Detection.h"
+#include "core/output/DepthOverlay.h"
 
 #include <Eigen/Core>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "core/pipeline/NearSymmetry.h"
+#include "core/ambiguity/NearSymmetry.h"
 
 #include "core/common/Log.h"
 #include "core/matching/PointPairVoting.h"
