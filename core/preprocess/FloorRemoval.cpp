@@ -35,10 +35,15 @@ constexpr double kBinFloorBandMm = 5.0;
 /// A bin floor has at most this share of the remaining points behind it (the bin walls' feet).
 constexpr double kMaxShareBehindBinFloor = 0.02;
 
-/// A supporting floor has at most this share of the points farther than kBehindDistances x the
-/// plane distance behind it (noise and flying pixels).
+/// A supporting floor has at most this share of the points around the part farther than
+/// kBehindDistances x the plane distance behind it (noise and flying pixels).
 constexpr double kMaxShareBehindFloor = 0.02;
 constexpr double kBehindDistances = 3.0;
+
+/// "Around the part": within this many times the part's radius of its centre, along the plane.
+/// What lies behind a table farther off (a room's floor or wall beyond the table's edge) says
+/// nothing about whether the part rests on it.
+constexpr float kAroundPartRadii = 1.5f;
 
 /// Heights above the first plane searched for a bin floor (mm).
 constexpr double kMaxBinFloorHeightMm = 500.0;
@@ -149,8 +154,11 @@ struct FloorSearch {
   const PointCloud& scene_mm;
   const FloorParams& params;
   std::size_t total_valid = 0; ///< valid points of the scan
-  std::vector<int> alive;      ///< valid points not removed yet (indices into scene_mm)
-  std::vector<char> removed;   ///< per point of scene_mm: 1 when removed
+  /// With a part: its points' centroid and largest distance from it (scan frame, mm).
+  Eigen::Vector3f part_centre_mm = Eigen::Vector3f::Zero();
+  float part_radius_mm = 0;
+  std::vector<int> alive;    ///< valid points not removed yet (indices into scene_mm)
+  std::vector<char> removed; ///< per point of scene_mm: 1 when removed
   FloorRemovalResult result;
 };
 
@@ -200,14 +208,42 @@ bool removePlane(FloorSearch& search, const Eigen::Vector4f& plane, std::size_t 
   return true;
 }
 
-/// Whether more than kMaxShareBehindFloor of the valid points lie beyond `plane`.
+/// Centre and radius of the flagged part's valid points, for hasPointsBehind.
+void measurePart(FloorSearch& search, const std::vector<char>& part) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  std::size_t n = 0;
+  for (const int i : search.alive)
+    if (part[static_cast<std::size_t>(i)]) {
+      sum += search.scene_mm.points_mm[static_cast<std::size_t>(i)].cast<double>();
+      ++n;
+    }
+  if (n == 0)
+    return;
+  search.part_centre_mm = (sum / double(n)).cast<float>();
+  for (const int i : search.alive)
+    if (part[static_cast<std::size_t>(i)])
+      search.part_radius_mm = std::max(
+          search.part_radius_mm,
+          (search.scene_mm.points_mm[static_cast<std::size_t>(i)] - search.part_centre_mm).norm());
+}
+
+/// Whether more than kMaxShareBehindFloor of the valid points around the part (along `plane`,
+/// within kAroundPartRadii of its radius) lie beyond `plane`.
 bool hasPointsBehind(const FloorSearch& search, const Eigen::Vector4f& plane) {
   const auto beyond = static_cast<float>(-kBehindDistances * search.params.distance_mm);
-  const auto behind = std::count_if(search.alive.begin(), search.alive.end(), [&](int i) {
+  const Eigen::Vector3f normal = plane.head<3>();
+  const auto along = [&](const Eigen::Vector3f& p) { return p - normal * normal.dot(p); };
+  const Eigen::Vector3f centre = along(search.part_centre_mm);
+  const float around_mm = kAroundPartRadii * search.part_radius_mm;
+  std::size_t near = 0, behind = 0;
+  for (const int i : search.alive) {
     const auto& p = search.scene_mm.points_mm[static_cast<std::size_t>(i)];
-    return plane.head<3>().dot(p) + plane[3] < beyond;
-  });
-  return double(behind) > kMaxShareBehindFloor * double(search.total_valid);
+    if ((along(p) - centre).norm() > around_mm)
+      continue;
+    ++near;
+    behind += normal.dot(p) + plane[3] < beyond;
+  }
+  return double(behind) > kMaxShareBehindFloor * double(near);
 }
 
 /// Flags in `set_aside` the `candidates` within params.distance_mm of `plane` (a face of a part).
@@ -313,6 +349,8 @@ FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& pa
     if (isValid(scene_mm.points_mm[i]))
       alive.push_back(static_cast<int>(i));
   FloorSearch search(scene_mm, params, std::move(alive));
+  if (support_only)
+    measurePart(search, part);
 
   const auto min_points =
       static_cast<std::size_t>(std::ceil(params.min_plane_fraction * double(search.total_valid)));

@@ -34,14 +34,15 @@ struct FloorRemovalResult {
 /// least squares to the points within 5 mm of that height. `params.enabled == false` or
 /// `max_planes == 0` returns a copy.
 /// `part` (empty, or one flag per point) marks the part an operator cropped to teach; the floors
-/// removed are then the ones it rests on. A plane with more than 2 % of the valid points farther
-/// than 3 x `params.distance_mm` beyond it is a face of a part, not a floor (a large plate's top
-/// face can outnumber the table around it): its points are left out of the search and the plane
-/// is searched again, at most kFloorRetries times. A bin floor is removed only when more of its
-/// points lie outside the part than in it: the top face of a plate lying on a table, or of a
-/// flange, looks like a bin's floor but lies within the part.
-/// Deterministic for a given `seed`. Throws Error for an inconsistent cloud or mask, Cancelled
-/// when `progress` asks to stop.
+/// removed are then the ones it rests on. A plane with more than 2 % of the valid points around
+/// the part (along the plane, within 1.5 x the part's radius of its centre) farther than 3 x
+/// `params.distance_mm` beyond it is a face of a part, not a floor (a large plate's top face can
+/// outnumber the table around it; a room beyond the table's edge is not around the part): its
+/// points are left out of the search and the plane is searched again, at most kFloorRetries times.
+/// A bin floor is removed only when more of its points lie outside the part than in it: the top
+/// face of a plate lying on a table, or of a flange, looks like a bin's floor but lies within the
+/// part. Deterministic for a given `seed`. Throws Error for an inconsistent cloud or mask,
+/// Cancelled when `progress` asks to stop.
 FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& params,
                                std::uint64_t seed, const ProgressFn& progress = {},
                                const std::vector<char>& part = {});

@@ -145,6 +145,42 @@ TEST(FloorRemoval, SupportOnlyKeepsAPlateFaceThatOutnumbersTheTable) {
   EXPECT_GT(kept_plate, plate_points * 9 / 10);
 }
 
+TEST(FloorRemoval, SupportOnlyRemovesTheTableWithARoomBeyondItsEdge) {
+  // A table top 800 mm from the camera ends at x = 100 mm; beyond its edge the camera sees the
+  // room's floor at 1600 mm, behind the table's plane. An 80 x 60 x 30 mm part stands on the
+  // table. The table is the plane the part rests on: what lies behind it far from the part does
+  // not make it a face of a part.
+  test::RaycastScene scene;
+  scene.floor_z_mm = 1600.0;
+  scene.boxes.emplace_back(Eigen::Vector3d(-400, -300, 800), Eigen::Vector3d(100, 300, 1600));
+  scene.boxes.emplace_back(Eigen::Vector3d(-40, -30, 770), Eigen::Vector3d(40, 30, 800));
+  const core::PointCloud cloud = scene.render(320, 240, 800.0, {300, 0, 0}, 0.1, 5);
+  std::size_t room_points = 0, valid = 0;
+  std::vector<char> part(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (!core::isValid(cloud.points_mm[i]))
+      continue;
+    ++valid;
+    room_points += scene.labels[i] < 0;
+    part[i] = scene.labels[i] == 1;
+  }
+  ASSERT_GT(room_points, valid / 10); // far more than 2 % of the scan lies behind the table
+
+  core::FloorParams params;
+  const auto support = core::removeFloor(cloud, params, 42, {}, part);
+  ASSERT_FALSE(support.planes.empty());
+  EXPECT_NEAR(support.planes[0].z(), -1.0f, 1e-3);
+  EXPECT_NEAR(support.planes[0].w(), 800.0f, 0.5);
+  std::size_t kept_table = 0, kept_part = 0, part_points = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    part_points += part[i];
+    if (core::isValid(support.remaining.points_mm[i]))
+      (scene.labels[i] == 0 ? kept_table : kept_part) += scene.labels[i] >= 0;
+  }
+  EXPECT_EQ(kept_table, 0u);
+  EXPECT_GT(kept_part, part_points * 9 / 10);
+}
+
 TEST(FloorRemoval, SmallPlanesAreKeptAndDisabledIsACopy) {
   auto scene = boxOnFloor();
   const core::PointCloud cloud = scene.render(160, 120, 400.0, {300, 0, 0});
