@@ -43,7 +43,8 @@ struct SceneSpec {
   std::uint64_t seed = 0;  ///< drives poses and drop positions
   BinGeometry bin;
   /// Camera height above the floor, mm; 0 = the sensor's default for the layout (PhoXi: 850 bin,
-  /// 700 scatter/teach; Kinect: 1100 bin, 1000 scatter/teach).
+  /// 700 scatter/teach; Kinect: 1100 bin, 1000 scatter/teach), for a teach scene raised so that
+  /// the part's top stays 50 mm beyond the sensor's near limit.
   double camera_height_mm = 0;
   /// Teach scenes: which side the part rests on. 0 = its usual rest pose (Part::R_table_part);
   /// 1-3 = turned over (180° about x), on its side (90° about x) or on its end (90° about y)

@@ -197,6 +197,9 @@ void placeForTeach(DropWorld& drop, const SceneSpec& spec, std::mt19937_64& rng,
   simulate(drop.w, 2.0, drop.first_dynamic, true);
 }
 
+/// How far a teach scene's part stays beyond the sensor's near limit, mm.
+constexpr double kTeachNearMargin_mm = 50.0;
+
 /// The operator's box of a teach scene: the part's extent plus 10 mm around, starting 1 mm above
 /// the table so the table itself stays out (world frame).
 Eigen::AlignedBox3d teachCropBox(const Scene& scene) {
@@ -248,8 +251,15 @@ Scene buildScene(const SceneSpec& spec, const SensorModel& sensor, const Progres
   }
 
   // Camera straight above the origin: camera x = world x, camera y = -world y, z down.
-  const double height = spec.camera_height_mm > 0 ? spec.camera_height_mm
-                                                  : defaultCameraHeight_mm(sensor, spec.layout);
+  double height = spec.camera_height_mm;
+  if (height <= 0) {
+    height = defaultCameraHeight_mm(sensor, spec.layout);
+    // A part too tall for the teach height would reach inside the sensor's near limit and lose
+    // its top: an operator raises the camera until it is whole, with a margin.
+    if (spec.layout == LayoutKind::Teach)
+      height = std::max(height,
+                        teachCropBox(scene).max().z() + sensor.min_range_mm + kTeachNearMargin_mm);
+  }
   Eigen::Isometry3d T_world_camera = Eigen::Isometry3d::Identity();
   T_world_camera.linear() = Eigen::Vector3d(1, -1, -1).asDiagonal();
   T_world_camera.translation() = Eigen::Vector3d(0, 0, height);

@@ -96,6 +96,31 @@ TEST(SceneBuilder, TeachSceneHasOnePartInItsNaturalPoseAndACropBox) {
   EXPECT_GT(scene.crop_box_world->min().z(), 0.0); // the table stays out
 }
 
+TEST(SceneBuilder, TeachCameraRisesForAPartTallerThanTheSensorsNearLimitAllows) {
+  // A 300 mm column standing on the table would reach within the PhoXi M's 458 mm near limit of
+  // a camera at the usual 700 mm: the camera rises until the top is 50 mm beyond it. A short part
+  // keeps the usual height.
+  SceneSpec spec;
+  spec.layout = LayoutKind::Teach;
+  spec.count = 1;
+  Part column;
+  column.name = "column";
+  column.components = {boxMesh({-30, -30, 0}, {30, 30, 300})};
+  spec.parts = {column};
+  const Scene tall = buildScene(spec, kPhoxi);
+  const double top_mm =
+      boundingBox(transformed(tall.parts[0].mesh(), tall.instances[0].T_world_part)).max().z();
+  ASSERT_GT(top_mm, 290.0); // standing
+  const double camera_mm = tall.T_camera_world.inverse().translation().z();
+  EXPECT_GE(camera_mm - top_mm, kPhoxi.min_range_mm + 50.0 - 1e-6);
+  EXPECT_GT(camera_mm, defaultCameraHeight_mm(kPhoxi, LayoutKind::Teach));
+
+  spec.parts = {builtInPart("cup")};
+  const Scene cup = buildScene(spec, kPhoxi);
+  EXPECT_DOUBLE_EQ(cup.T_camera_world.inverse().translation().z(),
+                   defaultCameraHeight_mm(kPhoxi, LayoutKind::Teach));
+}
+
 TEST(SceneBuilder, ScatterKeepsPartsOnTheTable) {
   SceneSpec spec;
   spec.layout = LayoutKind::Scatter;
