@@ -83,6 +83,14 @@ RecognitionResult detectEachView(Recognizer& recognizer,
   return merged;
 }
 
+/// The largest diameter of the views (mm).
+double maxDiameter(const std::vector<std::shared_ptr<const TaughtModel>>& models) {
+  double diameter_mm = 0.0;
+  for (const auto& model : models)
+    diameter_mm = std::max(diameter_mm, model->diameter_mm);
+  return diameter_mm;
+}
+
 /// The views' detections of one instance merged (mergeViewDetections), their turns resolved per
 /// view (Recognizer::resolveTurns), and merged again when a turn moved one onto an instance
 /// another view's detection holds. Best first.
@@ -90,9 +98,7 @@ std::vector<Detection> mergeAndResolve(
     Recognizer& recognizer, const std::vector<std::shared_ptr<const TaughtModel>>& models,
     std::vector<Detection> detections, const std::shared_ptr<const SceneAnalysis>& scene,
     const RecognitionParams& params) {
-  double diameter_mm = 0.0;
-  for (const auto& model : models)
-    diameter_mm = std::max(diameter_mm, model->diameter_mm);
+  const double diameter_mm = maxDiameter(models);
   // Two views' poses of one instance that differ: the one the whole part bears out better.
   PartScorer on_part; // made when first needed
   const SameInstanceArbiter prefer = [&](const Detection& kept, const Detection& candidate) {
@@ -163,6 +169,10 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
           of_view = recognizer.refine(models[m], std::move(of_view), *merged.scene, params);
           reportProgress(progress, kProgressShares.after_matching.end); // a last chance to stop
         });
+    // Refinement may bring a pose onto an instance another view's detection holds: the better
+    // one stays.
+    merged.detections = mergeViewDetections(std::move(merged.detections), models,
+                                            kViewMergeShare * maxDiameter(models));
     merged.timings.refine_ms = msSince(t0);
     merged.timings.total_ms += merged.timings.refine_ms;
   }
@@ -226,9 +236,14 @@ mergeViewDetections(std::vector<Detection> detections,
                     double min_distance_mm, const SameInstanceArbiter& prefer) {
   // Each candidate's part points are looked for among about four times as many of the kept one.
   std::vector<std::vector<Eigen::Vector3f>> sample(models.size()), surface(models.size());
+  std::vector<double> part_mm(models.size(), 0.0); // the whole part's size, when known
   for (std::size_t m = 0; m < models.size(); ++m) {
     sample[m] = partPoints(*models[m], kSameInstanceSample);
     surface[m] = partPoints(*models[m], 4 * kSameInstanceSample);
+    Eigen::AlignedBox3f box;
+    for (const auto& p : surface[m])
+      box.extend(p);
+    part_mm[m] = surface[m].empty() ? 0.0 : double(box.diagonal().norm());
   }
   const auto part = [&](const std::vector<std::vector<Eigen::Vector3f>>& points,
                         const Detection& d) -> const std::vector<Eigen::Vector3f>& {
@@ -249,14 +264,14 @@ mergeViewDetections(std::vector<Detection> detections,
       const auto& kept_points = part(surface, kept[k]);
       const bool whole_part = !candidate.empty() && !kept_points.empty();
       // With the whole part known, the shared surface decides wherever the two views' centres may
-      // lie on one instance: anywhere within the part's diameter (two sides of a plate, or one
-      // view at a symmetric pose). Beyond min_distance_mm it must be most of the part: two
-      // neighbours lying face to face share a face.
+      // lie on one instance: anywhere within the whole part's size (two sides of a plate, the end
+      // and the side of a bar, or one view at a symmetric pose). Beyond min_distance_mm it must
+      // be most of the part: two neighbours lying face to face share a face.
       const double distance_mm = (kept[k].centre_mm - d.centre_mm).norm();
-      const double within_mm =
-          whole_part ? std::max({min_distance_mm, models[std::size_t(d.model_index)]->diameter_mm,
-                                 models[std::size_t(kept[k].model_index)]->diameter_mm})
-                     : min_distance_mm;
+      const double within_mm = whole_part
+                                   ? std::max({min_distance_mm, part_mm[std::size_t(d.model_index)],
+                                               part_mm[std::size_t(kept[k].model_index)]})
+                                   : min_distance_mm;
       if (distance_mm >= within_mm)
         continue;
       const double same_share =

@@ -153,11 +153,12 @@ double prepareViews(Recognizer& recognizer,
 /// through another view). The turns matching cannot tell (a cup's handle, near symmetries) are
 /// resolved after the merge (Recognizer::resolveTurns), once per instance, and the merge then run
 /// again for the detections a turn moved. With params.refine.enabled the detections left are
-/// refined after that (Recognizer::refine), so that ICP polishes the detections reported and cannot
-/// change which of them the merge keeps. Views that know their place in the part should be joined
-/// first (joinViews, TaughtModel.h): only then are two parts lying close together told apart.
-/// Detection::model_index names the model. The recognizer's own model is left as it is.
-/// Throws as Recognizer::recognize, and Error for an empty `models`.
+/// refined after that (Recognizer::refine), so that ICP polishes the detections reported, and
+/// merged once more: a refined pose may land on an instance another view's detection holds. Views
+/// that know their place in the part should be joined first (joinViews, TaughtModel.h): only then
+/// are two parts lying close together told apart. Detection::model_index names the model. The
+/// recognizer's own model is left as it is. Throws as Recognizer::recognize, and Error for an empty
+/// `models`.
 RecognitionResult recognizeViews(Recognizer& recognizer,
                                  const std::vector<std::shared_ptr<const TaughtModel>>& models,
                                  const PointCloud& scene_mm, const SensorModel& sensor,
@@ -208,7 +209,8 @@ using SameInstanceArbiter = std::function<bool(const Detection& kept, const Dete
 /// Detection::model_index naming the view in `models`): a detection whose Detection::centre_mm
 /// lies within `min_distance_mm` of a kept one's is dropped as the same instance, except where the
 /// views are joined (TaughtModel::joined_views), which give each view the part's other sides: then
-/// a detection whose centre lies within the larger of the two views' diameters is dropped only when
+/// a detection whose centre lies within the whole part's size (the diagonal of the box around the
+/// joined views' points, the larger of the two views') is dropped only when
 /// its part's points, at its pose, lie on the kept one's surface (kSameInstanceShare within
 /// kSameSurfaceMm; kSameInstanceFarShare beyond `min_distance_mm`). Parts cannot pass through each
 /// other, so two lying

@@ -227,6 +227,24 @@ TEST(Recognizer, JoinedViewsOfOneInstanceAreMergedWhereverTheirCentresLieOnIt) {
             2u);
 }
 
+TEST(Recognizer, JoinedViewsSmallerThanThePartAreMergedAcrossItsWholeSize) {
+  // Each view sees a small face of the 73 mm block (say, the end faces of a bar): their own
+  // diameters, 10 mm, are less than the 30 mm between their centres. The whole part's size says
+  // how far apart one instance's views may lie.
+  std::vector<std::shared_ptr<const TaughtModel>> views;
+  for (const auto& view : blockViews(true)) {
+    auto small = std::make_shared<TaughtModel>(*view);
+    small->diameter_mm = 10.0;
+    views.push_back(small);
+  }
+  Detection side = detectionAt(1, 0.8, Eigen::Isometry3d::Identity());
+  side.centre_mm = Eigen::Vector3d(0, 20, 5);
+  const auto kept =
+      mergeViewDetections({detectionAt(0, 0.9, Eigen::Isometry3d::Identity()), side}, views, 5.0);
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].score, 0.9);
+}
+
 TEST(Recognizer, ATieBetweenTwoViewsDifferingPosesOfOneInstanceIsLeftToPrefer) {
   const std::vector<std::shared_ptr<const TaughtModel>> views = blockViews(true);
   // The block turned 5° about its own centre: the same instance at another pose.
