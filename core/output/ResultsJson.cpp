@@ -89,20 +89,9 @@ json resultsToJson(const RecognitionResult& result, const std::vector<ModelSourc
             {"total", t.total_ms}}}};
 }
 
-json resultsToJson(const RecognitionResult& result, const TaughtModel& model,
-                   const std::string& scene_path, const std::string& model_path) {
-  return resultsToJson(result, std::vector<ModelSource>{{&model, model_path}}, scene_path);
-}
-
 void saveResults(const std::filesystem::path& path, const RecognitionResult& result,
                  const std::vector<ModelSource>& models, const std::string& scene_path) {
   writeFileAtomic(path, dumpJsonText(resultsToJson(result, models, scene_path), 2) + "\n");
-}
-
-void saveResults(const std::filesystem::path& path, const RecognitionResult& result,
-                 const TaughtModel& model, const std::string& scene_path,
-                 const std::string& model_path) {
-  saveResults(path, result, {{&model, model_path}}, scene_path);
 }
 
 } // namespace scanpick::core

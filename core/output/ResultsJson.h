@@ -34,17 +34,8 @@ struct ModelSource {
 nlohmann::json resultsToJson(const RecognitionResult& result,
                              const std::vector<ModelSource>& models, const std::string& scene_path);
 
-/// The results document of one recognition of one model.
-nlohmann::json resultsToJson(const RecognitionResult& result, const TaughtModel& model,
-                             const std::string& scene_path, const std::string& model_path);
-
 /// Writes resultsToJson(result, models, scene_path) to `path` atomically. Throws Error on failure.
 void saveResults(const std::filesystem::path& path, const RecognitionResult& result,
                  const std::vector<ModelSource>& models, const std::string& scene_path);
-
-/// Writes resultsToJson(...) to `path` atomically (pretty-printed). Throws Error on failure.
-void saveResults(const std::filesystem::path& path, const RecognitionResult& result,
-                 const TaughtModel& model, const std::string& scene_path,
-                 const std::string& model_path);
 
 } // namespace scanpick::core

@@ -271,11 +271,6 @@ std::size_t Recognizer::preparedModels() const {
   return m_memo ? m_memo->model_preps.size() : 0;
 }
 
-void Recognizer::clearCache() {
-  const std::lock_guard lock(m_mutex);
-  m_memo.reset();
-}
-
 RecognitionResult Recognizer::recognize(const PointCloud& scene_mm, const SensorModel& sensor,
                                         const RecognitionParams& requested,
                                         const ProgressFn& progress) {

@@ -120,9 +120,6 @@ public:
   /// How many model preparations the cache holds (at most 8: views alternate scene after scene).
   [[nodiscard]] std::size_t preparedModels() const;
 
-  /// Forgets every cached stage.
-  void clearCache();
-
 private:
   /// recognize() (`resolve_turns`) or detect().
   RecognitionResult run(const std::shared_ptr<const TaughtModel>& model, const PointCloud& scene_mm,

@@ -122,7 +122,7 @@ TEST(Recognizer, ResultsFileAndPictureAreWritten) {
   const auto r =
       Recognizer(model).recognize(scene, sensorPreset("phoxi-m-1032"), test::idealParams(0.001));
   test::TempDir dir;
-  saveResults(dir / "result.json", r, *model, "scene.pcd", "part.spmodel");
+  saveResults(dir / "result.json", r, {{model.get(), "part.spmodel"}}, "scene.pcd");
   const auto back = eval::loadResults(dir / "result.json");
   ASSERT_EQ(back.detections.size(), r.detections.size());
   EXPECT_TRUE(back.detections[0].T_scene_model.isApprox(r.detections[0].T_scene_model, 1e-9));
