@@ -12,25 +12,29 @@ namespace scanpick::core::detail {
 namespace {
 
 /// fitRevolutionAxis's angle tolerance (10°). A view whose normals fit an axis this share or more
-/// (but fewer than fitRevolutionAxis's default 98 %) is a surface of revolution but for a detail:
-/// the cup's side views fit 93-96 %, the support's and the coat-rack's views far less.
+/// (but fewer than fitRevolutionAxis's default 98 %) is a surface of revolution but for an
+/// asymmetric feature: the cup's side views fit 93-96 %, the support's and the coat-rack's views
+/// far less.
 constexpr double kRevolutionTolerance = 0.17;
 constexpr double kNearRevolutionShare = 0.85;
-/// Cells (height along and distance from the axis) in which detailPoints compares angles: 2-3 mm
-/// cells split a cup's body (its points scatter by the fit's residual), 6 mm ones keep it whole.
-constexpr double kDetailCellMm = 6.0;
-/// Cell of a view's revolved body (RevolvedBody), mm: about the spacing of its verification points.
-constexpr double kBodyCellMm = 2.0;
-/// A view is a surface of revolution but for a detail only while the detail is at most this
-/// share of its points (a cup's handle: 5-13 %). A flat face seen along its normal fits a rim axis
-/// through any circle among its points, and then no cell of it turns: all of it is "detail".
-constexpr double kMaxDetailShare = 0.5;
+/// Cells (height along and distance from the axis) in which detailPoints compares angles to find
+/// the asymmetric points: 2-3 mm cells split a cup's revolved surface (its points scatter by the
+/// fit's residual), 6 mm ones keep it whole.
+constexpr double kAsymmetryCellMm = 6.0;
+/// Cell of a view's revolved surface (RevolvedBody), mm: about the spacing of its verification
+/// points.
+constexpr double kRevolvedSurfaceCellMm = 2.0;
+/// A view is a surface of revolution but for an asymmetric feature only while that feature is at
+/// most this share of its points (a cup's handle: 5-13 %). A flat face seen along its normal fits
+/// a rim axis through any circle among its points, and then no cell of it is rotationally
+/// symmetric: all of it is "asymmetric".
+constexpr double kMaxAsymmetryShare = 0.5;
 
-/// Whether `S` (model frame) is a turn about `axis`: its rotation axis within 10° of the axis
+/// Whether `S` (model frame) is a rotation about `axis`: its rotation axis within 10° of the axis
 /// direction, and the axis point staying within 2 mm.
-bool isTurnAbout(const RevolutionAxis& axis, const Eigen::Isometry3d& S) {
-  const Eigen::AngleAxisd turn(S.linear());
-  return std::abs(turn.axis().dot(axis.direction)) > std::cos(10.0 * M_PI / 180.0) &&
+bool isRotationAbout(const RevolutionAxis& axis, const Eigen::Isometry3d& S) {
+  const Eigen::AngleAxisd rotation(S.linear());
+  return std::abs(rotation.axis().dot(axis.direction)) > std::cos(10.0 * M_PI / 180.0) &&
          (S * axis.point_mm - axis.point_mm).norm() < 2.0;
 }
 
@@ -85,12 +89,13 @@ std::optional<RevolutionAxis> rimAxis(const std::vector<Eigen::Vector3f>& points
   return axis;
 }
 
-/// At most about this many points make a joined detail (the cup's views' own details hold 92–222):
-/// its turn search then costs about what the view's own does.
-constexpr std::size_t kJoinedDetailPoints = 250;
-/// At most about this many points make a joined body (its differing points under a cup's turn end
-/// over end, about a quarter of them, are tallied at 25 places along the axis per detection).
-constexpr std::size_t kJoinedBodyPoints = 2000;
+/// At most about this many points make a joined asymmetric feature (the cup's views' own hold
+/// 92–222): its rotation search then costs about what the view's own does.
+constexpr std::size_t kJoinedAsymmetryPoints = 250;
+/// At most about this many points make a joined revolved surface (its differing points under a
+/// cup's flip end over end, about a quarter of them, are tallied at 25 places along the axis per
+/// detection).
+constexpr std::size_t kJoinedSurfacePoints = 2000;
 /// The joined views' ICP model keeps as many points as this many views (refine.model_points each):
 /// it covers the whole part, where one view's count leaves the others' surfaces sparse
 /// (docs/design-notes-refinement.md).
@@ -131,50 +136,56 @@ std::shared_ptr<const RefineModel> joinedRefineModel(const VerifyModel& all, int
                                              points);
 }
 
-/// The points of `all` listed in `indices`, every `stride`-th, with `body`.
+/// The points of `all` listed in `indices`, every `stride`-th, with `revolved` (the revolved
+/// surface verification follows rays through).
 std::shared_ptr<VerifyModel> pick(const VerifyModel& all, const std::vector<std::uint32_t>& indices,
-                                  std::size_t stride, std::shared_ptr<const RevolvedBody> body) {
+                                  std::size_t stride,
+                                  std::shared_ptr<const RevolvedBody> revolved) {
   auto picked = std::make_shared<VerifyModel>();
   for (std::size_t k = 0; k < indices.size(); k += std::max<std::size_t>(1, stride)) {
     picked->points.push_back(all.points[indices[k]]);
     picked->normals.push_back(all.normals[indices[k]]);
   }
-  picked->body = std::move(body);
+  picked->body = std::move(revolved);
   return picked;
 }
 
-/// The joined views' detail (a cup's handle from every side) and body (its mouth and its bottom),
-/// from `all` (joinedPoints): the points off the surface the view turns about `axis`
-/// (detailPoints), strided to about kJoinedDetailPoints, with the view's body; and the others,
-/// with the body they make.
+/// The joined views' asymmetric feature (a cup's handle from every side) and revolved surface
+/// (its mouth and its bottom), from `all` (joinedPoints): the points off the surface the view
+/// revolves about `axis` (detailPoints), strided to about kJoinedAsymmetryPoints, with the view's
+/// revolved surface; and the others, with the revolved surface they make.
 std::pair<std::shared_ptr<const VerifyModel>, std::shared_ptr<const VerifyModel>>
-joinedDetailAndBody(const VerifyModel& all, const VerifyModel& view, const RevolutionAxis& axis) {
-  const auto detail = detailPoints(all.points, axis, kDetailCellMm);
-  std::vector<bool> in_detail(all.points.size(), false);
-  for (const std::uint32_t i : detail)
-    in_detail[i] = true;
-  std::vector<std::uint32_t> body;
+joinedAsymmetryAndSurface(const VerifyModel& all, const VerifyModel& view,
+                          const RevolutionAxis& axis) {
+  const auto asymmetry = detailPoints(all.points, axis, kAsymmetryCellMm);
+  std::vector<bool> in_asymmetry(all.points.size(), false);
+  for (const std::uint32_t i : asymmetry)
+    in_asymmetry[i] = true;
+  std::vector<std::uint32_t> surface;
   for (std::uint32_t i = 0; i < all.points.size(); ++i)
-    if (!in_detail[i])
-      body.push_back(i);
-  const std::size_t detail_stride = (detail.size() + kJoinedDetailPoints - 1) / kJoinedDetailPoints;
-  const std::size_t body_stride = (body.size() + kJoinedBodyPoints - 1) / kJoinedBodyPoints;
-  return {pick(all, detail, detail_stride, view.body),
-          pick(all, body, body_stride,
-               std::make_shared<const RevolvedBody>(all.points, axis, kBodyCellMm, detail))};
+    if (!in_asymmetry[i])
+      surface.push_back(i);
+  const std::size_t asymmetry_stride =
+      (asymmetry.size() + kJoinedAsymmetryPoints - 1) / kJoinedAsymmetryPoints;
+  const std::size_t surface_stride =
+      (surface.size() + kJoinedSurfacePoints - 1) / kJoinedSurfacePoints;
+  return {pick(all, asymmetry, asymmetry_stride, view.body),
+          pick(all, surface, surface_stride,
+               std::make_shared<const RevolvedBody>(all.points, axis, kRevolvedSurfaceCellMm,
+                                                    asymmetry))};
 }
 
-/// The outer radius of the surface `prep`'s view turns about its axis (its detail left out) and
-/// where its wall ends in the taught cloud (`surface`: its points with their normals), seen from
-/// the teach camera.
+/// The outer radius of the surface `prep`'s view revolves about its axis (its asymmetric feature
+/// left out) and where its wall ends in the taught cloud (`surface`: its points with their
+/// normals), seen from the teach camera.
 void findWallEnds(ModelPrep& prep, const SceneIndex& surface_points) {
   const RevolutionAxis& axis = prep.axis ? *prep.axis : *prep.near_axis;
-  std::vector<bool> in_detail(prep.verify->points.size(), false);
-  for (const std::uint32_t i : prep.near_axis_detail)
-    in_detail[i] = true;
+  std::vector<bool> in_asymmetry(prep.verify->points.size(), false);
+  for (const std::uint32_t i : prep.near_axis_asymmetry)
+    in_asymmetry[i] = true;
   std::vector<Eigen::Vector3f> surface;
   for (std::size_t i = 0; i < prep.verify->points.size(); ++i)
-    if (!in_detail[i])
+    if (!in_asymmetry[i])
       surface.push_back(prep.verify->points[i]);
   prep.wall_radius_mm = outerRadius(surface, axis.point_mm, axis.direction);
   const TaughtModel& model = *prep.model;
@@ -189,26 +200,27 @@ void findWallEnds(ModelPrep& prep, const SceneIndex& surface_points) {
                   prep.wall_ends.high_mm.value_or(unseen));
 }
 
-/// The points of `body` that `S` (model frame → model frame) moves out of its body's cells.
-std::vector<std::uint32_t> movedOffBody(const VerifyModel& body, const Eigen::Isometry3d& S) {
+/// The points of `surface` that `S` (model frame → model frame) moves out of its revolved
+/// surface's cells.
+std::vector<std::uint32_t> movedOffSurface(const VerifyModel& surface, const Eigen::Isometry3d& S) {
   const Eigen::Isometry3f S_f = S.cast<float>();
   std::vector<std::uint32_t> off;
-  for (std::uint32_t k = 0; k < body.points.size(); ++k)
-    if (!body.body->contains(S_f * body.points[k]))
+  for (std::uint32_t k = 0; k < surface.points.size(); ++k)
+    if (!surface.body->contains(S_f * surface.points[k]))
       off.push_back(k);
   return off;
 }
 
-/// The view's axis: a surface of revolution (ModelPrep::axis), or one but for a detail
-/// (ModelPrep::near_axis and its detail); then the body its points make turned about it and the
-/// ends of its wall. `surface`: the view's points with their normals.
+/// The view's axis: a surface of revolution (ModelPrep::axis), or one but for an asymmetric
+/// feature (ModelPrep::near_axis and its asymmetric points); then the surface its points make
+/// revolved about it and the ends of its wall. `surface`: the view's points with their normals.
 void fitAxes(ModelPrep& prep, const TaughtModel& model, const SceneIndex& surface) {
   prep.axis = fitRevolutionAxis(prep.verify->points, prep.verify->normals);
   if (prep.axis)
     prep.axis = refineRevolutionAxis(prep.verify->points, prep.verify->normals, *prep.axis);
   if (prep.axis)
-    logger()->debug("model '{}' is a surface of revolution ({:.0f} % of its normals), its turn "
-                    "is not seen: axis through ({:.1f}, {:.1f}, {:.1f}) mm along ({:.3f}, "
+    logger()->debug("model '{}' is a surface of revolution ({:.0f} % of its normals), its "
+                    "rotation is not seen: axis through ({:.1f}, {:.1f}, {:.1f}) mm along ({:.3f}, "
                     "{:.3f}, {:.3f})",
                     model.name, 100.0 * prep.axis->inlier_share, prep.axis->point_mm.x(),
                     prep.axis->point_mm.y(), prep.axis->point_mm.z(), prep.axis->direction.x(),
@@ -216,60 +228,63 @@ void fitAxes(ModelPrep& prep, const TaughtModel& model, const SceneIndex& surfac
   else if (auto near = fitRevolutionAxis(prep.verify->points, prep.verify->normals,
                                          kRevolutionTolerance, kNearRevolutionShare);
            near || (near = rimAxis(prep.verify->points, prep.verify->normals))) {
-    // The axis is refined on the surface without the detail, which is then found again.
-    auto detail = detailPoints(prep.verify->points, *near, kDetailCellMm);
-    near = refineRevolutionAxis(prep.verify->points, prep.verify->normals, *near, detail);
-    detail = detailPoints(prep.verify->points, *near, kDetailCellMm);
+    // The axis is refined on the surface without the asymmetric feature, which is then found
+    // again.
+    auto asymmetry = detailPoints(prep.verify->points, *near, kAsymmetryCellMm);
+    near = refineRevolutionAxis(prep.verify->points, prep.verify->normals, *near, asymmetry);
+    asymmetry = detailPoints(prep.verify->points, *near, kAsymmetryCellMm);
     const std::size_t count = prep.verify->points.size();
-    if (double(detail.size()) <= kMaxDetailShare * double(count)) {
+    if (double(asymmetry.size()) <= kMaxAsymmetryShare * double(count)) {
       prep.near_axis = near;
-      prep.near_axis_detail = std::move(detail);
-      logger()->debug("model '{}' is a surface of revolution but for a detail ({:.0f} % of its "
-                      "normals; {} of its {} points off the surface): its turn is seen only "
-                      "where a scan confirms the detail",
-                      model.name, 100.0 * near->inlier_share, prep.near_axis_detail.size(), count);
+      prep.near_axis_asymmetry = std::move(asymmetry);
+      logger()->debug("model '{}' is a surface of revolution but for an asymmetric feature "
+                      "({:.0f} % of its normals; {} of its {} points off the surface): its "
+                      "rotation is seen only where a scan confirms the asymmetric feature",
+                      model.name, 100.0 * near->inlier_share, prep.near_axis_asymmetry.size(),
+                      count);
     } else {
       logger()->debug("model '{}' fits an axis with {:.0f} % of its normals, but {} of its {} "
-                      "points lie off the surface they turn: not a surface of revolution",
-                      model.name, 100.0 * near->inlier_share, detail.size(), count);
+                      "points lie off the surface they revolve: not a surface of revolution",
+                      model.name, 100.0 * near->inlier_share, asymmetry.size(), count);
     }
   }
   if (prep.axis || prep.near_axis) {
     auto verify = std::make_shared<VerifyModel>(*prep.verify);
-    verify->body = std::make_shared<const RevolvedBody>(verify->points,
-                                                        prep.axis ? *prep.axis : *prep.near_axis,
-                                                        kBodyCellMm, prep.near_axis_detail);
+    verify->body = std::make_shared<const RevolvedBody>(
+        verify->points, prep.axis ? *prep.axis : *prep.near_axis, kRevolvedSurfaceCellMm,
+        prep.near_axis_asymmetry);
     prep.verify = std::move(verify);
     findWallEnds(prep, surface);
   }
 }
 
-/// The view's near symmetries (findNearSymmetries) less the turns about its axis, and what each
-/// moves off the joined body.
+/// The view's near symmetries (findNearSymmetries) less the rotations about its axis, and what
+/// each moves off the joined revolved surface.
 void findSymmetries(ModelPrep& prep, const TaughtModel& model, const RecognitionParams& params,
                     double tolerance_mm) {
   prep.symmetries = findNearSymmetries(model, *prep.verify, *prep.refine, params.refine,
                                        tolerance_mm, params.matching.symmetry_overlap);
-  // A surface of revolution reports its turn about the axis as free instead, and one but for a
-  // detail as seen or free by the detail (seesDetail); their other near symmetries (a cup or a
-  // pipe turned end over end) stay.
+  // A surface of revolution reports its rotation about the axis as free instead, and one but for
+  // an asymmetric feature as seen or free by that feature (seesAsymmetry); their other near
+  // symmetries (a cup or a pipe flipped end over end) stay.
   if (prep.axis || prep.near_axis) {
     const RevolutionAxis& axis = prep.axis ? *prep.axis : *prep.near_axis;
-    const auto turns = std::erase_if(
-        prep.symmetries, [&](const NearSymmetry& s) { return isTurnAbout(axis, s.S_model); });
-    logger()->debug("model '{}': {} near symmetries are turns about its axis, {} others",
-                    model.name, turns, prep.symmetries.size());
+    const auto rotations = std::erase_if(
+        prep.symmetries, [&](const NearSymmetry& s) { return isRotationAbout(axis, s.S_model); });
+    logger()->debug("model '{}': {} near symmetries are rotations about its axis, {} others",
+                    model.name, rotations, prep.symmetries.size());
   }
-  prep.joined_body_differing.clear();
-  if (prep.joined_body)
+  prep.joined_revolved_surface_differing.clear();
+  if (prep.joined_revolved_surface)
     for (const NearSymmetry& s : prep.symmetries) {
-      prep.joined_body_differing.push_back({movedOffBody(*prep.joined_body, s.S_model),
-                                            movedOffBody(*prep.joined_body, s.S_model.inverse())});
-      logger()->debug(
-          "model '{}': a near symmetry moves {} / {} of the joined body's {} points off it",
-          model.name, prep.joined_body_differing.back().differing.size(),
-          prep.joined_body_differing.back().differing_inverse.size(),
-          prep.joined_body->points.size());
+      const VerifyModel& surface = *prep.joined_revolved_surface;
+      prep.joined_revolved_surface_differing.push_back(
+          {movedOffSurface(surface, s.S_model), movedOffSurface(surface, s.S_model.inverse())});
+      logger()->debug("model '{}': a near symmetry moves {} / {} of the joined revolved "
+                      "surface's {} points off it",
+                      model.name, prep.joined_revolved_surface_differing.back().differing.size(),
+                      prep.joined_revolved_surface_differing.back().differing_inverse.size(),
+                      surface.points.size());
     }
 }
 
@@ -299,7 +314,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
   const double sampling = params.matching.surface_sampling_mm;
   const double tolerance = params.matching.verify_tolerance_mm;
   const std::optional<SymmetryKey> symmetry_key = symmetryKey(params);
-  // ICP needs the model prepared: for refinement, to polish surface voting's poses, and to fit
+  // ICP needs the model prepared: for refinement, to refine surface voting's poses, and to fit
   // near symmetries.
   const bool needs_refine = params.refine.enabled || sampling > 0 || symmetry_key;
   auto found = std::find_if(preps.begin(), preps.end(), [&](const auto& p) {
@@ -332,12 +347,13 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     prep->verify = makeVerifyModel(*model, *surface, points);
     fitAxes(*prep, *model, *surface);
     if (prep->near_axis && !model->joined_views.empty()) {
-      std::tie(prep->joined_detail, prep->joined_body) =
-          joinedDetailAndBody(joined(), *prep->verify, *prep->near_axis);
-      logger()->debug("model '{}': its detail holds {} points with {} views joined ({} alone), "
-                      "its body {}",
-                      model->name, prep->joined_detail->points.size(), model->joined_views.size(),
-                      prep->near_axis_detail.size(), prep->joined_body->points.size());
+      std::tie(prep->joined_asymmetry, prep->joined_revolved_surface) =
+          joinedAsymmetryAndSurface(joined(), *prep->verify, *prep->near_axis);
+      logger()->debug("model '{}': its asymmetric feature holds {} points with {} views joined "
+                      "({} alone), its revolved surface {}",
+                      model->name, prep->joined_asymmetry->points.size(),
+                      model->joined_views.size(), prep->near_axis_asymmetry.size(),
+                      prep->joined_revolved_surface->points.size());
     }
   }
   // Refinement's surface is verification's when their normals agree (the same radius and

@@ -2,8 +2,9 @@
 /// @file ModelPrep.h
 /// What the Recognizer prepares once per taught view and keeps while views alternate from scene
 /// to scene (verification points, ICP model, surface pair table, axis of revolution, near
-/// symmetries). The resolution of a detection's turns takes it (AmbiguityResolution.h, which says
-/// why both live in core/ambiguity); the Recognizer (core/pipeline) makes and caches it.
+/// symmetries). The resolution of a detection's ambiguous rotations takes it
+/// (AmbiguityResolution.h, which says why both live in core/ambiguity); the Recognizer
+/// (core/pipeline) makes and caches it.
 
 #include "core/ambiguity/NearSymmetry.h"
 #include "core/matching/PointPairVoting.h"
@@ -38,29 +39,31 @@ struct ModelPrep {
   std::shared_ptr<const VerifyModel> verify;
   /// The axis about which the model is a surface of revolution, if it is one.
   std::optional<RevolutionAxis> axis;
-  /// Otherwise, the axis about which it is one but for a detail (a cup's handle), if it is so,
-  /// and the detail's points (indices into verify->points).
+  /// Otherwise, the axis about which it is one but for an asymmetric feature (a cup's handle), if
+  /// it is so, and the asymmetric feature's points (indices into verify->points).
   std::optional<RevolutionAxis> near_axis;
-  std::vector<std::uint32_t> near_axis_detail;
-  /// With `axis` or `near_axis`: the outer radius of the surface they turn (its detail left out)
-  /// and where its wall ends along the axis in the taught cloud (AxialEnds).
+  std::vector<std::uint32_t> near_axis_asymmetry;
+  /// With `axis` or `near_axis`: the outer radius of the surface revolved about them (its
+  /// asymmetric feature left out) and where its wall ends along the axis in the taught cloud
+  /// (AxialEnds).
   double wall_radius_mm = 0;
   AxialEnds wall_ends;
-  /// With views joined (TaughtModel::joined_views), the detail as all of them saw it, in this
-  /// view's frame, with this view's body (null otherwise): a cup's handle from every side, where
-  /// this view alone saw it from one.
-  std::shared_ptr<const VerifyModel> joined_detail;
-  /// With views joined, the body as all of them saw it (their points on the surface this view
-  /// turns about its near axis, in this view's frame, with the body they make turned about it):
-  /// a cup's mouth and its bottom, which a side view alone does not hold. Null otherwise.
-  std::shared_ptr<const VerifyModel> joined_body;
-  /// Per near symmetry (`symmetries[k]`), the points of joined_body it moves off that body and
-  /// those its inverse does (as NearSymmetry::differing and differing_inverse): a cup turned end
-  /// over end puts its bottom where its mouth was.
-  struct BodyDiffering {
+  /// With views joined (TaughtModel::joined_views), the asymmetric feature as all of them saw it,
+  /// in this view's frame, with this view's revolved surface (null otherwise): a cup's handle from
+  /// every side, where this view alone saw it from one.
+  std::shared_ptr<const VerifyModel> joined_asymmetry;
+  /// With views joined, the rotationally symmetric surface as all of them saw it (their points on
+  /// the surface this view revolves about its near axis, in this view's frame, with the revolved
+  /// surface they make): a cup's mouth and its bottom, which a side view alone does not hold.
+  /// Null otherwise.
+  std::shared_ptr<const VerifyModel> joined_revolved_surface;
+  /// Per near symmetry (`symmetries[k]`), the points of joined_revolved_surface it moves off that
+  /// surface and those its inverse does (as NearSymmetry::differing and differing_inverse): a cup
+  /// flipped end over end puts its bottom where its mouth was.
+  struct RevolvedSurfaceDiffering {
     std::vector<std::uint32_t> differing, differing_inverse;
   };
-  std::vector<BodyDiffering> joined_body_differing;
+  std::vector<RevolvedSurfaceDiffering> joined_revolved_surface_differing;
   std::shared_ptr<const RefineModel> refine; ///< when ICP or surface voting needs it
   /// With views joined and refinement on, the ICP model of all of them in this view's frame: the
   /// other views hold the surfaces that pin down what this one alone leaves loose (a plate seen

@@ -17,18 +17,19 @@
 namespace scanpick::core {
 namespace {
 
-/// cos 60°: turned and original normals closer than this agree.
+/// cos 60°: rotated and original normals closer than this agree.
 constexpr float kMinNormalAgreement = 0.5f;
 
-/// Turns smaller than this (rad, 30°) are the view itself, not a symmetry.
-constexpr double kMinTurnRad = M_PI / 6.0;
+/// Rotations smaller than this (rad, 30°) are the view itself, not a symmetry.
+constexpr double kMinRotationRad = M_PI / 6.0;
 
-/// Candidate turns: the most voted poses of the view against itself (the identity among them).
+/// Candidate rotations: the most voted poses of the view against itself (the identity among them).
 constexpr int kCandidates = 12;
 
 /// The view is sampled for its self-voting with voxels of this share of its diameter.
 constexpr double kSamplingShare = 0.055;
-/// Turns closer than this share of the view's diameter are one (and the identity is left out).
+/// Rotations closer than this share of the view's diameter are one (and the identity is left
+/// out).
 constexpr double kClusterShare = 0.14;
 
 /// Squared distance from view point k moved by `S` to the nearest point of the view's surface
@@ -47,7 +48,7 @@ float surfaceDistanceSq(const VerifyModel& view, const SceneIndex& surface,
   return agrees ? distance_sq : std::numeric_limits<float>::infinity();
 }
 
-double turnAngle(const Eigen::Isometry3d& T) {
+double rotationAngle(const Eigen::Isometry3d& T) {
   return Eigen::AngleAxisd(T.linear()).angle();
 }
 
@@ -118,7 +119,7 @@ private:
   std::vector<float> m_depth;
 };
 
-/// Whether the teach camera could have seen view point k moved by `S`: a surface turned away
+/// Whether the teach camera could have seen view point k moved by `S`: a surface facing away
 /// from it, or hidden behind the view's own surface, is not in the view whatever the part looks
 /// like there.
 bool seenFromTeachCamera(const VerifyModel& view, const Eigen::Isometry3f& S, std::size_t k,
@@ -130,9 +131,9 @@ bool seenFromTeachCamera(const VerifyModel& view, const Eigen::Isometry3f& S, st
   return !depth.hides(q, margin_mm);
 }
 
-/// The near symmetry `S` would be: its overlap and its differing points. Points that S turns
+/// The near symmetry `S` would be: its overlap and its differing points. Points that S rotates
 /// away from the teach camera or behind the view's own surface tell nothing (the view could not
-/// have held them) and are left out of both: a tilted plate's near rim turned to the far side is
+/// have held them) and are left out of both: a tilted plate's near rim rotated to the far side is
 /// not a difference.
 NearSymmetry describe(const VerifyModel& view, const SceneIndex& surface,
                       const Eigen::Isometry3d& S_model, const Eigen::Vector3f& camera,
@@ -161,23 +162,23 @@ NearSymmetry describe(const VerifyModel& view, const SceneIndex& surface,
   return s;
 }
 
-/// A turn this close to a half turn is one (rad, 5°): parts are made with exact symmetries, and a
-/// view fitted onto itself leaves its turn about a plate's normal a degree or two off.
-constexpr double kHalfTurnSnapRad = 5.0 * M_PI / 180.0;
-/// How far an exact half turn may be moved across its axis to where the part's outline maps onto
-/// itself (mm): the fitted turn's axis lies up to a couple of millimetres off.
-constexpr double kMaxHalfTurnMoveMm = 5.0;
+/// A rotation this close to 180° is one (rad, 5°): parts are made with exact symmetries, and a
+/// view fitted onto itself leaves its rotation about a plate's normal a degree or two off.
+constexpr double k180RotationSnapRad = 5.0 * M_PI / 180.0;
+/// How far an exact 180° rotation may be moved across its axis to where the part's outline maps
+/// onto itself (mm): the fitted rotation's axis lies up to a couple of millimetres off.
+constexpr double kMax180RotationMoveMm = 5.0;
 
 /// With views joined (TaughtModel::joined_views: the part seen from every side, in this view's
-/// frame), a turn `S_model` within kHalfTurnSnapRad of a half turn made an exact half turn about
-/// its own axis, then moved across that axis, along the two main directions of the part's spread
-/// there, to where the outline of all the views' points maps onto itself (outlineShift, twice);
-/// nothing for other turns or without joined views. The view alone cannot place the axis: its own
-/// outline, turned, shows the sides its teach camera saw edge-on where it saw faces.
-std::optional<Eigen::Isometry3d> exactHalfTurn(const TaughtModel& model,
-                                               const Eigen::Isometry3d& S_model) {
-  const Eigen::AngleAxisd turn(S_model.linear());
-  if (model.joined_views.empty() || !(std::abs(turn.angle() - M_PI) < kHalfTurnSnapRad))
+/// frame), a rotation `S_model` within k180RotationSnapRad of 180° made an exact 180° rotation
+/// about its own axis, then moved across that axis, along the two main directions of the part's
+/// spread there, to where the outline of all the views' points maps onto itself (outlineShift,
+/// twice); nothing for other rotations or without joined views. The view alone cannot place the
+/// axis: its own outline, rotated, shows the sides its teach camera saw edge-on where it saw faces.
+std::optional<Eigen::Isometry3d> exact180Rotation(const TaughtModel& model,
+                                                  const Eigen::Isometry3d& S_model) {
+  const Eigen::AngleAxisd rotation(S_model.linear());
+  if (model.joined_views.empty() || !(std::abs(rotation.angle() - M_PI) < k180RotationSnapRad))
     return std::nullopt;
   std::vector<Eigen::Vector3f> part_mm;
   for (const JoinedView& view : model.joined_views)
@@ -186,9 +187,9 @@ std::optional<Eigen::Isometry3d> exactHalfTurn(const TaughtModel& model,
         part_mm.push_back(p);
   if (part_mm.empty())
     return std::nullopt;
-  // The half turn about the fitted turn's axis (the point of it nearest to what S fixes), with
-  // S's slide along the axis.
-  const Eigen::Vector3d axis = turn.axis().normalized();
+  // The 180° rotation about the fitted rotation's axis (the point of it nearest to what S fixes),
+  // with S's slide along the axis.
+  const Eigen::Vector3d axis = rotation.axis().normalized();
   const Eigen::Vector3d t = S_model.translation();
   const Eigen::Vector3d on_axis = (Eigen::Matrix3d::Identity() - S_model.linear())
                                       .completeOrthogonalDecomposition()
@@ -210,19 +211,19 @@ std::optional<Eigen::Isometry3d> exactHalfTurn(const TaughtModel& model,
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> main_directions(spread);
   OutlineShiftOptions options;
-  options.max_shift_mm = kMaxHalfTurnMoveMm;
-  std::vector<Eigen::Vector3f> turned_mm(part_mm.size());
+  options.max_shift_mm = kMax180RotationMoveMm;
+  std::vector<Eigen::Vector3f> rotated_mm(part_mm.size());
   for (int round = 0; round < 2; ++round)
     for (int k = 1; k < 3; ++k) { // the two largest: across the axis
       const Eigen::Vector3d direction = main_directions.eigenvectors().col(k).normalized();
       for (std::size_t i = 0; i < part_mm.size(); ++i)
-        turned_mm[i] = (S * part_mm[i].cast<double>()).cast<float>();
-      if (const auto shift = outlineShift(turned_mm, part_mm, direction, {}, options))
+        rotated_mm[i] = (S * part_mm[i].cast<double>()).cast<float>();
+      if (const auto shift = outlineShift(rotated_mm, part_mm, direction, {}, options))
         S = Eigen::Translation3d(*shift * direction) * S;
     }
-  logger()->debug("view '{}': turn by {:.1f}° made a half turn; it moves the view's origin by "
-                  "{:.2f} mm",
-                  model.name, turn.angle() * 180.0 / M_PI,
+  logger()->debug("view '{}': rotation by {:.1f}° made an exact 180° rotation; it moves the "
+                  "view's origin by {:.2f} mm",
+                  model.name, rotation.angle() * 180.0 / M_PI,
                   (S.translation() - S_model.translation()).norm());
   return S;
 }
@@ -236,7 +237,8 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
   std::vector<NearSymmetry> found;
   if (min_overlap <= 0 || view.points.size() < 10)
     return found;
-  // The view's own surface, seen from the teach camera, is the "scene" the turns are fitted to.
+  // The view's own surface, seen from the teach camera, is the "scene" the rotations are fitted
+  // to.
   const SceneIndex& surface = refine_model.surface();
   const Eigen::Vector3f camera = model.T_teach_model.inverse().translation().cast<float>();
   const ViewDepth depth(model.cloud_mm, model.T_teach_model);
@@ -252,24 +254,24 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
   voting.max_poses = kCandidates;
   voting.exclude_self_mm = kClusterShare * model.diameter_mm;
   const std::vector<VotedPose> candidates = pairs.vote(sampled, voting);
-  // Each candidate is described and polished on its own (in parallel); they are then taken in
+  // Each candidate is described and refined on its own (in parallel); they are then taken in
   // vote order, so the result does not depend on the threads.
   std::vector<std::optional<NearSymmetry>> described(candidates.size());
   tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t c) {
-    if (turnAngle(candidates[c].T_scene_model) < kMinTurnRad)
+    if (rotationAngle(candidates[c].T_scene_model) < kMinRotationRad)
       return;
-    // ICP can slide a turn along the view's own surface; the better overlap is kept.
+    // ICP can slide a rotation along the view's own surface; the better overlap is kept.
     NearSymmetry s =
         describe(view, surface, candidates[c].T_scene_model, camera, depth, tolerance_mm);
-    const Eigen::Isometry3d polished =
+    const Eigen::Isometry3d refined =
         refinePose(refine_model, surface, s.S_model, icp).T_scene_model;
-    if (turnAngle(polished) >= kMinTurnRad) {
-      NearSymmetry t = describe(view, surface, polished, camera, depth, tolerance_mm);
+    if (rotationAngle(refined) >= kMinRotationRad) {
+      NearSymmetry t = describe(view, surface, refined, camera, depth, tolerance_mm);
       if (t.overlap > s.overlap)
         s = std::move(t);
     }
-    if (const auto half_turn = exactHalfTurn(model, s.S_model))
-      s = describe(view, surface, *half_turn, camera, depth, tolerance_mm);
+    if (const auto rotation_180 = exact180Rotation(model, s.S_model))
+      s = describe(view, surface, *rotation_180, camera, depth, tolerance_mm);
     described[c] = std::move(s);
   });
   for (std::size_t c = 0; c < candidates.size(); ++c) {
@@ -277,11 +279,11 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
       continue;
     NearSymmetry& s = *described[c];
     const bool repeated = std::any_of(found.begin(), found.end(), [&](const NearSymmetry& f) {
-      return turnAngle(f.S_model.inverse() * s.S_model) < kMinTurnRad;
+      return rotationAngle(f.S_model.inverse() * s.S_model) < kMinRotationRad;
     });
     logger()->debug(
-        "view '{}': turn by {:.0f}° ({} votes): overlap {:.3f}, {} / {} points differ{}",
-        model.name, turnAngle(s.S_model) * 180.0 / M_PI, candidates[c].votes, s.overlap,
+        "view '{}': rotation by {:.0f}° ({} votes): overlap {:.3f}, {} / {} points differ{}",
+        model.name, rotationAngle(s.S_model) * 180.0 / M_PI, candidates[c].votes, s.overlap,
         s.differing.size(), s.differing_inverse.size(), repeated ? ", repeated" : "");
     if (!repeated && s.overlap >= min_overlap)
       found.push_back(std::move(s));

@@ -155,7 +155,7 @@ void moveTo(Detection& d, const Eigen::Isometry3d& T_scene_model, std::optional<
   }
 }
 
-/// An alternative pose refined as a pose of its own (the turn that made it fits the view onto
+/// An alternative pose refined as a pose of its own (the rotation that made it fits the view onto
 /// itself only to a millimetre or two): ICP, and with `verify` also ICP with twice its final pair
 /// distance and with the final distance itself (from that far off, pairs as far apart as the ICP
 /// distance can hold a neighbour's surface and pull the pose away), the best verified pose taken
@@ -204,7 +204,7 @@ std::vector<Detection> refineDetections(std::vector<Detection> detections, const
   tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
     Detection& d = detections[k];
     std::optional<double> icp_coverage; // the ICP pose's score, when it was kept
-    if (!d.refined) {                   // else a surface-voting pose ICP has polished already
+    if (!d.refined) {                   // else a surface-voting pose ICP has refined already
       const RefinementResult r =
           refinePose(icp_model, scene_index, d.T_scene_model, params, {}, stable_share);
       const auto coverage = verify ? std::optional(verify(r.T_scene_model)) : std::nullopt;
@@ -236,8 +236,8 @@ std::vector<Detection> refineDetections(std::vector<Detection> detections, const
     };
     if (const auto T = slid(d.T_scene_model, icp_coverage))
       moveTo(d, *T, std::nullopt);
-    // Each alternative pose is refined as a pose of its own: the turn that made it fits the view
-    // onto itself only to a millimetre or two.
+    // Each alternative pose is refined as a pose of its own: the rotation that made it fits the
+    // view onto itself only to a millimetre or two.
     for (auto& T_alternative : d.alternative_poses) {
       const auto [refined, verified] =
           refinedAlternative(icp_model, scene_index, T_alternative, params, verify);
@@ -250,23 +250,24 @@ std::vector<Detection> refineDetections(std::vector<Detection> detections, const
   return detections;
 }
 
-std::vector<Detection> resolveDetectionTurns(std::vector<Detection> detections,
-                                             const ModelPrep& prep, const VerifyScene& scene,
-                                             const MatchingParams& params,
-                                             const PoseVerifier& verify, const PosePolisher& polish,
-                                             double min_distance_mm) {
+std::vector<Detection> resolveDetectionAmbiguities(std::vector<Detection> detections,
+                                                   const ModelPrep& prep, const VerifyScene& scene,
+                                                   const MatchingParams& params,
+                                                   const PoseVerifier& verify,
+                                                   const PoseRefiner& refine,
+                                                   double min_distance_mm) {
   if (!verify)
     return detections;
   if (prep.near_axis) {
     const auto t0 = Clock::now();
     detections =
-        detail::resolveDetailTurns(std::move(detections), prep, scene, params, verify, polish);
-    logger()->debug("the handle's turn of {} detections: {:.0f} ms", detections.size(),
+        detail::resolveAxisRotations(std::move(detections), prep, scene, params, verify, refine);
+    logger()->debug("the rotation about the axis of {} detections: {:.0f} ms", detections.size(),
                     msSince(t0));
   }
   if (!prep.symmetries.empty()) {
     detections =
-        detail::resolveNearSymmetries(std::move(detections), prep, scene, params, verify, polish);
+        detail::resolveNearSymmetries(std::move(detections), prep, scene, params, verify, refine);
     sortBestFirst(detections);
     detections = suppressDuplicates(std::move(detections), min_distance_mm);
   }
@@ -276,17 +277,18 @@ std::vector<Detection> resolveDetectionTurns(std::vector<Detection> detections,
 std::vector<Detection> placeDetections(std::vector<Detection> detections, const TaughtModel& model,
                                        const ModelPrep* prep, const VerifyScene* scene,
                                        double tolerance_mm) {
-  // The turn about the view's axis is not seen at a pose where the view is a surface of
-  // revolution, or one but for a detail that the scan does not confirm there.
+  // The rotation about the view's axis is not seen at a pose where the view is a surface of
+  // revolution, or one but for an asymmetric feature that the scan does not confirm there.
   const auto freeTurnAt = [&](const Eigen::Isometry3d& T) -> std::optional<FreeTurnAxis> {
     if (!prep || !(prep->axis || (scene && prep->near_axis &&
-                                  !detail::seesDetail(*prep, *scene, T, tolerance_mm))))
+                                  !detail::seesAsymmetry(*prep, *scene, T, tolerance_mm))))
       return std::nullopt;
     const RevolutionAxis& axis = prep->axis ? *prep->axis : *prep->near_axis;
     return FreeTurnAxis{T * axis.point_mm, T.linear() * axis.direction};
   };
-  // A view that is a surface of revolution but for a detail is placed by its axis: turned about it
-  // by its detail, the view's own origin moves round the axis, the instance does not.
+  // A view that is a surface of revolution but for an asymmetric feature is placed by its axis:
+  // rotated about it by that feature, the view's own origin moves round the axis, the instance
+  // does not.
   const std::optional<RevolutionAxis> placing_axis =
       prep ? prep->near_axis : std::optional<RevolutionAxis>();
   for (auto& d : detections) {
@@ -310,7 +312,7 @@ std::vector<Detection>
 surfaceDetections(const PointPairModel& model_pairs, const OrientedPoints& scene_points,
                   const ScenePairs* scene_pairs, const FeatureList& model_features,
                   const std::vector<FeatureList>& object_features, const MatchingParams& params,
-                  double cluster_mm, const PoseVerifier& verify, const PosePolisher& polish,
+                  double cluster_mm, const PoseVerifier& verify, const PoseRefiner& refine,
                   const PoseRescue& rescue, const ProgressFn& progress) {
   VotingOptions options;
   options.reference_stride = params.surface_reference_stride;
@@ -351,8 +353,8 @@ surfaceDetections(const PointPairModel& model_pairs, const OrientedPoints& scene
     }
     // ICP only where the surface already half agrees: it cannot rescue a wrong pose, and it is
     // the costly step.
-    if (polish && d.coverage >= 0.5 * params.min_coverage) {
-      const Eigen::Isometry3d T = polish(d.T_scene_model);
+    if (refine && d.coverage >= 0.5 * params.min_coverage) {
+      const Eigen::Isometry3d T = refine(d.T_scene_model);
       const double coverage = verify(T);
       if (keepsRefinedPose(d.coverage, coverage)) {
         d.T_scene_model = T;
@@ -372,7 +374,7 @@ surfaceDetections(const PointPairModel& model_pairs, const OrientedPoints& scene
                     out[k].coverage, out[k].matched_features.size(), out[k].refined ? ", ICP" : "");
   std::erase_if(out, [&](const Detection& d) { return d.coverage < params.min_coverage; });
   sortBestFirst(out);
-  logger()->debug("surface voting: {} poses verified and polished, {} kept, {:.0f} ms in all",
+  logger()->debug("surface voting: {} poses verified and refined, {} kept, {:.0f} ms in all",
                   poses.size(), out.size(), msSince(t0));
   return out;
 }

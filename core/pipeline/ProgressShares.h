@@ -30,7 +30,7 @@ struct ProgressShares {
   ProgressShare scene_pairing{0.8, 0.8};     ///< the scene paired for surface voting (no share)
   ProgressShare feature_matching{0.8, 0.95}; ///< feature matching in each object
   ProgressShare surface_voting{0.95, 0.98};  ///< surface point pair voting over the whole scene
-  /// The turns matching cannot tell, refinement and placing: reported done at the end.
+  /// The rotations matching cannot tell apart, refinement and placing: reported done at the end.
   ProgressShare after_matching{0.98, 1.0};
 };
 

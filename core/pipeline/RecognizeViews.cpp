@@ -50,7 +50,8 @@ double prepareViews(Recognizer& recognizer,
 
 namespace {
 
-/// Each view's detections in `scene_mm` (Recognizer::detect, turns left as matching found them),
+/// Each view's detections in `scene_mm` (Recognizer::detect, ambiguous rotations left as matching
+/// found them),
 /// Detection::model_index naming the view, best first; the timings summed over the views and the
 /// last view's scene analysis (the scene stages are shared; the last view's has what any view
 /// needed).
@@ -91,9 +92,9 @@ double maxDiameter(const std::vector<std::shared_ptr<const TaughtModel>>& models
   return diameter_mm;
 }
 
-/// The views' detections of one instance merged (mergeViewDetections), their turns resolved per
-/// view (Recognizer::resolveTurns), and merged again when a turn moved one onto an instance
-/// another view's detection holds. Best first.
+/// The views' detections of one instance merged (mergeViewDetections), their ambiguous rotations
+/// resolved per view (Recognizer::resolveAmbiguities), and merged again when a rotation moved one
+/// onto an instance another view's detection holds. Best first.
 std::vector<Detection> mergeAndResolve(
     Recognizer& recognizer, const std::vector<std::shared_ptr<const TaughtModel>>& models,
     std::vector<Detection> detections, const std::shared_ptr<const SceneAnalysis>& scene,
@@ -115,21 +116,21 @@ std::vector<Detection> mergeAndResolve(
   };
   detections =
       mergeViewDetections(std::move(detections), models, kViewMergeShare * diameter_mm, prefer);
-  // Whether a turn moved any detection.
+  // Whether a rotation moved any detection.
   const auto poses = [](const std::vector<Detection>& of_view) {
     std::vector<Eigen::Matrix4d> out;
     for (const Detection& d : of_view)
       out.push_back(d.T_scene_model.matrix());
     return out;
   };
-  bool turned = false;
+  bool rotated = false;
   detections = ofEachView(
       std::move(detections), models.size(), [&](std::size_t m, std::vector<Detection>& of_view) {
         const auto before = poses(of_view);
-        of_view = recognizer.resolveTurns(models[m], std::move(of_view), *scene, params);
-        turned = turned || poses(of_view) != before;
+        of_view = recognizer.resolveAmbiguities(models[m], std::move(of_view), *scene, params);
+        rotated = rotated || poses(of_view) != before;
       });
-  if (turned)
+  if (rotated)
     detections =
         mergeViewDetections(std::move(detections), models, kViewMergeShare * diameter_mm, prefer);
   sortBestFirst(detections);
@@ -154,7 +155,8 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
   merged.detections =
       mergeAndResolve(recognizer, models, std::move(merged.detections), merged.scene, unrefined);
   const double merge_ms = msSince(t_merge);
-  logger()->debug("the views' {} detections merged into {}, their turns resolved, in {:.1f} ms",
+  logger()->debug("the views' {} detections merged into {}, their ambiguities resolved, in "
+                  "{:.1f} ms",
                   found, merged.detections.size(), merge_ms);
   merged.timings.matching_ms += merge_ms;
   merged.timings.total_ms += merge_ms;

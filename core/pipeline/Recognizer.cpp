@@ -1,7 +1,7 @@
 /// @file Recognizer.cpp
 /// Recognition as a chain of stages: the scene analysed (SceneAnalysis.cpp), the model prepared
 /// (ModelPrep.h), then per view feature matching and surface voting into verified detections,
-/// duplicates suppressed, ambiguous turns resolved, refined and placed (DetectionSteps.h).
+/// duplicates suppressed, ambiguous rotations resolved, refined and placed (DetectionSteps.h).
 
 #include "core/pipeline/Recognizer.h"
 
@@ -27,10 +27,10 @@ namespace {
 using detail::kIcpCoverageSlack;
 using detail::ModelPrep;
 using detail::placeDetections;
-using detail::PosePolisher;
+using detail::PoseRefiner;
 using detail::PoseRescue;
 using detail::refineDetections;
-using detail::resolveDetectionTurns;
+using detail::resolveDetectionAmbiguities;
 using detail::StageMemo;
 using detail::surfaceDetections;
 
@@ -58,8 +58,8 @@ SceneAnalysis withIndex(const SceneAnalysis& scene, const RecognitionParams& par
 }
 
 /// A view of a part in one analysed scene: its preparation and how its poses are verified and
-/// polished there. Refers into the analysis and the parameters it is made with, which must outlive
-/// it and the verifiers and polishers it hands out.
+/// refined there. Refers into the analysis and the parameters it is made with, which must outlive
+/// it and the verifiers and refiners it hands out.
 struct ViewInScene {
   const TaughtModel& model;
   std::shared_ptr<const ModelPrep> prep; ///< null: the parameters need no preparation
@@ -85,7 +85,7 @@ struct ViewInScene {
     };
   }
   /// ICP where the view was prepared for it, else the pose unchanged; empty without preparation.
-  [[nodiscard]] PosePolisher polisher() const {
+  [[nodiscard]] PoseRefiner refiner() const {
     if (!prep)
       return {};
     return [this](const Eigen::Isometry3d& T) {
@@ -129,35 +129,36 @@ std::vector<Detection> featureDetections(const ViewInScene& view, const SceneAna
   return out;
 }
 
-/// For a view that is a surface of revolution but for a detail: a pose found turned about its
-/// axis, its detail (a cup's handle) where the scan has none, takes the turn its detail says when
-/// that verifies. (Its own detail only: a turn the joined detail says keeps the coverage the pose
-/// was found with.) Empty otherwise.
-PoseRescue detailRescue(const ViewInScene& view, const PoseVerifier& verify,
-                        const PosePolisher& polish) {
+/// For a view that is a surface of revolution but for an asymmetric feature: a pose found rotated
+/// about its axis, its asymmetric feature (a cup's handle) where the scan has none, takes the
+/// rotation that feature says when that verifies. (Its own asymmetric feature only: a rotation the
+/// joined one says keeps the coverage the pose was found with.) Empty otherwise.
+PoseRescue asymmetryRescue(const ViewInScene& view, const PoseVerifier& verify,
+                           const PoseRefiner& refine) {
   if (!verify || !view.prep->near_axis)
     return {};
-  return [&view, &verify, &polish](Detection& d) {
-    const auto turn = detail::turnByDetail(*view.prep, view.scene, view.params.matching, verify,
-                                           polish, d.T_scene_model, d.coverage, false);
-    if (turn && turn->coverage > d.coverage)
-      detail::takeTurn(d, *turn);
+  return [&view, &verify, &refine](Detection& d) {
+    const auto rotation =
+        detail::rotationByAsymmetry(*view.prep, view.scene, view.params.matching, verify, refine,
+                                    d.T_scene_model, d.coverage, false);
+    if (rotation && rotation->coverage > d.coverage)
+      detail::applyRotation(d, *rotation);
   };
 }
 
 /// Surface point pair voting of the view over the whole sampled scene (progress:
 /// kProgressShares.surface_voting). A voted pose under half the minimum coverage is neither
-/// polished nor rescued, and ICP's pose replaces it only within kIcpCoverageSlack: under that, its
+/// refined nor rescued, and ICP's pose replaces it only within kIcpCoverageSlack: under that, its
 /// score only has to stay under.
 std::vector<Detection> votedDetections(const ViewInScene& view, const SceneAnalysis& scene,
                                        const OrientedPoints& sampled, const ScenePairs* pairs,
-                                       const PosePolisher& polish, const PoseRescue& rescue,
+                                       const PoseRefiner& refine, const PoseRescue& rescue,
                                        const ProgressFn& progress) {
   const MatchingParams& matching = view.params.matching;
   const PoseVerifier verify_voted = view.verifier(0.5 * matching.min_coverage - kIcpCoverageSlack);
   return surfaceDetections(*view.prep->pairs, sampled, pairs, view.model.features, *scene.features,
                            matching, kVoteClusterShare * view.model.diameter_mm, verify_voted,
-                           polish, rescue, subProgress(progress, kProgressShares.surface_voting));
+                           refine, rescue, subProgress(progress, kProgressShares.surface_voting));
 }
 
 /// What surface voting needs of the scene for one view: the scene sampled and paired (the memo's,
@@ -183,20 +184,21 @@ VotingScene votingScene(StageMemo& memo, const ModelPrep& prep, const Recognitio
 }
 
 /// The detections of the view in the scene: feature matching and surface voting, best first,
-/// duplicates suppressed, the turns matching cannot tell resolved when `resolve_turns`, at most
-/// params.matching.max_detections, refined when params.refine.enabled, and placed (centres, grip
-/// points, free turns). Adds the matching and refinement times to `timings`.
+/// duplicates suppressed, the rotations matching cannot tell apart resolved when
+/// `resolve_ambiguities`, at most params.matching.max_detections, refined when
+/// params.refine.enabled, and placed (centres, grip points, free rotation axes). Adds the matching
+/// and refinement times to `timings`.
 std::vector<Detection> findDetections(const ViewInScene& view, const SceneAnalysis& scene,
-                                      const VotingScene& voting, bool resolve_turns,
+                                      const VotingScene& voting, bool resolve_ambiguities,
                                       const ProgressFn& progress, StageTimings& timings) {
   const auto t_match = Clock::now();
   const PoseVerifier verify = view.verifier();
   std::vector<Detection> detections = featureDetections(view, scene, verify, progress);
   // ICP where the model was prepared for it (refinement, surface voting, near symmetries).
-  const PosePolisher polish = view.polisher();
+  const PoseRefiner refine = view.refiner();
   if (voting.sampled) {
-    const PoseRescue rescue = detailRescue(view, verify, polish);
-    for (auto& d : votedDetections(view, scene, *voting.sampled, voting.pairs.get(), polish, rescue,
+    const PoseRescue rescue = asymmetryRescue(view, verify, refine);
+    for (auto& d : votedDetections(view, scene, *voting.sampled, voting.pairs.get(), refine, rescue,
                                    progress))
       detections.push_back(std::move(d));
   }
@@ -204,9 +206,9 @@ std::vector<Detection> findDetections(const ViewInScene& view, const SceneAnalys
   const double duplicate_mm = kDuplicateShare * view.model.diameter_mm;
   detections = suppressDuplicates(std::move(detections), duplicate_mm);
   const MatchingParams& matching = view.params.matching;
-  if (resolve_turns && view.prep)
-    detections = resolveDetectionTurns(std::move(detections), *view.prep, view.scene, matching,
-                                       verify, polish, duplicate_mm);
+  if (resolve_ambiguities && view.prep)
+    detections = resolveDetectionAmbiguities(std::move(detections), *view.prep, view.scene,
+                                             matching, verify, refine, duplicate_mm);
   if (matching.max_detections > 0 &&
       detections.size() > static_cast<std::size_t>(matching.max_detections))
     detections.resize(static_cast<std::size_t>(matching.max_detections));
@@ -294,7 +296,7 @@ RecognitionResult Recognizer::detect(const std::shared_ptr<const TaughtModel>& m
 RecognitionResult Recognizer::run(const std::shared_ptr<const TaughtModel>& model,
                                   const PointCloud& scene_mm, const SensorModel& sensor,
                                   const RecognitionParams& requested, const ProgressFn& progress,
-                                  bool resolve_turns) {
+                                  bool resolve_ambiguities) {
   const auto t_start = Clock::now();
   requireModel(model, "recognize");
   StageMemo memo = memoSnapshot();
@@ -321,7 +323,8 @@ RecognitionResult Recognizer::run(const std::shared_ptr<const TaughtModel>& mode
     m_memo = std::make_shared<StageMemo>(memo);
   }
   const ViewInScene view(*model, prep, params, *scene);
-  result.detections = findDetections(view, *scene, voting, resolve_turns, progress, result.timings);
+  result.detections =
+      findDetections(view, *scene, voting, resolve_ambiguities, progress, result.timings);
   reportProgress(progress, kProgressShares.after_matching.end);
   result.timings.total_ms = msSince(t_start);
   reportProgress(progress, kProgressShares.after_matching.end);
@@ -345,11 +348,11 @@ std::vector<Detection> Recognizer::refine(const std::shared_ptr<const TaughtMode
                          verify ? &view.scene : nullptr, params.matching.verify_tolerance_mm);
 }
 
-std::vector<Detection> Recognizer::resolveTurns(const std::shared_ptr<const TaughtModel>& model,
-                                                std::vector<Detection> detections,
-                                                const SceneAnalysis& scene,
-                                                const RecognitionParams& requested) {
-  requireModel(model, "resolve turns");
+std::vector<Detection>
+Recognizer::resolveAmbiguities(const std::shared_ptr<const TaughtModel>& model,
+                               std::vector<Detection> detections, const SceneAnalysis& scene,
+                               const RecognitionParams& requested) {
+  requireModel(model, "resolve ambiguities");
   const RecognitionParams params = withViewParams(requested, model->view_params);
   if (!detail::needsModelPrep(params) || !(params.matching.verify_tolerance_mm > 0) ||
       detections.empty())
@@ -360,8 +363,9 @@ std::vector<Detection> Recognizer::resolveTurns(const std::shared_ptr<const Taug
     return detections;
   const PoseVerifier verify = view.verifier();
   sortBestFirst(detections);
-  detections = resolveDetectionTurns(std::move(detections), *view.prep, view.scene, params.matching,
-                                     verify, view.polisher(), kDuplicateShare * model->diameter_mm);
+  detections =
+      resolveDetectionAmbiguities(std::move(detections), *view.prep, view.scene, params.matching,
+                                  verify, view.refiner(), kDuplicateShare * model->diameter_mm);
   return placeDetections(std::move(detections), *model, view.prep.get(), &view.scene,
                          params.matching.verify_tolerance_mm);
 }

@@ -69,9 +69,9 @@ public:
   RecognitionResult recognize(const std::shared_ptr<const TaughtModel>& model,
                               const PointCloud& scene_mm, const SensorModel& sensor,
                               const RecognitionParams& params, const ProgressFn& progress = {});
-  /// As recognize(model, …), but the turns matching cannot tell are left as matching found them
-  /// (resolveTurns resolves them): recognizeViews resolves them after the views' merge, once per
-  /// instance.
+  /// As recognize(model, …), but the rotations matching cannot tell apart are left as matching
+  /// found them (resolveAmbiguities resolves them): recognizeViews resolves them after the views'
+  /// merge, once per instance.
   RecognitionResult detect(const std::shared_ptr<const TaughtModel>& model,
                            const PointCloud& scene_mm, const SensorModel& sensor,
                            const RecognitionParams& params, const ProgressFn& progress = {});
@@ -87,8 +87,8 @@ public:
   void prepare(const std::shared_ptr<const TaughtModel>& model, const RecognitionParams& params);
 
   /// `detections` of `model` in `scene` (RecognitionResult::scene) refined as recognize() does with
-  /// params.refine.enabled: ICP from each detection not polished yet, kept when it verifies as
-  /// well; then their centres, grip points and free turns again. Returned as they are when
+  /// params.refine.enabled: ICP from each detection not refined yet, kept when it verifies as
+  /// well; then their centres, grip points and free rotation axes again. Returned as they are when
   /// params.refine.enabled is false. `params`: those the scene was analysed with. Throws Error
   /// without a model.
   [[nodiscard]] std::vector<Detection> refine(const std::shared_ptr<const TaughtModel>& model,
@@ -96,14 +96,15 @@ public:
                                               const SceneAnalysis& scene,
                                               const RecognitionParams& params);
 
-  /// The turns matching cannot tell of `detections` of `model` in `scene` resolved as recognize()
-  /// does: the turn about the view's near axis that its detail (a cup's handle) says, and its near
-  /// symmetries; then their centres, grip points and free turns again, best first. Returned as
-  /// they are without verification or without such turns. Throws Error as refine() does.
-  [[nodiscard]] std::vector<Detection> resolveTurns(const std::shared_ptr<const TaughtModel>& model,
-                                                    std::vector<Detection> detections,
-                                                    const SceneAnalysis& scene,
-                                                    const RecognitionParams& params);
+  /// The rotations matching cannot tell apart of `detections` of `model` in `scene` resolved as
+  /// recognize() does: the rotation about the view's near axis that its asymmetric feature (a
+  /// cup's handle) says, and its near symmetries; then their centres, grip points and free
+  /// rotation axes again, best first. Returned as they are without verification or without such
+  /// ambiguities. Throws Error as refine() does.
+  [[nodiscard]] std::vector<Detection>
+  resolveAmbiguities(const std::shared_ptr<const TaughtModel>& model,
+                     std::vector<Detection> detections, const SceneAnalysis& scene,
+                     const RecognitionParams& params);
 
   /// Scores detections of the views `models` (Detection::model_index naming the view) on the
   /// whole part in `scene`: of the points of the view and of the views joined to it
@@ -121,10 +122,10 @@ public:
   [[nodiscard]] std::size_t preparedModels() const;
 
 private:
-  /// recognize() (`resolve_turns`) or detect().
+  /// recognize() (`resolve_ambiguities`) or detect().
   RecognitionResult run(const std::shared_ptr<const TaughtModel>& model, const PointCloud& scene_mm,
                         const SensorModel& sensor, const RecognitionParams& params,
-                        const ProgressFn& progress, bool resolve_turns);
+                        const ProgressFn& progress, bool resolve_ambiguities);
   /// A copy of the memo, taken under the lock.
   [[nodiscard]] detail::StageMemo memoSnapshot() const;
   /// Stores `memo`'s model preparations, keeping the memoized scene stages.
@@ -147,10 +148,11 @@ double prepareViews(Recognizer& recognizer,
 /// another side it can rest on (one model sees one side only). The scene stages run once (the
 /// recognizer's cache), matching per model; detections are merged best first by
 /// mergeViewDetections within kViewMergeShare × the larger model diameter (the same instance seen
-/// through another view). The turns matching cannot tell (a cup's handle, near symmetries) are
-/// resolved after the merge (Recognizer::resolveTurns), once per instance, and the merge then run
-/// again for the detections a turn moved. With params.refine.enabled the detections left are
-/// refined after that (Recognizer::refine), so that ICP polishes the detections reported, and
+/// through another view). The rotations matching cannot tell apart (a cup's handle, near
+/// symmetries) are resolved after the merge (Recognizer::resolveAmbiguities), once per instance,
+/// and the merge then run again for the detections a rotation moved. With params.refine.enabled
+/// the detections left are refined after that (Recognizer::refine), so that ICP refines the
+/// detections reported, and
 /// merged once more: a refined pose may land on an instance another view's detection holds. Views
 /// that know their place in the part should be joined first (joinViews, TaughtModel.h): only then
 /// are two parts lying close together told apart. Detection::model_index names the model. The
@@ -165,8 +167,8 @@ RecognitionResult recognizeViews(Recognizer& recognizer,
 void sortBestFirst(std::vector<Detection>& detections);
 
 /// Detections of one view whose origins lie closer than this share of the part's diameter
-/// (TaughtModel::diameter_mm) are one instance (suppressDuplicates): a wrong turn of a view on an
-/// instance keeps its origin within about a third of the part, a neighbour's lies farther.
+/// (TaughtModel::diameter_mm) are one instance (suppressDuplicates): a wrong rotation of a view on
+/// an instance keeps its origin within about a third of the part, a neighbour's lies farther.
 inline constexpr double kDuplicateShare = 0.35;
 /// Detections of different views whose Detection::centre_mm lie closer than this share of the
 /// larger diameter are candidates for one instance (mergeViewDetections): two views' origins

@@ -208,8 +208,9 @@ bool removePlane(FloorSearch& search, const Eigen::Vector4f& plane, std::size_t 
   return true;
 }
 
-/// Centre and radius of the flagged part's valid points, for hasPointsBehind.
-void measurePart(FloorSearch& search, const std::vector<char>& part) {
+/// Sets the centre (centroid) and radius (largest distance from it) of the flagged part's valid
+/// points in `search`, for hasPointsBehind.
+void findPartCentreAndRadius(FloorSearch& search, const std::vector<char>& part) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   std::size_t n = 0;
   for (const int i : search.alive)
@@ -350,7 +351,7 @@ FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& pa
       alive.push_back(static_cast<int>(i));
   FloorSearch search(scene_mm, params, std::move(alive));
   if (support_only)
-    measurePart(search, part);
+    findPartCentreAndRadius(search, part);
 
   const auto min_points =
       static_cast<std::size_t>(std::ceil(params.min_plane_fraction * double(search.total_valid)));

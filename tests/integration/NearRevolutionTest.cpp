@@ -1,7 +1,8 @@
-// Views that are a surface of revolution but for a detail (beyond the thesis): a cup lying on its
-// side is a body of revolution and a handle. Where a scan confirms the handle, recognition reports
-// the cup's turn; where it does not, the detection says its turn about the cup's axis is not seen
-// (Detection::free_turn_axis) instead of passing one turn off as found.
+// Views that are a surface of revolution but for an asymmetric feature (beyond the thesis): a cup
+// lying on its side is a rotationally symmetric surface and a handle. Where a scan confirms the
+// handle, recognition reports the cup's rotation about its axis; where it does not, the detection
+// says that rotation is not seen (Detection::free_turn_axis) instead of passing one rotation off
+// as found.
 #include "core/ambiguity/AmbiguityResolution.h"
 #include "core/common/Error.h"
 #include "core/pipeline/Recognizer.h"
@@ -72,7 +73,7 @@ SynthScene phoxiBin(const std::string& name) {
 
 } // namespace
 
-TEST(NearRevolution, ACupWhoseHandleShowsIsFoundAtItsTurn) {
+TEST(NearRevolution, ACupWhoseHandleShowsIsFoundAtItsRotation) {
   const RecognitionParams params = cupPreset();
   const CupOnItsSide cup;
   const auto& [side, scan, T_true] = cup;
@@ -86,10 +87,10 @@ TEST(NearRevolution, ACupWhoseHandleShowsIsFoundAtItsTurn) {
               d.free_turn_axis ? "reported" : "not reported");
   EXPECT_LT(off.rotation_deg, 3.0);
   EXPECT_LT(off.translation_mm, 2.0);
-  EXPECT_FALSE(d.free_turn_axis) << "the handle is in sight: the turn is seen";
+  EXPECT_FALSE(d.free_turn_axis) << "the handle is in sight: the rotation is seen";
 }
 
-TEST(NearRevolution, ACupWhoseHandleIsNotConfirmedReportsItsTurnAsFree) {
+TEST(NearRevolution, ACupWhoseHandleIsNotConfirmedReportsItsRotationAsFree) {
   const RecognitionParams params = cupPreset();
   const test::SynthTeach side = test::teachFromSynth("cup", 5, params, 2);
   int seen = 0, free = 0, free_right = 0;
@@ -110,19 +111,19 @@ TEST(NearRevolution, ACupWhoseHandleIsNotConfirmedReportsItsTurnAsFree) {
                     scan_side, int(seed), d.score, off.rotation_deg, off.translation_mm,
                     d.free_turn_axis ? "reported" : "not reported");
         if (!d.free_turn_axis) {
-          // A turn reported as seen is the cup's.
+          // A rotation reported as seen is the cup's.
           EXPECT_LT(off.rotation_deg, 3.0);
           EXPECT_LT(off.translation_mm, 2.0);
           ++seen;
           continue;
         }
         ++free;
-        // The turn left free is about the cup's own axis: its line is the axis line.
+        // The rotation left free is about the cup's own axis: its line is the axis line.
         const FreeTurnAxis& a = *d.free_turn_axis;
         EXPECT_GT(std::abs(a.direction.dot(axis_direction)), std::cos(3.0 * kPi / 180.0));
         const Eigen::Vector3d offset = a.point_mm - axis_point;
         EXPECT_LT((offset - offset.dot(axis_direction) * axis_direction).norm(), 3.0);
-        // Turning the found pose about it reaches the truth, or turning one of the poses the scan
+        // Rotating the found pose about it reaches the truth, or rotating one of the poses the scan
         // cannot tell from it does (with the handle unseen, the cup's two ends can look alike),
         // or the cup was found end over end (a failure docs/results.md counts).
         double tilt_deg = 180.0;
@@ -148,9 +149,9 @@ TEST(NearRevolution, ACupWhoseHandleIsNotConfirmedReportsItsTurnAsFree) {
   EXPECT_GE(free_right, free - 1) << "at most one cup found end over end";
 }
 
-TEST(NearRevolution, ACupFoundAtAWrongTurnIsTurnedToWhereItsHandleIs) {
-  // Its surface of revolution verifies at any turn; which of it the projector lit does not, and
-  // can favour a wrong one. The handle decides (detail::resolveDetailTurns).
+TEST(NearRevolution, ACupFoundAtAWrongRotationIsRotatedToWhereItsHandleIs) {
+  // Its surface of revolution verifies at any rotation; which of it the projector lit does not,
+  // and can favour a wrong one. The handle decides (detail::resolveAxisRotations).
   const RecognitionParams params = cupPreset();
   const CupOnItsSide cup;
   const auto& [side, scan, T_true] = cup;
@@ -170,21 +171,21 @@ TEST(NearRevolution, ACupFoundAtAWrongTurnIsTurnedToWhereItsHandleIs) {
     Detection d;
     d.T_scene_model = T_true * axis.turn(wrong_deg * kPi / 180.0);
     d.coverage = verify(d.T_scene_model);
-    const std::vector<Detection> detections = detail::resolveDetailTurns(
+    const std::vector<Detection> detections = detail::resolveAxisRotations(
         {d}, *prep, scene, params.matching, verify, [&](const Eigen::Isometry3d& T) {
           return refinePose(*prep->refine, index, T, params.refine).T_scene_model;
         });
     const PoseOff off = offBy(T_true, detections.front().T_scene_model);
-    std::printf("found %.0f° off its turn (coverage %.3f): now %.2f° and %.2f mm off, coverage "
+    std::printf("found %.0f° off its rotation (coverage %.3f): now %.2f° and %.2f mm off, coverage "
                 "%.3f\n",
                 wrong_deg, d.coverage, off.rotation_deg, off.translation_mm,
                 detections.front().coverage);
-    EXPECT_LT(off.rotation_deg, 3.0) << "turned to its handle";
+    EXPECT_LT(off.rotation_deg, 3.0) << "rotated to its handle";
   }
 }
 
-TEST(NearRevolution, TheRecognizerTurnsADetectionToWhereItsHandleIs) {
-  // As recognizeViews does after the views' merge (Recognizer::resolveTurns).
+TEST(NearRevolution, TheRecognizerRotatesADetectionToWhereItsHandleIs) {
+  // As recognizeViews does after the views' merge (Recognizer::resolveAmbiguities).
   const RecognitionParams params = cupPreset();
   const CupOnItsSide cup;
   const auto& [side, scan, T_true] = cup;
@@ -194,23 +195,23 @@ TEST(NearRevolution, TheRecognizerTurnsADetectionToWhereItsHandleIs) {
   ASSERT_EQ(found.detections.size(), 1u);
   std::vector<std::shared_ptr<const detail::ModelPrep>> preps;
   const RevolutionAxis axis = *detail::prepareModel(preps, side.model, params)->near_axis;
-  std::vector<Detection> turned = found.detections;
-  turned.front().T_scene_model = found.detections.front().T_scene_model * axis.turn(kPi / 2);
+  std::vector<Detection> rotated = found.detections;
+  rotated.front().T_scene_model = found.detections.front().T_scene_model * axis.turn(kPi / 2);
   const std::vector<Detection> detections =
-      recognizer.resolveTurns(side.model, turned, *found.scene, params);
+      recognizer.resolveAmbiguities(side.model, rotated, *found.scene, params);
   ASSERT_EQ(detections.size(), 1u);
   const Detection& d = detections.front();
   const PoseOff off = offBy(T_true, d.T_scene_model);
-  std::printf("turned 90° off: now %.2f° and %.2f mm off, coverage %.3f\n", off.rotation_deg,
+  std::printf("rotated 90° off: now %.2f° and %.2f mm off, coverage %.3f\n", off.rotation_deg,
               off.translation_mm, d.coverage);
-  EXPECT_LT(off.rotation_deg, 3.0) << "turned to its handle";
+  EXPECT_LT(off.rotation_deg, 3.0) << "rotated to its handle";
   ASSERT_EQ(d.grip_points_scene.size(), side.model->grip_points.size());
   for (std::size_t g = 0; g < d.grip_points_scene.size(); ++g)
     EXPECT_LT((d.grip_points_scene[g].position_mm -
                d.T_scene_model * side.model->grip_points[g].position_mm)
                   .norm(),
               1e-9)
-        << "grip points follow the turned pose";
+        << "grip points follow the rotated pose";
   // The stage works on the scene analysis it is given, whatever the recognizer saw since.
   SynthScene other = scan;
   for (auto& p : other.render.cloud.points_mm)
@@ -220,7 +221,7 @@ TEST(NearRevolution, TheRecognizerTurnsADetectionToWhereItsHandleIs) {
     }
   (void)recognizer.recognize(side.model, other.render.cloud, scan.sensor, params);
   const std::vector<Detection> again =
-      recognizer.resolveTurns(side.model, turned, *found.scene, params);
+      recognizer.resolveAmbiguities(side.model, rotated, *found.scene, params);
   ASSERT_EQ(again.size(), 1u);
   EXPECT_EQ(again.front().T_scene_model.matrix(), d.T_scene_model.matrix());
 }
@@ -229,7 +230,8 @@ TEST(NearRevolution, AnUprightCupInABinIsFoundByItsTopView) {
   // The phoxi-bin suite's scene-009 as synth-suite writes it: an upright cup (instance 2) among
   // others, off to the side of the projector, so its wall keeps the light off half its inside
   // (ProjectorShadow.AnUprightCupsBodyHidesPartOfItsInside). Surface voting's pose of it has the
-  // handle turned away and verifies under the minimum; turned to where the handle is, it verifies.
+  // handle facing away and verifies under the minimum; rotated to where the handle is, it
+  // verifies.
   const RecognitionParams params = cupPreset();
   const auto find = [](const std::string& name) {
     for (const SuiteScene& s :
@@ -263,15 +265,15 @@ TEST(NearRevolution, AnUprightCupInABinIsFoundByItsTopView) {
               off.rotation_deg, axis_deg, off.translation_mm, found->coverage);
   EXPECT_LT(axis_deg, 2.0);
   EXPECT_LT(off.translation_mm, 2.0);
-  EXPECT_LT(off.rotation_deg, 10.0) << "the handle tells the turn";
+  EXPECT_LT(off.rotation_deg, 10.0) << "the handle tells the rotation";
 }
 
-TEST(NearRevolution, ViewsJoinedTellTheTurnOfACupWhoseHandleNoViewSawFromThatSide) {
+TEST(NearRevolution, ViewsJoinedTellTheRotationOfACupWhoseHandleNoViewSawFromThatSide) {
   // The phoxi-bin suite's scene-005 as synth-suite writes it, searched with the cup's four table
   // views as docs/accuracy.md teaches them. Instances 1 and 5 lie on their sides with the handle
   // towards the camera: the view that finds them (the cup on its side, handle up and away from its
-  // teach camera) saw the handle from behind, so alone it cannot tell their turn. Joined, the other
-  // views' handle tells it.
+  // teach camera) saw the handle from behind, so alone it cannot tell their rotation. Joined, the
+  // other views' handle tells it.
   const RecognitionParams params = cupPreset();
   const std::vector<std::shared_ptr<const TaughtModel>> views = cupTableViews(params);
   ASSERT_EQ(views.size(), 4u);
@@ -303,16 +305,16 @@ TEST(NearRevolution, ViewsJoinedTellTheTurnOfACupWhoseHandleNoViewSawFromThatSid
   };
   std::printf("views searched each alone:\n");
   for (const double error_deg : rotationErrors(views))
-    EXPECT_GT(error_deg, 10.0) << "alone, the views find the cup at a wrong turn";
+    EXPECT_GT(error_deg, 10.0) << "alone, the views find the cup at a wrong rotation";
   std::printf("views joined:\n");
   for (const double error_deg : rotationErrors(joinViews(views)))
-    EXPECT_LT(error_deg, 2.0) << "joined, they tell its turn";
+    EXPECT_LT(error_deg, 2.0) << "joined, they tell its rotation";
 }
 
 TEST(NearRevolution, ViewsJoinedTellWhichEndOfALyingCupFacesTheCamera) {
   // The phoxi-bin suite's scene-013: cups lying on their sides, three of them tilted so that one
   // end faces the camera (the mouth of instances 5 and 7, the bottom of instance 10). The views
-  // that find them saw the cup from the side, where it looks the same turned end over end, and
+  // that find them saw the cup from the side, where it looks the same flipped end over end, and
   // the table views that saw its ends did not see them lying so. Joined, the views' ends tell.
   const RecognitionParams params = cupPreset();
   const std::vector<std::shared_ptr<const TaughtModel>> views = joinViews(cupTableViews(params));
@@ -349,9 +351,9 @@ TEST(NearRevolution, ViewsJoinedTellWhichEndOfALyingCupFacesTheCamera) {
 }
 
 TEST(NearRevolution, ViewsJoinedTakeTheEndAtWhichTheScanConfirmsTheHandle) {
-  // The phoxi-bin suite's scene-020: instance 9 lies on its side, its bottom turned a little
+  // The phoxi-bin suite's scene-020: instance 9 lies on its side, its bottom tilted a little
   // towards the camera and its handle in sight. The side view finds it end over end, where its
-  // handle would lie out of sight at every turn; turned back, the joined handle is confirmed.
+  // handle would lie out of sight at every rotation; flipped back, the joined handle is confirmed.
   const RecognitionParams params = cupPreset();
   const std::vector<std::shared_ptr<const TaughtModel>> views = joinViews(cupTableViews(params));
   const SynthScene bin = phoxiBin("scene-020");
@@ -375,19 +377,21 @@ TEST(NearRevolution, ViewsJoinedTakeTheEndAtWhichTheScanConfirmsTheHandle) {
   }
   std::printf("instance 9: nearest detection %.2f mm and %.2f° off\n", nearest_mm, rotation_deg);
   EXPECT_LT(nearest_mm, 16.5) << "instance 9 is found";
-  EXPECT_LT(rotation_deg, 10.0) << "at its turn";
+  EXPECT_LT(rotation_deg, 10.0) << "at its rotation";
 }
 
 TEST(NearRevolution, ALegSeenFaceOnIsNotASurfaceOfRevolution) {
   // The support's table view shows one leg face-on: its normals point one way, so a rim axis fits
-  // through a circle among its nearest points, but none of the leg turns about it. Taken for a
-  // cup, every detection of it would search its "handle" (all of it) at 360 turns.
+  // through a circle among its nearest points, but none of the leg is rotationally symmetric about
+  // it. Taken for a cup, every detection of it would search its "handle" (all of it) at 360
+  // rotations.
   const RecognitionParams params = test::bundledPreset("phoxi-bin-surface");
   const test::SynthTeach top = test::teachFromSynth("support", 5, params, 0);
   std::vector<std::shared_ptr<const detail::ModelPrep>> preps;
   const auto prep = detail::prepareModel(preps, top.model, params);
   EXPECT_FALSE(prep->axis);
-  EXPECT_FALSE(prep->near_axis) << prep->near_axis_detail.size() << " of "
-                                << prep->verify->points.size() << " points taken for a detail";
-  EXPECT_TRUE(prep->near_axis_detail.empty());
+  EXPECT_FALSE(prep->near_axis) << prep->near_axis_asymmetry.size() << " of "
+                                << prep->verify->points.size()
+                                << " points taken for an asymmetric feature";
+  EXPECT_TRUE(prep->near_axis_asymmetry.empty());
 }

@@ -9,6 +9,7 @@
 #include "core/params/ParamsJson.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/refine/SceneIndex.h"
+#include "tests/integration/TaughtPoseError.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +17,7 @@
 
 using namespace scanpick::core;
 namespace fs = std::filesystem;
+namespace test = scanpick::test;
 
 namespace {
 
@@ -78,12 +80,11 @@ TEST(RealMilk, CartonFoundOnceAndOnTheSurface) {
   // milk.pcd was cropped from this very scan (the pose found with 100 % of its points on the
   // scene surface is the identity up to the sensor noise), so the true T_scene_model is the
   // model frame in the teach scan, T_teach_model: a pure check of the pose, at Kinect accuracy.
-  const Eigen::Isometry3d& T = result.detections[0].T_scene_model;
-  const double dt_mm = (T.translation() - model->T_teach_model.translation()).norm();
-  const double dr_deg = Eigen::AngleAxisd(T.linear()).angle() * 180.0 / M_PI;
-  std::printf("milk: pose error %.2f mm, %.2f deg\n", dt_mm, dr_deg);
-  EXPECT_LT(dt_mm, 5.0);
-  EXPECT_LT(dr_deg, 2.0);
+  const test::TaughtPoseError off =
+      test::taughtPoseError(result.detections[0].T_scene_model, *model);
+  std::printf("milk: pose error %.2f mm, %.2f deg\n", off.translation_mm, off.rotation_deg);
+  EXPECT_LT(off.translation_mm, 5.0);
+  EXPECT_LT(off.rotation_deg, 2.0);
 }
 
 TEST(RealMilk, FoundExactlyWithTheParametersTeachDerives) {
@@ -109,10 +110,10 @@ TEST(RealMilk, FoundExactlyWithTheParametersTeachDerives) {
   Recognizer recognizer(model);
   const RecognitionResult result = recognizer.recognize(scene, SensorModel{}, derived.params);
   ASSERT_EQ(result.detections.size(), 1u) << "the carton must be found exactly once";
-  const Eigen::Isometry3d& T = result.detections[0].T_scene_model;
-  const double dt_mm = (T.translation() - model->T_teach_model.translation()).norm();
-  const double dr_deg = Eigen::AngleAxisd(T.linear()).angle() * 180.0 / M_PI;
-  std::printf("milk, derived parameters: pose error %.3f mm, %.3f deg\n", dt_mm, dr_deg);
-  EXPECT_LT(dt_mm, 0.5);
-  EXPECT_LT(dr_deg, 0.2);
+  const test::TaughtPoseError off =
+      test::taughtPoseError(result.detections[0].T_scene_model, *model);
+  std::printf("milk, derived parameters: pose error %.3f mm, %.3f deg\n", off.translation_mm,
+              off.rotation_deg);
+  EXPECT_LT(off.translation_mm, 0.5);
+  EXPECT_LT(off.rotation_deg, 0.2);
 }

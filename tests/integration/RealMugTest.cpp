@@ -6,6 +6,7 @@
 #include "core/cloud/CloudIo.h"
 #include "core/model/TaughtModel.h"
 #include "core/pipeline/Recognizer.h"
+#include "tests/integration/TaughtPoseError.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,7 @@
 
 using namespace scanpick::core;
 namespace fs = std::filesystem;
+namespace test = scanpick::test;
 
 TEST(RealMug, TaughtWithTheTableRemovedAndFoundWhereItStands) {
   const fs::path file =
@@ -39,11 +41,10 @@ TEST(RealMug, TaughtWithTheTableRemovedAndFoundWhereItStands) {
   Recognizer recognizer(model);
   const RecognitionResult result = recognizer.recognize(scan, SensorModel{}, derived.params);
   ASSERT_EQ(result.detections.size(), 1u) << "the mug must be found exactly once";
-  const Eigen::Isometry3d& T = result.detections[0].T_scene_model;
-  const double dt_mm = (T.translation() - model->T_teach_model.translation()).norm();
-  const double dr_deg = Eigen::AngleAxisd(T.linear()).angle() * 180.0 / M_PI;
-  std::printf("mug: score %.3f, pose error %.3f mm, %.3f deg\n", result.detections[0].score, dt_mm,
-              dr_deg);
-  EXPECT_LT(dt_mm, 0.5);
-  EXPECT_LT(dr_deg, 0.2);
+  const test::TaughtPoseError off =
+      test::taughtPoseError(result.detections[0].T_scene_model, *model);
+  std::printf("mug: score %.3f, pose error %.3f mm, %.3f deg\n", result.detections[0].score,
+              off.translation_mm, off.rotation_deg);
+  EXPECT_LT(off.translation_mm, 0.5);
+  EXPECT_LT(off.rotation_deg, 0.2);
 }
