@@ -160,6 +160,9 @@ void registerTeachCommand(CLI::App& app) {
         for (const auto& [key, value] : model.view_params)
           std::cout << ", " << key << " = " << value << " for this view";
         std::cout << " -> " << o->out << "\n";
+        if (model.all_around)
+          std::cout << "the crop is the part seen from every side: its normals face out of it, and "
+                       "it covers every viewing direction\n";
         if (derive)
           printDerived(derived, model);
         auto all_views = views;

@@ -362,8 +362,7 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
     prep->refine = surface && radius == RefineModel::kNormalRadiusMm
                        ? std::make_shared<const RefineModel>(surface, points)
                        : std::make_shared<const RefineModel>(
-                             model->cloud_mm, points,
-                             Eigen::Vector3d(model->T_teach_model.inverse().translation()));
+                             modelSurface(*model, RefineModel::kNormalRadiusMm), points);
   if (joined_refine && !prep->joined_refine)
     prep->joined_refine = joinedRefineModel(joined(), kJoinedRefineViews * points);
   if (!model->joined_views.empty())

@@ -228,6 +228,8 @@ std::string encodeModel(const TaughtModel& model) {
                    {"crc32", crc32(block.data(), block.size())}}}};
   if (model.T_part_model)
     header["T_part_model"] = matrix(*model.T_part_model);
+  if (model.all_around)
+    header["all_around"] = true;
   for (const auto& [key, value] : model.view_params) {
     // Whole-number parameters (integers, booleans, enum indices) are written as integers.
     const ParamInfo* info = findParameter(key);
@@ -309,6 +311,7 @@ void readDescription(const json& header, const Reader& r, TaughtModel& model) {
   model.T_teach_model = r.rigid(r.at(header, "T_teach_model"), "T_teach_model");
   if (header.contains("T_part_model"))
     model.T_part_model = r.rigid(header["T_part_model"], "T_part_model");
+  model.all_around = header.value("all_around", false);
 }
 
 /// Reads the optional per-view parameter values and the reasons they were chosen, each checked
@@ -404,6 +407,8 @@ TaughtModel decodeChecked(const std::string& bytes, const std::string& source) {
   model.keypoints_mm = readPoints(block.bytes, offset, block.keypoints);
   if (block.cloud_points == 0 || !model.cloud_mm.hasValidPoint())
     r.fail("the model holds no points");
+  if (model.all_around && !block.normals)
+    r.fail("a model seen from every side ('all_around') must carry its normals");
   // Last, so that a header whose values are wrong says which; one edited to values that read
   // well is still refused.
   if (version >= 2)

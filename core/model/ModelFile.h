@@ -11,7 +11,7 @@
 namespace scanpick::core {
 
 /// Highest `.spmodel` version this build reads and the one it writes.
-inline constexpr int kModelFormatVersion = 2;
+inline constexpr int kModelFormatVersion = 3;
 
 /// Serializes a model (header line + binary block) into a byte string.
 std::string encodeModel(const TaughtModel& model);

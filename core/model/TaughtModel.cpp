@@ -3,10 +3,12 @@
 #include "core/common/Error.h"
 #include "core/features/FeatureExtraction.h"
 #include "core/keypoints/Keypoints.h"
+#include "core/model/AllAround.h"
 #include "core/model/AutoParams.h"
 #include "core/preprocess/Downsample.h"
 #include "core/preprocess/FloorRemoval.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -16,6 +18,18 @@
 namespace scanpick::core {
 
 namespace {
+
+/// The normals of a part seen from every side are fitted to at least this many point spacings.
+constexpr double kNormalRadiusSpacings = 3.0;
+
+/// `cloud` as `sensor` would measure it at its nominal distance: its spacing and noise at least
+/// the sensor's (where the sensor model gives them).
+ScanMeasures asScannedBy(ScanMeasures cloud, const SensorModel& sensor) {
+  if (sensor.fx > 0 && sensor.nominal_distance_mm > 0)
+    cloud.spacing_mm = std::max(cloud.spacing_mm, sensor.nominal_distance_mm / sensor.fx);
+  cloud.noise_mm = std::max(cloud.noise_mm, sensor.noise_sigma_mm);
+  return cloud;
+}
 
 /// Whether a point (scan frame, mm) is valid and lies in the crop of `options` (the oriented box
 /// if set).
@@ -77,10 +91,15 @@ AutoParams autoTeachParams(const PointCloud& scan_mm, const TeachOptions& option
   if (!options.crop_box_mm && !options.crop_oriented)
     throw Error("no crop box given: draw a box around the part (or pass --crop-box)");
   const auto inCrop = cropTest(options);
-  const ScanMeasures scan = measureScan(
-      selectPoints(scan_mm, [&](std::size_t i) { return inCrop(scan_mm.points_mm[i]); }));
+  const PointCloud crop =
+      selectPoints(scan_mm, [&](std::size_t i) { return inCrop(scan_mm.points_mm[i]); });
+  ScanMeasures scan = measureScan(crop);
   if (!(scan.spacing_mm > 0))
     throw Error("the crop's points coincide (no spacing between them): crop a part of a scan");
+  // A part seen from every side (merged scans, points sampled on a mesh) is searched in scans of
+  // the sensor: its spacing and noise, at the least, are what the scenes will have.
+  if (!seenFromOneCamera(crop, Eigen::Vector3d::Zero(), scan.spacing_mm))
+    scan = asScannedBy(scan, options.sensor);
   const AutoParams scan_params = deriveScanParams(scan, base);
   const PointCloud part = cropPart(scan_mm, options, scan_params.params, progress);
   return deriveParams(scan, measurePart(part, scan.spacing_mm), base);
@@ -88,7 +107,13 @@ AutoParams autoTeachParams(const PointCloud& scan_mm, const TeachOptions& option
 
 TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
                   const RecognitionParams& params, const ProgressFn& progress) {
-  const PointCloud part = cropPart(scan_mm, options, params, subProgress(progress, 0.0, 0.25));
+  PointCloud part = cropPart(scan_mm, options, params, subProgress(progress, 0.0, 0.25));
+  const double spacing_mm = measureScan(part).spacing_mm;
+  // A part seen from every side has no camera its normals could face: they face out of it.
+  const bool all_around = !seenFromOneCamera(part, Eigen::Vector3d::Zero(), spacing_mm);
+  if (all_around)
+    part.normals = outwardNormals(
+        part, std::max(params.keypoints.normal_radius_mm, kNormalRadiusSpacings * spacing_mm));
 
   // Keypoints and features are found in the scan frame, as for scene objects (normals are
   // oriented towards the camera), then moved into the model frame.
@@ -130,6 +155,7 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
     model.T_part_model = options.T_scan_part->inverse() * model.T_teach_model;
   model.diameter_mm =
       measurePart(model.cloud_mm, measureScan(model.cloud_mm).spacing_mm).diameter_mm;
+  model.all_around = all_around;
   reportProgress(progress, 1.0);
   return model;
 }

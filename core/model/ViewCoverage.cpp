@@ -58,6 +58,9 @@ ViewCoverage viewCoverage(const std::vector<std::shared_ptr<const TaughtModel>>&
   };
   for (const auto& d : out.view_directions_part)
     cover(d);
+  // A part seen from every side is seen from any direction.
+  if (std::any_of(views.begin(), views.end(), [](const auto& view) { return view->all_around; }))
+    std::fill(nearest.begin(), nearest.end(), 1.0);
   const auto covered = [&] {
     return std::count_if(nearest.begin(), nearest.end(), [&](double c) { return c >= reach; });
   };

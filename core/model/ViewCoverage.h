@@ -37,7 +37,8 @@ struct ViewCoverage {
 };
 
 /// The coverage of `views` (the views of one part). Views that know their place in the part
-/// (T_part_model) are placed in its frame; with no such view the first view alone is counted.
+/// (T_part_model) are placed in its frame; with no such view the first view alone is counted. A
+/// view of the part seen from every side (TaughtModel::all_around) covers every direction.
 /// Deterministic. Throws Error when `views` is empty or the options are out of range.
 ViewCoverage viewCoverage(const std::vector<std::shared_ptr<const TaughtModel>>& views,
                           const ViewCoverageOptions& options = {});

@@ -15,6 +15,9 @@ constexpr double kMinExpectedShare = 0.75;
 /// A tally with a stop asks it after this many points and every as many more.
 constexpr std::size_t kStopCheckPoints = 16;
 
+/// cos 65°: a model seen from every side expects the points that face the camera more squarely.
+constexpr float kMinAllAroundFacing = 0.42f;
+
 /// cos 60°: model and scene normals closer than this agree.
 constexpr float kMinNormalAgreement = 0.5f;
 
@@ -22,7 +25,9 @@ constexpr float kMinNormalAgreement = 0.5f;
 /// within the edge tolerance (1 when off or when fewer than 10 lie on surface).
 double edgeAgreement(const VerifyModel& model, const SceneIndex& index, const Eigen::Isometry3f& T,
                      double tolerance_mm, const EdgeCheck& edges) {
-  if (!edges.scene_keypoints || edges.tolerance_mm <= 0)
+  // A model seen from every side was not scanned as the scene is: its keypoints are not the edges
+  // a scan shows (silhouettes and jump edges depend on the view), so they cannot be compared.
+  if (!edges.scene_keypoints || edges.tolerance_mm <= 0 || model.all_around)
     return 1.0;
   const auto surface_tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
   const auto edge_tol_sq = static_cast<float>(edges.tolerance_mm * edges.tolerance_mm);
@@ -36,6 +41,31 @@ double edgeAgreement(const VerifyModel& model, const SceneIndex& index, const Ei
       ++on_edge;
   }
   return on_surface < 10 ? 1.0 : double(on_edge) / double(on_surface);
+}
+
+/// The point of organized `scan` (of `sensor`'s size) at the pixel `p` projects to; null outside
+/// the image.
+const Eigen::Vector3f* scanPointAt(const PointCloud& scan, const SensorModel& sensor,
+                                   const Eigen::Vector3f& p) {
+  const auto pixel = sensor.pixelOf(p);
+  if (!pixel || !sensor.inImage(*pixel))
+    return nullptr;
+  return &scan.points_mm[sensor.pixelIndex(*pixel)];
+}
+
+/// Whether organized `scan` (of `sensor`'s size) sees clearly behind `p`, more than `margin_mm`:
+/// a line of sight that passes `p` from the far side of a part seen from every side would have
+/// passed through the part.
+bool seenBehind(const PointCloud& scan, const SensorModel& sensor, const Eigen::Vector3f& p,
+                float margin_mm) {
+  const Eigen::Vector3f* s = scanPointAt(scan, sensor, p);
+  return s && isValid(*s) && s->z() > p.z() + margin_mm;
+}
+
+/// The points a tally's pose could show the camera: those not shadowed and, of a model seen from
+/// every side, not turned away (its far side is no part of what one scan shows).
+double seeablePoints(const PointTally& t, bool all_around) {
+  return double(t.points) - double(t.shadowed) - (all_around ? double(t.turned_away) : 0.0);
 }
 
 } // namespace
@@ -81,6 +111,8 @@ std::shared_ptr<const SceneIndex> modelSurface(const TaughtModel& model, double 
   SceneIndexOptions model_options;
   model_options.normal_radius_mm = normal_radius_mm;
   model_options.viewpoint_mm = model.T_teach_model.inverse().translation();
+  // A part seen from every side keeps its normals, which face out of it.
+  model_options.orient_cloud_normals = !model.all_around;
   return std::make_shared<const SceneIndex>(model.cloud_mm, model_options);
 }
 
@@ -103,6 +135,7 @@ std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
     strided->points.push_back(valid[i]);
     strided->normals.push_back(model_index.normals()[i]);
   }
+  strided->all_around = model.all_around;
   const std::size_t key_stride = std::max<std::size_t>(1, (model.keypoints_mm.size() + 399) / 400);
   for (std::size_t i = 0; i < model.keypoints_mm.size(); i += key_stride)
     strided->keypoints.push_back(model.keypoints_mm[i]);
@@ -112,9 +145,6 @@ std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
 PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
                        const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                        const TallyOptions& options) {
-  const std::vector<std::uint32_t>* subset = options.subset;
-  const TallyStop& stop = options.stop;
-  const bool sort_unmeasured = options.sort_unmeasured;
   const SceneIndex& index = *scene.index;
   const PointCloud& scan = *scene.scan;
   const SensorModel& sensor = *scene.sensor;
@@ -123,6 +153,7 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
   const Eigen::Isometry3f T = T_scene_model.cast<float>();
   const auto tol_sq = static_cast<float>(tolerance_mm * tolerance_mm);
   const auto margin = static_cast<float>(3.0 * tolerance_mm);
+  const float facing_cosine = model.all_around ? kMinAllAroundFacing : 0.0f;
   // The camera and the projector in the model frame, for the model's own body.
   const Eigen::Isometry3f T_model_scene = T.inverse();
   const Eigen::Vector3f camera_model = T_model_scene.translation();
@@ -132,11 +163,21 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     ++tally.points;
     const Eigen::Vector3f p = T * model.points[k];
     const Eigen::Vector3f& n_model = model.normals[k];
-    // The camera sits at the scene origin.
-    const bool turned_away = n_model.allFinite() && (T.linear() * n_model).dot(-p) <= 0.0f;
+    // The camera sits at the scene origin. Of a model seen from every side, points the camera
+    // sees at a grazing angle count as turned away too: a scan samples them too sparsely to
+    // confirm the model's dense samples.
+    const bool turned_away =
+        n_model.allFinite() && (T.linear() * n_model).dot(-p) <= facing_cosine * p.norm();
     tally.turned_away += turned_away;
-    if (scene.floor_plane &&
-        scene.floor_plane->head<3>().dot(p) + (*scene.floor_plane)(3) < -margin) {
+    const bool below_floor =
+        scene.floor_plane &&
+        scene.floor_plane->head<3>().dot(p) + (*scene.floor_plane)(3) < -margin;
+    if (turned_away && model.all_around) { // the far side of a part seen from every side
+      ++(below_floor || (organized && seenBehind(scan, sensor, p, margin)) ? tally.violations
+                                                                           : tally.hidden);
+      return;
+    }
+    if (below_floor) {
       ++tally.violations;
       return;
     }
@@ -151,18 +192,13 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
         return;
       }
     }
-    if (turned_away) {
-      ++tally.hidden;
+    const Eigen::Vector3f* s = turned_away || !organized ? nullptr : scanPointAt(scan, sensor, p);
+    if (turned_away || !s) {
+      tally.hidden += turned_away;
       return;
     }
-    if (!organized)
-      return;
-    const auto pixel = sensor.pixelOf(p);
-    if (!pixel || !sensor.inImage(*pixel))
-      return;
-    const Eigen::Vector3f& s = scan.points_mm[sensor.pixelIndex(*pixel)]; // organized: its width
-    if (!isValid(s)) {
-      if (!sort_unmeasured)
+    if (!isValid(*s)) {
+      if (!options.sort_unmeasured)
         return;
       if (model.body && model.body->blocks(model.points[k], camera_model))
         ++tally.hidden;
@@ -171,24 +207,26 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
         ++tally.shadowed;
       return;
     }
-    if (s.z() > p.z() + margin)
+    if (s->z() > p.z() + margin)
       ++tally.violations;
-    else if (s.z() < p.z() - margin)
+    else if (s->z() < p.z() - margin)
       ++tally.hidden;
   };
-  const std::size_t total = subset ? subset->size() : model.points.size();
+  const std::size_t total = options.subset ? options.subset->size() : model.points.size();
   for (std::size_t j = 0; j < total; ++j) {
-    look(subset ? std::size_t{(*subset)[j]} : j);
-    if (stop && (j + 1) % kStopCheckPoints == 0 && j + 1 < total && stop(tally, total - j - 1))
+    look(options.subset ? std::size_t{(*options.subset)[j]} : j);
+    if (options.stop && (j + 1) % kStopCheckPoints == 0 && j + 1 < total &&
+        options.stop(tally, total - j - 1))
       break;
   }
   return tally;
 }
 
-double surfaceScoreBound(const PointTally& tally, std::size_t left) {
-  // Each point left can add one confirmation, or else be shadowed and lower the expected count;
-  // with fewer confirmations than points not shadowed, confirming all of them scores highest.
-  const double seeable = double(tally.points + left) - double(tally.shadowed);
+double surfaceScoreBound(const PointTally& tally, std::size_t left, bool all_around) {
+  // Each point left can add one confirmation, or else be shadowed (or, of a model seen from
+  // every side, turned away) and lower the expected count; with fewer confirmations than points
+  // not shadowed, confirming all of them scores highest.
+  const double seeable = seeablePoints(tally, all_around) + double(left);
   if (seeable <= 0.0)
     return 1.0;
   return std::clamp((double(tally.confirmed) - double(tally.violations) + double(left)) /
@@ -225,16 +263,17 @@ double verifyPose(const VerifyModel& model, const VerifyScene& scene,
   if (model.points.empty())
     return 0.0;
   const auto cannot_reach = [&](const PointTally& so_far, std::size_t left) {
-    return surfaceScoreBound(so_far, left) < drop_below;
+    return surfaceScoreBound(so_far, left, model.all_around) < drop_below;
   };
   const PointTally t = tallyPoints(model, scene, T_scene_model, tolerance_mm,
                                    {.subset = nullptr,
                                     .stop = drop_below > 0 ? TallyStop(cannot_reach) : TallyStop(),
                                     .sort_unmeasured = true});
   if (const std::size_t left = model.points.size() - t.points; left > 0)
-    return surfaceScoreBound(t, left); // stopped: under drop_below
-  const double seeable = double(t.points - t.shadowed);
-  const double expected = std::max(seeable - double(t.hidden), kMinExpectedShare * seeable);
+    return surfaceScoreBound(t, left, model.all_around); // stopped: under drop_below
+  const double seeable = seeablePoints(t, model.all_around);
+  const double occluded = double(t.hidden) - (model.all_around ? double(t.turned_away) : 0.0);
+  const double expected = std::max(seeable - occluded, kMinExpectedShare * seeable);
   if (expected <= 0.0)
     return 0.0;
   const double surface =

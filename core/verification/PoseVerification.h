@@ -35,6 +35,9 @@ struct VerifyModel {
   /// For a view of a surface of revolution, the body it stands for (null otherwise): which of its
   /// unmeasured points the part itself hides from the camera or the projector.
   std::shared_ptr<const RevolvedBody> body;
+  /// The points cover the part's every side (TaughtModel::all_around): at any pose about half of
+  /// them face away, and verification expects only the others.
+  bool all_around = false;
 };
 
 /// Every valid point of `model`, strided to at most about `points`, with its normal (PCA within
@@ -49,7 +52,8 @@ std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
 /// The stride makeVerifyModel takes through `valid_points` points to keep about `points`.
 std::size_t verifyModelStride(std::size_t valid_points, int points);
 /// The model's valid points indexed with their normals (PCA within `normal_radius_mm`, facing the
-/// teach camera), as verification uses them.
+/// teach camera; a model seen from every side, TaughtModel::all_around, keeps its own outward
+/// ones), as verification uses them.
 std::shared_ptr<const SceneIndex> modelSurface(const TaughtModel& model, double normal_radius_mm);
 
 /// The scene's keypoints (of every object) indexed, for the edge check of verification.
@@ -152,8 +156,8 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
 
 /// The highest surface score (verifyPose's, before the edge agreement) that a tally can still
 /// reach with `left` points not looked at: each of them confirmed, and the expected count at its
-/// lowest (75 % of the points not shadowed so far).
-double surfaceScoreBound(const PointTally& tally, std::size_t left);
+/// lowest (75 % of the points not shadowed so far and, with `all_around`, not turned away).
+double surfaceScoreBound(const PointTally& tally, std::size_t left, bool all_around = false);
 
 /// Verification score in [0, 1]: (confirmed − violations) ÷ the points expected to be seen,
 /// times the edge agreement (the share of model keypoints on confirmed surface with a scene
@@ -161,7 +165,9 @@ double surfaceScoreBound(const PointTally& tally, std::size_t left);
 /// its surface but not its outline). Shadowed points count for nothing. The expected count is
 /// never taken below 75 % of the points not shadowed, so a pose that turns the taught side away (a
 /// flip), or is confirmed on one leg of a bracket whose other leg falls behind other parts, cannot
-/// score on the few points left.
+/// score on the few points left. A model seen from every side (VerifyModel::all_around) expects
+/// only the points that face the camera within 65°, and has no edge check: its keypoints are not
+/// the edges a scan shows.
 /// A caller that drops every pose scoring under `drop_below` lets verification stop looking at a
 /// pose's points once its surface can no longer score `drop_below` (surfaceScoreBound), and skip
 /// the edge check of a pose whose surface alone scores under it: that pose gets the bound or its

@@ -26,6 +26,10 @@ TeachOptions cropAll() {
   o.grips_scan.push_back({"centre", Eigen::Vector3d(0, 0, 700)});
   return o;
 }
+/// The version field as the header writes it.
+std::string currentVersion() {
+  return "\"version\":" + std::to_string(kModelFormatVersion);
+}
 std::string messageOf(const std::function<void()>& f) {
   try {
     f();
@@ -245,6 +249,19 @@ TEST(ModelFile, AViewsOwnParametersAreKeptAndChecked) {
               HasSubstr("unknown parameter 'matching.no_such_key'"));
 }
 
+TEST(ModelFile, APartSeenFromEverySideKeepsItsOutwardNormals) {
+  TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
+  EXPECT_FALSE(m.all_around) << "one scan from one camera";
+  EXPECT_EQ(encodeModel(m).find("all_around"), std::string::npos);
+  m.all_around = true;
+  EXPECT_THAT(messageOf([&] { decodeModel(encodeModel(m), "p.spmodel"); }),
+              HasSubstr("must carry its normals"));
+  m.cloud_mm.normals.assign(m.cloud_mm.size(), Eigen::Vector3f(0.6f, 0.0f, -0.8f));
+  const TaughtModel read = decodeModel(encodeModel(m), "p.spmodel");
+  EXPECT_TRUE(read.all_around);
+  EXPECT_EQ(read.cloud_mm.normals, m.cloud_mm.normals);
+}
+
 TEST(ModelFile, DamagedFilesAreRejectedClearly) {
   const TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
   const std::string bytes = encodeModel(m);
@@ -254,7 +271,7 @@ TEST(ModelFile, DamagedFilesAreRejectedClearly) {
   corrupt[corrupt.size() - 5] ^= 0x40;
   EXPECT_THAT(messageOf([&] { decodeModel(corrupt, "p.spmodel"); }), HasSubstr("checksum"));
   std::string future = bytes;
-  const auto at = future.find("\"version\":2");
+  const auto at = future.find(currentVersion());
   ASSERT_NE(at, std::string::npos);
   future.replace(at, 11, "\"version\":9");
   EXPECT_THAT(messageOf([&] { decodeModel(future, "p.spmodel"); }), HasSubstr("newer scanpick"));
@@ -293,7 +310,7 @@ TEST(ModelFile, TheHeaderIsCoveredByItsChecksum) {
               }),
               HasSubstr("header's checksum does not match"));
   // Files of version 1 had no header checksum and are still read.
-  std::string v1 = editedHeader(bytes, "\"version\":2", "\"version\":1");
+  std::string v1 = editedHeader(bytes, currentVersion(), "\"version\":1");
   const auto crc_at = v1.find(",\"header_crc32\":\"");
   ASSERT_NE(crc_at, std::string::npos);
   v1.erase(crc_at, std::string(",\"header_crc32\":\"12345678\"").size());

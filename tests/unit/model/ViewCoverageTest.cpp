@@ -75,3 +75,11 @@ TEST(ViewCoverage, ViewsThatDoNotKnowTheirPlaceAreCountedApart) {
   bad.tolerance_deg = 0;
   EXPECT_THROW(viewCoverage({viewFrom(Eigen::Vector3d::UnitZ())}, bad), Error);
 }
+
+TEST(ViewCoverage, APartSeenFromEverySideCoversEverything) {
+  auto all_around = std::make_shared<TaughtModel>(*viewFrom(Eigen::Vector3d::UnitZ()));
+  all_around->all_around = true;
+  const ViewCoverage c = viewCoverage({all_around});
+  EXPECT_DOUBLE_EQ(c.covered, 1.0);
+  EXPECT_TRUE(c.missing_part.empty());
+}
