@@ -7,6 +7,8 @@
 #include "core/model/ModelFile.h"
 #include "core/model/ViewCoverage.h"
 #include "core/params/ParameterTable.h"
+#include "core/sim/Mesh.h"
+#include "core/sim/MeshIo.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -58,6 +60,55 @@ core::GripPoint parseGrip(const std::string& text) {
   return core::checkedGrip(grip);
 }
 
+/// A mesh is sampled no denser than this many points (a large part more sparsely than the
+/// sensor's spacing): enough for any part the sensor sees, and teach stays within seconds.
+constexpr std::size_t kMaxMeshPoints = 150000;
+
+/// The part's mesh (--mesh: its own frame, in `units`) as a cloud of its every side in front of
+/// the teach camera, about the sensor's point spacing apart; teach fits the normals as for any
+/// cloud (a mesh of overlapping solids has faces inside the part, whose normals would point into
+/// it and break the outward orientation of the faces around them). `options`
+/// gets the crop around it, the part's pose in it (T_scan_part, so that the model knows its place
+/// in the part) and the grip points moved from the mesh frame into it.
+core::PointCloud meshAsScan(const std::string& path, const std::string& units,
+                            core::TeachOptions& options) {
+  core::TriangleMesh mesh = core::loadMesh(path);
+  const double scale = core::parseLengthUnit(units) == core::LengthUnit::Metres ? 1000.0 : 1.0;
+  for (auto& v : mesh.vertices_mm)
+    v *= scale;
+  const double area_mm2 = core::surfaceArea(mesh);
+  if (!(area_mm2 > 0))
+    throw core::Error("--mesh " + path + " holds no surface: give the part's triangle mesh");
+  const core::SensorModel& sensor = options.sensor;
+  const double spacing_mm = sensor.fx > 0 ? sensor.nominal_distance_mm / sensor.fx : 0.5;
+  const auto count = std::min(kMaxMeshPoints, std::size_t(area_mm2 / (spacing_mm * spacing_mm)));
+  std::vector<Eigen::Vector3d> points, normals;
+  core::sampleSurface(mesh, std::max<std::size_t>(count, core::kMinTeachPoints), 1, points,
+                      normals);
+  // In front of the camera, beyond the sensor's working distance by the part's size.
+  const Eigen::AlignedBox3d box = core::boundingBox(mesh);
+  const Eigen::Isometry3d T_scan_part(Eigen::Translation3d(
+      Eigen::Vector3d(0, 0, sensor.nominal_distance_mm + box.diagonal().norm()) - box.center()));
+  core::PointCloud cloud;
+  for (const auto& p : points)
+    cloud.points_mm.push_back((T_scan_part * p).cast<float>());
+  cloud.width = static_cast<std::uint32_t>(cloud.points_mm.size());
+  cloud.height = 1;
+  options.T_scan_part = T_scan_part;
+  for (auto& g : options.grips_scan)
+    g = core::transformed(g, T_scan_part);
+  const Eigen::AlignedBox3f crop = core::boundingBox(cloud);
+  options.crop_box_mm = Eigen::AlignedBox3f(crop.min() - Eigen::Vector3f::Constant(1.0f),
+                                            crop.max() + Eigen::Vector3f::Constant(1.0f));
+  return cloud;
+}
+
+/// The teach scan: --scan's cloud, or --mesh's surface (meshAsScan).
+core::PointCloud teachScan(const std::string& scan, const std::string& mesh,
+                           const std::string& units, core::TeachOptions& options) {
+  return mesh.empty() ? loadWithUnitsCheck(scan, units) : meshAsScan(mesh, units, options);
+}
+
 /// The measured scan and part, then each derived parameter with its reason (or that --set
 /// replaced it).
 void printDerived(const core::AutoParams& derived, const core::TaughtModel& model) {
@@ -92,7 +143,7 @@ earlierViews(const std::vector<std::string>& paths, const std::string& name) {
 void registerTeachCommand(CLI::App& app) {
   struct Options {
     RecipeOptions recipe;
-    std::string scan, crop_box, crop_truth, part_pose, out, name = "part";
+    std::string scan, mesh, crop_box, crop_truth, part_pose, out, name = "part";
     bool remove_floor = false;
     std::vector<std::string> grips;
     std::vector<std::string> view_settings;
@@ -112,7 +163,13 @@ void registerTeachCommand(CLI::App& app) {
             core::sensorPreset(o->recipe.sensor.empty() ? "phoxi-m-1032" : o->recipe.sensor);
         for (const auto& g : o->grips)
           options.grips_scan.push_back(parseGrip(g));
-        if (o->crop_box.empty() == o->crop_truth.empty())
+        if (o->scan.empty() == o->mesh.empty())
+          throw core::Error("give exactly one of --scan or --mesh");
+        if (!o->mesh.empty() && (!o->crop_box.empty() || !o->crop_truth.empty() ||
+                                 !o->part_pose.empty() || o->remove_floor))
+          throw core::Error("--mesh is the whole part in its own frame: give no crop, part "
+                            "pose or floor removal with it");
+        if (o->mesh.empty() && o->crop_box.empty() == o->crop_truth.empty())
           throw core::Error("give exactly one of --crop-box or --crop-from-truth");
         if (!o->crop_box.empty()) {
           const auto b = parseNumbers(o->crop_box, 6, "--crop-box");
@@ -121,7 +178,7 @@ void registerTeachCommand(CLI::App& app) {
                                   Eigen::Vector3f(float(b[3]), float(b[4]), float(b[5])));
           if (options.crop_box_mm->isEmpty())
             throw core::Error("--crop-box: each minimum must be below its maximum");
-        } else {
+        } else if (!o->crop_truth.empty()) {
           teachOptionsFromTruth(o->crop_truth, options);
         }
         if (!o->part_pose.empty()) {
@@ -131,7 +188,7 @@ void registerTeachCommand(CLI::App& app) {
             throw core::Error(std::string("--part-pose: ") + e.what());
           }
         }
-        const core::PointCloud scan = loadWithUnitsCheck(o->scan, o->recipe.units);
+        const core::PointCloud scan = teachScan(o->scan, o->mesh, o->recipe.units, options);
         // With no preset and no parameter file, every value is derived from the part and the
         // scan; --set still overrides any of them.
         const bool derive = o->recipe.preset.empty() && o->recipe.params.empty();
@@ -143,7 +200,8 @@ void registerTeachCommand(CLI::App& app) {
         for (const auto& v : derived.values)
           if (core::findParameter(v.key)->get(model.params) == v.value)
             model.param_reasons[v.key] = v.reason;
-        model.teach_scan = std::filesystem::path(o->scan).filename().string();
+        model.teach_scan =
+            std::filesystem::path(o->mesh.empty() ? o->scan : o->mesh).filename().string();
         for (const auto& kv : o->view_settings) {
           // Parsed and checked as --set is (an unknown key or a value out of range is an Error),
           // then kept as the table's number.
@@ -170,7 +228,11 @@ void registerTeachCommand(CLI::App& app) {
         printViewCoverage(core::viewCoverage(all_views));
         return kOk;
       });
-  sub->add_option("--scan", o->scan, "Scan holding the part (.pcd or .ply)")->required();
+  sub->add_option("--scan", o->scan, "Scan holding the part (.pcd or .ply)");
+  sub->add_option("--mesh", o->mesh,
+                  "Instead of --scan: the part's triangle mesh (.ply, .stl, .obj, .vtk; a CAD "
+                  "export, in --units), taught as the part seen from every side; --grip "
+                  "positions are then in the mesh's frame");
   sub->add_option("--crop-box", o->crop_box,
                   "Crop box in the scan frame: xmin,ymin,zmin,xmax,ymax,zmax");
   sub->add_option(

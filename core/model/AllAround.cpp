@@ -27,15 +27,25 @@ using NormalGraph =
 
 /// How well `n_j` (at `p_j`) agrees in sign with `n_i` (at `p_i`), in [−1, 1]: the cosine between
 /// n_j and n_i mirrored in the plane half way between the points, which is n_j's direction if a
-/// circular arc joins them. Near 1 on a smooth surface (n_i ≈ n_j), across a sharp edge (a box's
-/// faces) and around a thin wall's rim alike; near 0 when the sign cannot be told.
+/// circular arc joins them. Near 1 on a smooth surface (n_i ≈ n_j) and across a sharp edge (a
+/// box's faces).
 float signAgreement(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i,
                     const Eigen::Vector3f& p_j, const Eigen::Vector3f& n_j) {
   const Eigen::Vector3f d = (p_j - p_i).normalized();
   return std::clamp(n_i.dot(n_j) - 2.0f * n_i.dot(d) * n_j.dot(d), -1.0f, 1.0f);
 }
 
-/// Each point with a normal linked to its nearest neighbours; an edge costs 1 − |signAgreement|,
+/// How far signAgreement can be trusted, in [0, 1]: not where the points lie along both normals
+/// (the two faces of a thin wall, whose normals are opposite, and two faces of a step, whose
+/// normals are alike, look the same), fully where they lie along both tangent planes.
+float signConfidence(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i,
+                     const Eigen::Vector3f& p_j, const Eigen::Vector3f& n_j) {
+  const Eigen::Vector3f d = (p_j - p_i).normalized();
+  return std::abs(signAgreement(p_i, n_i, p_j, n_j)) *
+         (1.0f - std::abs(n_i.dot(d)) * std::abs(n_j.dot(d)));
+}
+
+/// Each point with a normal linked to its nearest neighbours; an edge costs 1 − signConfidence,
 /// so that the signs spread first where they are clear.
 NormalGraph neighbourGraph(const std::vector<Eigen::Vector3f>& points,
                            const std::vector<Eigen::Vector3f>& normals) {
@@ -53,9 +63,8 @@ NormalGraph neighbourGraph(const std::vector<Eigen::Vector3f>& points,
     for (std::size_t k = 0; k < found; ++k) {
       const std::uint32_t j = index[k];
       if (j != i && normals[j].allFinite() && points[j] != points[i])
-        boost::add_edge(
-            i, j, 1.0f - std::abs(signAgreement(points[i], normals[i], points[j], normals[j])),
-            graph);
+        boost::add_edge(i, j, 1.0f - signConfidence(points[i], normals[i], points[j], normals[j]),
+                        graph);
     }
   }
   return graph;

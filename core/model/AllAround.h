@@ -27,8 +27,10 @@ bool seenFromOneCamera(const PointCloud& cloud_mm, const Eigen::Vector3d& camera
 /// nearest neighbours within `radius_mm`; their signs are then made consistent along a minimum
 /// spanning tree of the graph of 10 nearest neighbours (Hoppe et al. 1992), where two normals
 /// agree when one is the other mirrored half way between their points (a circular arc joins
-/// them: smooth surfaces, sharp edges and thin walls' rims alike), and in each connected piece the
-/// point farthest from the piece's centroid faces away from it. Deterministic.
+/// them: smooth surfaces and sharp edges alike) and an edge costs the less the more its points lie
+/// along their tangent planes (across a thin wall or a step the sign cannot be told); in each
+/// connected piece the point farthest from the piece's centroid faces away from it.
+/// Deterministic.
 std::vector<Eigen::Vector3f> outwardNormals(const PointCloud& cloud_mm, double radius_mm);
 
 } // namespace scanpick::core

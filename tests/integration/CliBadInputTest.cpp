@@ -147,3 +147,41 @@ TEST_F(CliBadInput, GripDirectionsAreTaughtCheckedAndReportedInTheScene) {
     EXPECT_TRUE(d["grip_points"][0].contains("closing_axis"));
   }
 }
+
+TEST_F(CliBadInput, AMeshIsTaughtAsThePartSeenFromEverySideAndBadOnesAreRefused) {
+  const auto teachMesh = [&](std::vector<std::string> extra, const fs::path& out) {
+    std::vector<std::string> args{"teach", "--name", "support", "--out", quoted(out)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return exitCode(runCli(args, m_dir / "log.txt"));
+  };
+  ASSERT_EQ(exitCode(runCli({"synth", "--part", "support", "--export-mesh", "--out",
+                             quoted(m_dir / "support.ply")},
+                            m_dir / "log.txt")),
+            0)
+      << log();
+  ASSERT_EQ(teachMesh({"--mesh", quoted(m_dir / "support.ply"), "--grip", "top=0,0,10"},
+                      m_dir / "mesh.spmodel"),
+            0)
+      << log();
+  EXPECT_NE(log().find("seen from every side"), std::string::npos) << log();
+  const core::TaughtModel model = core::loadModel(m_dir / "mesh.spmodel");
+  EXPECT_TRUE(model.all_around);
+  ASSERT_TRUE(model.T_part_model) << "the mesh's frame is the part's";
+  ASSERT_EQ(model.grip_points.size(), 1u);
+  // The grip was given in the mesh's frame.
+  EXPECT_TRUE((*model.T_part_model * model.grip_points[0].position_mm)
+                  .isApprox(Eigen::Vector3d(0, 0, 10), 1e-9));
+
+  core::writeFileAtomic(m_dir / "empty.ply", "ply\nformat ascii 1.0\nelement vertex 0\n"
+                                             "element face 0\nend_header\n");
+  for (const auto& extra : std::vector<std::vector<std::string>>{
+           {"--mesh", quoted(m_dir / "empty.ply")},
+           {"--mesh", quoted(m_dir / "no-such.ply")},
+           {"--mesh", quoted(m_dir / "support.ply"), "--scan", quoted(m_dir / "scene.pcd")},
+           {"--mesh", quoted(m_dir / "support.ply"), "--crop-box", "0,0,0,1,1,1"},
+           {}}) {
+    EXPECT_EQ(teachMesh(extra, m_dir / "bad.spmodel"), 1) << log();
+    EXPECT_NE(log().find("error"), std::string::npos) << log();
+    EXPECT_FALSE(fs::exists(m_dir / "bad.spmodel"));
+  }
+}
