@@ -1,6 +1,9 @@
 #include "core/model/AllAround.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <functional>
 #include <gtest/gtest.h>
 #include <numbers>
 
@@ -99,6 +102,61 @@ TEST(AllAround, AThinPlatesTwoFacesFaceAwayFromEachOther) {
   const auto normals = outwardNormals(plate.cloud, 2.0);
   for (std::size_t i = 0; i < normals.size(); ++i)
     ASSERT_GT(normals[i].dot(plate.outward[i]), 0.9999f) << i;
+}
+
+namespace {
+
+/// Points every `step_mm` over the axis-aligned rectangle of `face` from `from` to `to` (one of
+/// their coordinates equal), kept where `keep` says, each with `outward` beside it.
+void sampleFace(Sampled& out, const Eigen::Vector3f& from, const Eigen::Vector3f& to,
+                const Eigen::Vector3f& outward, float step_mm,
+                const std::function<bool(const Eigen::Vector3f&)>& keep = {}) {
+  const Eigen::Vector3f size = to - from;
+  for (float s = step_mm / 2; s < std::max({size.x(), size.y(), size.z()}); s += step_mm)
+    for (float t = step_mm / 2; t < std::max({size.x(), size.y(), size.z()}); t += step_mm) {
+      // The face spans the two axes along which it has an extent.
+      Eigen::Vector3f p = from;
+      int used = 0;
+      for (int axis = 0; axis < 3; ++axis)
+        if (size[axis] > 0) {
+          const float along = used++ == 0 ? s : t;
+          if (along >= size[axis])
+            p[axis] = NAN;
+          p[axis] += along;
+        }
+      if (p.allFinite() && (!keep || keep(p))) {
+        out.cloud.points_mm.push_back(p);
+        out.outward.push_back(outward);
+      }
+    }
+}
+
+} // namespace
+
+TEST(AllAround, AShallowStepsFacesBothFaceUp) {
+  // A block 100 x 60 mm, 20 mm high for x < 50 and 21.5 mm beyond: the two top faces lie 1.5 mm
+  // apart along their normals, closer than the neighbours the graph links (spacing 1 mm).
+  const float low = 20.0f, high = 21.5f;
+  const auto height = [&](float x) { return x < 50.0f ? low : high; };
+  Sampled block;
+  sampleFace(block, {0, 0, 0}, {100, 60, 0}, -Eigen::Vector3f::UnitZ(), 1.0f);
+  sampleFace(block, {0, 0, low}, {50, 60, low}, Eigen::Vector3f::UnitZ(), 1.0f);
+  sampleFace(block, {50, 0, high}, {100, 60, high}, Eigen::Vector3f::UnitZ(), 1.0f);
+  sampleFace(block, {50, 0, low}, {50, 60, high}, -Eigen::Vector3f::UnitX(), 0.5f);
+  sampleFace(block, {0, 0, 0}, {0, 60, low}, -Eigen::Vector3f::UnitX(), 1.0f);
+  sampleFace(block, {100, 0, 0}, {100, 60, high}, Eigen::Vector3f::UnitX(), 1.0f);
+  const auto under = [&](const Eigen::Vector3f& p) { return p.z() < height(p.x()); };
+  sampleFace(block, {0, 0, 0}, {100, 0, high}, -Eigen::Vector3f::UnitY(), 1.0f, under);
+  sampleFace(block, {0, 60, 0}, {100, 60, high}, Eigen::Vector3f::UnitY(), 1.0f, under);
+  for (auto& p : block.cloud.points_mm)
+    p.z() += 600.0f;
+  block.cloud.width = static_cast<std::uint32_t>(block.cloud.points_mm.size());
+  block.cloud.height = 1;
+  for (std::size_t i = 0; i < block.outward.size(); ++i)
+    block.cloud.normals.push_back(i % 3 == 0 ? -block.outward[i] : block.outward[i]);
+  const auto normals = outwardNormals(block.cloud, 2.0);
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    ASSERT_GT(normals[i].dot(block.outward[i]), 0.9999f) << i << " at " << block.cloud.points_mm[i];
 }
 
 TEST(AllAround, TheCloudsOwnNormalsAreTurnedConsistentlyOutward) {
