@@ -15,7 +15,8 @@
 #
 # Environment: BUILD_DIR (default build), WORK_DIR (default BUILD_DIR/random-parts), PARTS
 # (default 50), SEED (default 20160401), PRESET (default none: the parameters teach derives for each part),
-# OUT (default docs/random-parts.md).
+# SET (default none: space-separated KEY=VALUE, each given to teach and recognize as --set, to
+# measure one parameter's effect), OUT (default docs/random-parts.md).
 set -euo pipefail
 export LC_ALL=C
 
@@ -33,6 +34,8 @@ command -v jq > /dev/null || { echo "random-parts.sh: jq not found: apt-get inst
 cd "$ROOT"
 preset_args=()
 [[ -n $PRESET ]] && preset_args=(--preset "$PRESET")
+SET=${SET-}
+for kv in $SET; do preset_args+=(--set "$kv"); done
 
 rm -rf "$WORK"
 mkdir -p "$WORK"
@@ -102,11 +105,14 @@ distribution() {
   echo "Written by:"
   echo
   echo '```sh'
-  echo "BUILD_DIR=build PARTS=$PARTS SEED=$SEED ${PRESET:+PRESET=$PRESET }tools/random-parts.sh"
+  echo "BUILD_DIR=build PARTS=$PARTS SEED=$SEED ${PRESET:+PRESET=$PRESET }${SET:+SET=\"$SET\" }tools/random-parts.sh"
   echo '```'
   echo
   if [[ -n $PRESET ]]; then
     echo "Teaching: \`teach --crop-from-truth --remove-floor --preset $PRESET\`."
+  elif [[ -n $SET ]]; then
+    echo "Teaching: \`teach --crop-from-truth --remove-floor\` with no preset and \`--set $SET\`"
+    echo "(also given to recognize): the other values derived from the part and the scan."
   else
     echo "Teaching: \`teach --crop-from-truth --remove-floor\` with no preset: each view derives its"
     echo "parameters from the part and the scan ([user guide](user-guide.md#parameters-derived-at-teach))."

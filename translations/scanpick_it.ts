@@ -1057,6 +1057,18 @@
         <translation>%1. %2: direzione (%3, %4, %5) nel sistema di riferimento del pezzo</translation>
     </message>
     <message>
+        <source>What a scan of each view may leave open:</source>
+        <translation>Che cosa una scansione di ogni vista può lasciare aperto:</translation>
+    </message>
+    <message>
+        <source>View %1: %2</source>
+        <translation>Vista %1: %2</translation>
+    </message>
+    <message>
+        <source>Rotations a view&apos;s own surface cannot pin (an axis of revolution, a near symmetry). A detection reports them as its free turn axis or its alternative poses wherever the scan does not tell them apart.</source>
+        <translation>Rotazioni che la superficie della vista da sola non può fissare (un asse di rivoluzione, una quasi simmetria). Un rilevamento le riporta come asse di rotazione libera o come pose alternative dove la scansione non le distingue.</translation>
+    </message>
+    <message>
         <source>Directions from the part towards the camera, in the part frame: azimuth in the XY plane from +X towards +Y, elevation from the XY plane towards +Z.</source>
         <translation>Direzioni dal pezzo verso la telecamera, nel sistema di riferimento del pezzo: azimut nel piano XY da +X verso +Y, elevazione dal piano XY verso +Z.</translation>
     </message>

@@ -3,6 +3,7 @@
 #include "app/cli/Commands.h"
 #include "app/cli/RecipeOptions.h"
 #include "app/cli/TeachTruth.h"
+#include "core/ambiguity/ViewAmbiguities.h"
 #include "core/common/AtomicFile.h"
 #include "core/model/ModelFile.h"
 #include "core/model/ViewCoverage.h"
@@ -124,6 +125,15 @@ void printDerived(const core::AutoParams& derived, const core::TaughtModel& mode
   }
 }
 
+/// What the taught view (joined with the earlier views that share its part frame) leaves open,
+/// analysed as recognition with the model's parameters does.
+void printAmbiguities(const std::shared_ptr<const core::TaughtModel>& view) {
+  std::cout << "what a scan of this view may leave open:\n";
+  for (const auto& line :
+       core::describeAmbiguities(core::analyzeViewAmbiguities(view, view->params)))
+    std::cout << "  " << line << "\n";
+}
+
 /// The views given with --with-view, checked to be views of the part being taught (`name`).
 std::vector<std::shared_ptr<const core::TaughtModel>>
 earlierViews(const std::vector<std::string>& paths, const std::string& name) {
@@ -226,6 +236,7 @@ void registerTeachCommand(CLI::App& app) {
         auto all_views = views;
         all_views.push_back(std::make_shared<const core::TaughtModel>(std::move(model)));
         printViewCoverage(core::viewCoverage(all_views));
+        printAmbiguities(core::joinViews(all_views).back());
         return kOk;
       });
   sub->add_option("--scan", o->scan, "Scan holding the part (.pcd or .ply)");

@@ -49,10 +49,6 @@ constexpr double kAxisRotationCoverageSlack = 0.05;
 /// asymmetric feature's score drops by at most this much.
 constexpr double kRefinedAsymmetrySlack = 0.05;
 
-/// The differing points of a near symmetry tell two poses apart only when at least this share of
-/// the view's points (and 8) are among them and not hidden: a handful at the view's edges is noise.
-constexpr double kMinDistinguishingShare = 0.02;
-
 /// A detection is rotated by a near symmetry when the scan contradicts this much larger a share of
 /// its differing points than of the rotated pose's (contradictedShare); an asymmetric feature must
 /// score this much more for a rotation about the near axis.
@@ -323,8 +319,7 @@ std::vector<Detection> resolveNearSymmetries(std::vector<Detection> detections,
                                              const MatchingParams& params,
                                              const PoseVerifier& verify,
                                              const PoseRefiner& refine) {
-  const std::size_t min_seen = std::max<std::size_t>(
-      8, static_cast<std::size_t>(kMinDistinguishingShare * double(prep.verify->points.size())));
+  const std::size_t min_seen = minDistinguishingPoints(prep.verify->points.size());
   tbb::parallel_for(std::size_t{0}, detections.size(), [&](std::size_t k) {
     Detection& d = detections[k];
     // With the rotation about a near axis not seen (seesAsymmetry), the differing points of both
@@ -333,7 +328,7 @@ std::vector<Detection> resolveNearSymmetries(std::vector<Detection> detections,
         prep.near_axis && !seesAsymmetry(prep, scene, d.T_scene_model, params.verify_tolerance_mm);
     for (std::size_t j = 0; j < prep.symmetries.size(); ++j) {
       const NearSymmetry& s = prep.symmetries[j];
-      if (s.differing.size() < min_seen && s.differing_inverse.size() < min_seen) {
+      if (repeatsItself(s, prep.verify->points.size())) {
         // The view repeats itself under S: nothing in any scan can tell T from T·S. (Verifying
         // T·S would not tell either: the view's own self-occlusion, seen from the teach camera,
         // favours the pose that keeps it where the scan's camera sees it.)

@@ -291,6 +291,17 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
   return found;
 }
 
+std::size_t minDistinguishingPoints(std::size_t view_points) {
+  constexpr double kMinDistinguishingShare = 0.02;
+  return std::max<std::size_t>(
+      8, static_cast<std::size_t>(kMinDistinguishingShare * static_cast<double>(view_points)));
+}
+
+bool repeatsItself(const NearSymmetry& symmetry, std::size_t view_points) {
+  const std::size_t min_seen = minDistinguishingPoints(view_points);
+  return symmetry.differing.size() < min_seen && symmetry.differing_inverse.size() < min_seen;
+}
+
 double contradictedShare(const PointTally& tally, std::size_t min_seen) {
   const std::size_t seen = tally.points - tally.hidden;
   if (seen < std::max<std::size_t>(1, min_seen))

@@ -50,6 +50,14 @@ std::vector<NearSymmetry> findNearSymmetries(const TaughtModel& model, const Ver
                                              const RefineParams& icp, double tolerance_mm,
                                              double min_overlap);
 
+/// The fewest differing points (NearSymmetry::differing) that tell two poses apart: 2 % of the
+/// view's `view_points`, and 8; a handful at the view's edges is noise.
+std::size_t minDistinguishingPoints(std::size_t view_points);
+
+/// Whether the view repeats itself under `symmetry`: too few points differ either way
+/// (minDistinguishingPoints) for any scan to tell pose T from T·S.
+bool repeatsItself(const NearSymmetry& symmetry, std::size_t view_points);
+
 /// The share of the points `tally` looked at that the scan contradicts (sees clearly behind):
 /// violations ÷ the points not hidden, in [0, 1]; NaN when fewer than `min_seen` are not hidden
 /// (nothing to tell).

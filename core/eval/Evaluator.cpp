@@ -132,6 +132,8 @@ DetectionOutcome judgeDetection(const ResultDetection& detection,
   outcome.detection_id = detection.id;
   outcome.score = detection.score;
   outcome.T_scene_part = detection.T_scene_model * T_model_part;
+  for (const auto& T_alternative : detection.alternative_poses)
+    outcome.alternatives_scene_part.push_back(T_alternative * T_model_part);
   // Reported alternative poses are scored as poses of this detection too (the best one counts).
   const std::vector<Estimate> estimates =
       estimatesOf(detection, T_model_part, scene.part, scene.tolerances);
@@ -232,7 +234,7 @@ Summary summarize(const std::vector<SceneEvaluation>& scenes, const std::string&
     bool tp, recall;
   };
   std::vector<Pooled> pooled;
-  std::vector<double> translation, rotation, grip, time, render_tp, render_fp;
+  std::vector<double> translation, rotation, grip, time, render_tp, render_fp, render_ambiguous;
   for (const auto& scene : scenes) {
     ++s.scenes;
     s.instances += scene.instances;
@@ -244,6 +246,8 @@ Summary summarize(const std::vector<SceneEvaluation>& scenes, const std::string&
       pooled.push_back({o.score, o.true_positive, o.counts_for_recall});
       if (o.render_difference)
         (o.true_positive ? render_tp : render_fp).push_back(*o.render_difference);
+      if (o.ambiguity_render_difference)
+        render_ambiguous.push_back(*o.ambiguity_render_difference);
       if (!o.true_positive)
         continue;
       ++s.true_positives;
@@ -294,6 +298,7 @@ Summary summarize(const std::vector<SceneEvaluation>& scenes, const std::string&
   s.time_ms = computeStats(std::move(time));
   s.render_difference_tp = computeStats(std::move(render_tp));
   s.render_difference_fp = computeStats(std::move(render_fp));
+  s.render_difference_ambiguous = computeStats(std::move(render_ambiguous));
   return s;
 }
 

@@ -33,6 +33,13 @@ struct DetectionOutcome {
   /// The render check (RenderCheck.h), when it was run: the share of the pixels of the instance
   /// the detection lies on that a scan would see differently with the part at T_scene_part.
   std::optional<double> render_difference;
+  /// The detection's reported alternative poses as part poses (scene frame, mm).
+  std::vector<Eigen::Isometry3d> alternatives_scene_part;
+  /// The render check of a true positive that reports alternative poses: the largest share of
+  /// pixels a scan would see differently from the truth at any pose it offers (its own and its
+  /// alternatives). Small when what it reports is an ambiguity no scan can tell; large when the
+  /// scan could have told which pose is right.
+  std::optional<double> ambiguity_render_difference;
 };
 
 /// One scene's evaluation.
@@ -73,6 +80,8 @@ struct Summary {
   Stats time_ms;                               ///< per scene with timings
   /// The render check's differing shares of true and of false positives (empty when not run).
   Stats render_difference_tp, render_difference_fp;
+  /// The ambiguity_render_difference of the true positives that report alternative poses.
+  Stats render_difference_ambiguous;
 };
 
 /// Metrics over `scenes` (label names the group).

@@ -114,9 +114,16 @@ EvalReport withRenderCheck(EvalReport report, double tolerance_mm, const Progres
     for (auto& o : scene.outcomes) {
       const int instance =
           o.true_positive ? o.instance_id : renderer.instanceAt(scene.part, o.T_scene_part);
-      if (instance >= 0)
-        o.render_difference =
-            renderer.difference(instance, o.T_scene_part, tolerance_mm).fraction();
+      if (instance < 0)
+        continue;
+      o.render_difference = renderer.difference(instance, o.T_scene_part, tolerance_mm).fraction();
+      if (!o.true_positive || o.alternatives_scene_part.empty())
+        continue;
+      double largest = *o.render_difference;
+      for (const auto& T_alternative : o.alternatives_scene_part)
+        largest = std::max(largest,
+                           renderer.difference(instance, T_alternative, tolerance_mm).fraction());
+      o.ambiguity_render_difference = largest;
     }
   }
   reportProgress(progress, 1.0);

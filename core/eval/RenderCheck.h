@@ -66,9 +66,10 @@ private:
   std::vector<std::int32_t> m_labels; ///< per pixel, the instance id seen (RenderResult)
 };
 
-/// `report` with the render check run on every detection (its own pose, not an alternative it
-/// reports) against the instance it matched, or for a false positive the instance it lies on
-/// (TruthRenderer::instanceAt), and its summaries made again. Each scene is rendered from the
+/// `report` with the render check run on every detection's own pose against the instance it
+/// matched, or for a false positive the instance it lies on (TruthRenderer::instanceAt), and on
+/// every alternative pose a true positive reports (DetectionOutcome::ambiguity_render_difference),
+/// and its summaries made again. Each scene is rendered from the
 /// ground truth it was evaluated against (SceneEvaluation::truth). Throws Error as
 /// TruthRenderer does, and for a scene that keeps no ground truth.
 EvalReport withRenderCheck(EvalReport report, double tolerance_mm, const ProgressFn& progress = {});

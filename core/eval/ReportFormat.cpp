@@ -42,6 +42,7 @@ Json summaryToJson(const Summary& s) {
   if (s.render_difference_tp.count + s.render_difference_fp.count > 0) {
     out["render_difference_true_positives"] = statsToJson(s.render_difference_tp);
     out["render_difference_false_positives"] = statsToJson(s.render_difference_fp);
+    out["render_difference_ambiguous"] = statsToJson(s.render_difference_ambiguous);
   }
   return out;
 }
@@ -104,6 +105,8 @@ nlohmann::ordered_json reportToJson(const EvalReport& report) {
       }
       if (o.render_difference)
         d["render_difference"] = *o.render_difference;
+      if (o.ambiguity_render_difference)
+        d["ambiguity_render_difference"] = *o.ambiguity_render_difference;
       detections.push_back(std::move(d));
     }
     doc["scenes"].push_back({{"name", scene.name},
@@ -151,6 +154,7 @@ std::string reportToTable(const EvalReport& report, bool details) {
       out << "render check (" << s->label << "): share of pixels seen differently\n";
       writeStatsRow(out, "true positives", s->render_difference_tp);
       writeStatsRow(out, "false positives", s->render_difference_fp);
+      writeStatsRow(out, "reported ambiguities", s->render_difference_ambiguous);
     }
   }
 

@@ -201,15 +201,31 @@ namespace {
 
 /// Rejects the candidate as Ambiguous when its grasp moves or turns more than tolerated between
 /// the detection's pose and the poses the scan cannot tell from it (alternatives, free turns).
-void checkAmbiguous(const Detection& det, const GraspPoint& grasp, const GraspPlanParams& p,
-                    GraspCandidate& c) {
+/// At an alternative pose the grasp nearest the candidate's tool pose among the model's `grasps`
+/// counts: a symmetric part's alternative puts another grasp where this one was, and the tool
+/// grips the part there whichever pose is right.
+void checkAmbiguous(const Detection& det, const std::vector<GraspPoint>& grasps,
+                    const GraspPlanParams& p, GraspCandidate& c) {
   const Eigen::Vector3d approach = c.T_scene_tool.linear().col(2);
   double moved = 0.0, turned = 0.0;
+  const auto offset = [&](const Eigen::Isometry3d& T_alt, const GraspPoint& grasp) {
+    const Eigen::Isometry3d T_tool = toolPose(T_alt, grasp);
+    return std::make_pair((T_tool.translation() - c.T_scene_tool.translation()).norm(),
+                          std::acos(std::clamp(T_tool.linear().col(2).dot(approach), -1.0, 1.0)) /
+                              kDeg);
+  };
   for (const auto& alt : det.alternative_poses) {
-    const Eigen::Isometry3d T_alt = toolPose(alt, grasp);
-    moved = std::max(moved, (T_alt.translation() - c.T_scene_tool.translation()).norm());
-    turned = std::max(turned,
-                      std::acos(std::clamp(T_alt.linear().col(2).dot(approach), -1.0, 1.0)) / kDeg);
+    auto [alt_moved, alt_turned] = offset(alt, grasps[std::size_t(c.grasp)]);
+    for (const GraspPoint& other : grasps) {
+      const auto [distance, angle] = offset(alt, other);
+      if (angle <= kMaxAmbiguousTurnDeg &&
+          (distance < alt_moved || alt_turned > kMaxAmbiguousTurnDeg)) {
+        alt_moved = distance;
+        alt_turned = angle;
+      }
+    }
+    moved = std::max(moved, alt_moved);
+    turned = std::max(turned, alt_turned);
   }
   if (det.free_turn_axis) {
     const Eigen::Vector3d a = det.free_turn_axis->direction.normalized();
@@ -230,7 +246,9 @@ void checkAmbiguous(const Detection& det, const GraspPoint& grasp, const GraspPl
 /// Grasp `g` of detection `d` with the tool pose and pregrasp in the scene, its tilt, height and
 /// occlusion `occ`, rejected for a low score, ambiguity or tilt (collisions are checked apart).
 GraspCandidate candidateFor(const Detection& det, std::size_t d, std::size_t g,
-                            const GraspPoint& grasp, double occ, const GraspPlanParams& p) {
+                            const std::vector<GraspPoint>& grasps, double occ,
+                            const GraspPlanParams& p) {
+  const GraspPoint& grasp = grasps[g];
   GraspCandidate c;
   c.detection = int(d);
   c.grasp = int(g);
@@ -246,7 +264,7 @@ GraspCandidate candidateFor(const Detection& det, std::size_t d, std::size_t g,
     c.rejections.push_back(
         {RejectKind::LowScore, format("score %.3f < minimum %.3f", det.score, p.min_score)});
   if (p.reject_ambiguous)
-    checkAmbiguous(det, grasp, p, c);
+    checkAmbiguous(det, grasps, p, c);
   if (c.tilt_deg > p.max_tilt_deg)
     c.rejections.push_back(
         {RejectKind::TiltTooLarge, format("approach tilted %.1f deg from straight down (max %.1f)",
@@ -325,7 +343,7 @@ PickList planGrasps(const PointCloud& scene_mm, const std::vector<Detection>& de
     const double occ =
         model.grasps.empty() ? 0.0 : occlusion(grid, owned, det, int(d), model.cloud_mm, p);
     for (std::size_t g = 0; g < model.grasps.size(); ++g) {
-      GraspCandidate c = candidateFor(det, d, g, model.grasps[g], occ, p);
+      GraspCandidate c = candidateFor(det, d, g, model.grasps, occ, p);
       checkCollisions(grid, owned, int(d), solids, bin, p, c);
       all.push_back(std::move(c));
     }

@@ -276,6 +276,9 @@ AutoParams deriveParams(const ScanMeasures& scan, const PartMeasures& part,
             ": surface voting finds parts without features");
   d.set("matching.surface_reference_stride", 16, "every 16th sampled scene point votes");
   d.set("matching.surface_poses", 30, "voted poses verified");
+  d.set("matching.symmetry_overlap", 0.75,
+        "a rotation that puts three quarters of the view back on itself is checked against the "
+        "scan, or reported as an alternative pose");
   d.set("refine.enabled", 1.0, "ICP brings poses to the scan's own accuracy");
   d.set("refine.max_correspondence_mm", std::max(5.0 * verify, 0.02 * size),
         "5 x the verification tolerance, at least 0.02 x" + diameter + ": the coarse pose's error");

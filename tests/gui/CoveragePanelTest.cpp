@@ -2,7 +2,8 @@
 // the simulated PhoXi teach scans with the part's pose from each scene's ground truth (so both know
 // their place in the part), opened in a real window. The panel states the share core::viewCoverage
 // measures, draws the covered and the uncovered directions and each view where it lies, follows
-// when a view is added, and switches language with the window.
+// when a view is added, says what a scan of each view may leave open, and switches language with
+// the window.
 #include "ui/panels/CoveragePanel.h"
 
 #include "core/model/ModelFile.h"
@@ -200,6 +201,18 @@ TEST(CoveragePanel, ShowsTheShareTheCoreMeasuresAndFollowsTheViews) {
   EXPECT_EQ(panel->summaryText(), expectedSummary(two));
   EXPECT_NE(panel->summaryText(), one_text);
   checkImage(two, QStringLiteral("coverage-two-views.png"));
+  // What each view leaves open: the core's sentences for each view, with its own parameters.
+  for (std::size_t v = 0; v < window.views().size(); ++v) {
+    const auto& view = window.views()[v];
+    const auto lines = core::describeAmbiguities(core::analyzeViewAmbiguities(view, view->params));
+    ASSERT_FALSE(lines.empty());
+    for (const auto& line : lines)
+      EXPECT_TRUE(panel->ambiguitiesText().contains(
+          QStringLiteral("View %1: %2").arg(v + 1).arg(QString::fromStdString(line))))
+          << panel->ambiguitiesText().toStdString();
+  }
+  dock->resize(620, 900); // room for the ambiguities below the suggestions
+  QTest::qWait(100);
   dock->grab().save(test::screenshotDir() + "/coverage-panel.png");
 
   // The texts follow the language, and come back.

@@ -47,9 +47,9 @@ inline core::SynthScene teachScan(const std::string& part, std::uint64_t seed, i
   return core::synthesize(request);
 }
 
-/// A model taught from the only part of a virtual scan, cropped to the box of its ground truth.
-inline SynthTeach teachFromScan(const core::SynthScene& scan, const std::string& name,
-                                const core::RecognitionParams& params) {
+/// How the only part of a virtual scan is taught: cropped to the box of its ground truth, the
+/// floor removed, its pose known.
+inline core::TeachOptions teachOptionsFor(const core::SynthScene& scan, const std::string& name) {
   core::TeachOptions options;
   options.name = name;
   options.sensor = scan.sensor;
@@ -61,8 +61,15 @@ inline SynthTeach teachFromScan(const core::SynthScene& scan, const std::string&
   options.crop_oriented = crop;
   // The part's pose in the scan, as `teach --crop-from-truth` reads it: views can be joined.
   options.T_scan_part = scan.scene.T_scene_part(scan.scene.instances.at(0));
+  return options;
+}
+
+/// A model taught from the only part of a virtual scan (teachOptionsFor).
+inline SynthTeach teachFromScan(const core::SynthScene& scan, const std::string& name,
+                                const core::RecognitionParams& params) {
   SynthTeach out;
-  out.model = std::make_shared<core::TaughtModel>(core::teach(scan.render.cloud, options, params));
+  out.model = std::make_shared<core::TaughtModel>(
+      core::teach(scan.render.cloud, teachOptionsFor(scan, name), params));
   out.T_teach_part = scan.scene.T_scene_part(scan.scene.instances.at(0));
   return out;
 }

@@ -5,6 +5,7 @@
 
 #include <QEvent>
 #include <QLabel>
+#include <QScrollArea>
 #include <QVBoxLayout>
 #include <algorithm>
 #include <cmath>
@@ -21,6 +22,12 @@ QLabel* wrappedLabel(const char* name, QWidget* parent) {
   return label;
 }
 
+/// What the background job measures for the views.
+struct CoverageReport {
+  core::ViewCoverage coverage;
+  std::vector<core::ViewAmbiguities> ambiguities; ///< per view
+};
+
 /// A coloured square for the legend (rich text).
 QString swatch(const QColor& colour) {
   return QStringLiteral("<span style=\"color:%1\">&#9632;</span>").arg(colour.name());
@@ -36,16 +43,25 @@ CoveragePanel::CoveragePanel(JobPool* pool, QWidget* parent) : QWidget(parent) {
   m_legend = wrappedLabel("coverageLegend", this);
   m_legend->setTextFormat(Qt::RichText);
   m_suggestions = wrappedLabel("coverageSuggestions", this);
+  m_ambiguity_text = wrappedLabel("coverageAmbiguities", this);
+  m_ambiguity_text->setAlignment(Qt::AlignTop | Qt::AlignLeft);
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(m_summary);
-  layout->addWidget(m_sphere, 1);
+  layout->addWidget(m_sphere, 3);
   layout->addWidget(m_legend);
   layout->addWidget(m_suggestions);
+  // Several sentences per view: they scroll rather than squeeze the sphere.
+  m_ambiguity_scroll = new QScrollArea(this);
+  m_ambiguity_scroll->setWidget(m_ambiguity_text);
+  m_ambiguity_scroll->setWidgetResizable(true);
+  m_ambiguity_scroll->setFrameShape(QFrame::NoFrame);
+  layout->addWidget(m_ambiguity_scroll, 1);
   m_texts.bind(this, [this] { showTexts(); });
 }
 
 void CoveragePanel::setViews(std::vector<std::shared_ptr<const core::TaughtModel>> views) {
   m_coverage.reset();
+  m_ambiguities.clear();
   m_sphere->clear();
   if (views.empty()) {
     m_jobs->cancel();
@@ -57,12 +73,16 @@ void CoveragePanel::setViews(std::vector<std::shared_ptr<const core::TaughtModel
   m_state = State::Measuring;
   showTexts();
   const core::ViewCoverageOptions options = m_options;
-  m_jobs->run<core::ViewCoverage>(
+  m_jobs->run<CoverageReport>(
       [views = std::move(views), options](const core::ProgressFn&) {
-        return core::viewCoverage(views, options);
+        CoverageReport report{core::viewCoverage(views, options), {}};
+        for (const auto& view : views)
+          report.ambiguities.push_back(core::analyzeViewAmbiguities(view, view->params));
+        return report;
       },
-      [this](std::shared_ptr<const core::ViewCoverage> coverage) {
-        m_coverage = std::move(coverage);
+      [this](std::shared_ptr<const CoverageReport> report) {
+        m_coverage = std::make_shared<const core::ViewCoverage>(report->coverage);
+        m_ambiguities = report->ambiguities;
         m_state = State::Shown;
         m_sphere->setCoverage(*m_coverage, m_options.tolerance_deg);
         showTexts();
@@ -86,6 +106,10 @@ QString CoveragePanel::summaryText() const {
 
 QString CoveragePanel::suggestionsText() const {
   return m_suggestions->text();
+}
+
+QString CoveragePanel::ambiguitiesText() const {
+  return m_ambiguity_text->text();
 }
 
 QString CoveragePanel::describeDirection(const Eigen::Vector3d& d_part) {
@@ -113,6 +137,8 @@ void CoveragePanel::showTexts() {
   m_sphere->setVisible(m_state == State::Shown);
   m_legend->setVisible(m_state == State::Shown);
   m_suggestions->setVisible(m_state == State::Shown);
+  m_ambiguity_scroll->setVisible(m_state == State::Shown);
+  m_ambiguity_text->clear();
   m_summary->setToolTip(QString());
   switch (m_state) {
   case State::NoModel:
@@ -144,6 +170,7 @@ void CoveragePanel::showTexts() {
                              swatch(CoverageSphere::uncoveredColour()), tr("not covered"),
                              swatch(CoverageSphere::viewColour()), tr("taught view"),
                              QStringLiteral("&#9312;"), tr("suggested view")));
+  showAmbiguities();
   if (c.missing_part.empty()) {
     m_suggestions->setText(tr("Every viewing direction is covered."));
     m_suggestions->setToolTip(QString());
@@ -163,6 +190,18 @@ void CoveragePanel::showTexts() {
   m_suggestions->setToolTip(
       tr("Directions from the part towards the camera, in the part frame: azimuth in the XY "
          "plane from +X towards +Y, elevation from the XY plane towards +Z."));
+}
+
+void CoveragePanel::showAmbiguities() {
+  QStringList lines{tr("What a scan of each view may leave open:")};
+  for (std::size_t v = 0; v < m_ambiguities.size(); ++v)
+    for (const std::string& line : core::describeAmbiguities(m_ambiguities[v]))
+      lines << tr("View %1: %2").arg(v + 1).arg(QString::fromStdString(line));
+  m_ambiguity_text->setText(lines.join('\n'));
+  m_ambiguity_text->setToolTip(
+      tr("Rotations a view's own surface cannot pin (an axis of revolution, a near symmetry). A "
+         "detection reports them as its free turn axis or its alternative poses wherever the scan "
+         "does not tell them apart."));
 }
 
 void CoveragePanel::changeEvent(QEvent* event) {

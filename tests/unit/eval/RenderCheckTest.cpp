@@ -7,6 +7,7 @@
 #include "tests/unit/eval/EvalTestSupport.h"
 
 #include <gtest/gtest.h>
+#include <memory>
 
 using namespace scanpick;
 using test::pose;
@@ -126,4 +127,41 @@ TEST(RenderCheck, TheBinsWallShadowsWhatTheProjectorCannotReach) {
   EXPECT_GT(parts_alone, 0.08) << "alone, the handle shows elsewhere";
   EXPECT_EQ(core::eval::TruthRenderer(truth).difference(cup.id, cup.T_scene_part, 3.0).differing,
             0u);
+}
+
+// The alternatives a true positive reports: a quarter turn of the 4-fold pump-connector is an
+// ambiguity no scan tells; a quarter turn of the lying cup moves its handle, which a scan shows.
+TEST(RenderCheck, TellsWhetherTheAlternativesADetectionReportsAreAmbiguitiesAScanCannotTell) {
+  const auto truth = std::make_shared<const core::eval::GroundTruth>(twoParts());
+  const auto outcome = [&](const core::eval::TruthInstance& instance, double turn_deg) {
+    core::eval::DetectionOutcome o;
+    o.true_positive = true;
+    o.instance_id = instance.id;
+    o.error = core::eval::PoseError{};
+    o.T_scene_part = instance.T_scene_part;
+    o.alternatives_scene_part = {instance.T_scene_part * pose({0, 0, 0}, turn_deg)};
+    return o;
+  };
+  core::eval::EvalReport report;
+  for (const auto& instance : truth->instances) {
+    core::eval::SceneEvaluation scene;
+    scene.name = instance.part;
+    scene.part = instance.part;
+    scene.truth = truth;
+    scene.outcomes = {outcome(instance, 90)};
+    // A detection without alternatives gets no ambiguity check.
+    scene.outcomes.push_back(outcome(instance, 90));
+    scene.outcomes.back().alternatives_scene_part.clear();
+    report.scenes.push_back(std::move(scene));
+  }
+  report = core::eval::withRenderCheck(std::move(report), 1.0);
+  const auto& cup = report.scenes[0].outcomes;
+  const auto& pump = report.scenes[1].outcomes;
+  ASSERT_TRUE(cup[0].ambiguity_render_difference && pump[0].ambiguity_render_difference);
+  EXPECT_FALSE(cup[1].ambiguity_render_difference || pump[1].ambiguity_render_difference);
+  EXPECT_LT(*pump[0].ambiguity_render_difference, 0.01);
+  EXPECT_GT(*cup[0].ambiguity_render_difference, 0.04);
+  EXPECT_EQ(report.overall.render_difference_ambiguous.count, 2u);
+  EXPECT_DOUBLE_EQ(report.overall.render_difference_ambiguous.max,
+                   *cup[0].ambiguity_render_difference);
 }

@@ -278,6 +278,29 @@ TEST(GraspPlanner, GraspsThatMoveBetweenIndistinguishablePosesAreRejected) {
   EXPECT_EQ(planGrasps(sceneWith({T}), {d}, {m}, Gripper{}, std::nullopt, p).picks.size(), 2u);
 }
 
+TEST(GraspPlanner, AGraspThatASymmetricPartsAlternativePutsAnotherGraspOnIsKept) {
+  const auto T = onFloor(0, 0, kPartHalf.z());
+  GraspModel m = boxModel();
+  // Two corners the half turn about up swaps, and a third it moves where no grasp is.
+  m.grasps = {{"corner-a", {25, 15, -15}, Eigen::Vector3d::UnitZ(), std::nullopt},
+              {"corner-b", {-25, -15, -15}, Eigen::Vector3d::UnitZ(), std::nullopt},
+              {"corner-c", {25, -15, -15}, Eigen::Vector3d::UnitZ(), std::nullopt}};
+  Detection d = detectionAt(T);
+  Eigen::Isometry3d turned = T;
+  turned.linear() = Eigen::AngleAxisd(EIGEN_PI, Eigen::Vector3d::UnitZ()).matrix();
+  d.alternative_poses = {turned};
+  GraspPlanParams p;
+  p.one_per_part = false;
+  const PickList l = planGrasps(sceneWith({T}), {d}, {m}, Gripper{}, std::nullopt, p);
+  ASSERT_EQ(l.picks.size(), 2u);
+  EXPECT_EQ(l.picks[0].grip.substr(0, 7), "corner-");
+  EXPECT_NE(l.picks[0].grip, "corner-c");
+  EXPECT_NE(l.picks[1].grip, "corner-c");
+  ASSERT_EQ(l.rejected.size(), 1u);
+  EXPECT_EQ(l.rejected[0].grip, "corner-c");
+  EXPECT_TRUE(hasReason(l.rejected[0], RejectKind::Ambiguous)) << reasons(l.rejected[0]);
+}
+
 TEST(GraspPlanner, IsDeterministicAndChecksItsInput) {
   std::vector<Eigen::Isometry3d> poses = {onFloor(-40, 0, 15), onFloor(40, 10, 15, 20)};
   poses[1].translation().z() -= 12.0;
