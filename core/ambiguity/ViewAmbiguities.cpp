@@ -64,7 +64,11 @@ ViewAmbiguities viewAmbiguities(const detail::ModelPrep& prep) {
 ViewAmbiguities analyzeViewAmbiguities(const std::shared_ptr<const TaughtModel>& view,
                                        const RecognitionParams& params) {
   std::vector<std::shared_ptr<const detail::ModelPrep>> preps;
-  const RecognitionParams own = withViewParams(params, view->view_params);
+  RecognitionParams own = withViewParams(params, view->view_params);
+  // The axes and the near symmetries do not depend on the surface pair table or on the joined
+  // views' ICP model, which the preparation would otherwise build for matching and refinement.
+  own.matching.surface_sampling_mm = 0.0;
+  own.refine.enabled = false;
   return viewAmbiguities(*detail::prepareModel(preps, view, own));
 }
 
