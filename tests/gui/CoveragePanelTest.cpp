@@ -203,8 +203,9 @@ TEST(CoveragePanel, ShowsTheShareTheCoreMeasuresAndFollowsTheViews) {
   checkImage(two, QStringLiteral("coverage-two-views.png"));
   // What each view leaves open: the core's sentences for each view, with its own parameters.
   for (std::size_t v = 0; v < window.views().size(); ++v) {
-    const auto& view = window.views()[v];
-    const auto lines = core::describeAmbiguities(core::analyzeViewAmbiguities(view, view->params));
+    const auto& taught = window.views()[v];
+    const auto lines =
+        core::describeAmbiguities(core::analyzeViewAmbiguities(taught, taught->params));
     ASSERT_FALSE(lines.empty());
     for (const auto& line : lines)
       EXPECT_TRUE(panel->ambiguitiesText().contains(
