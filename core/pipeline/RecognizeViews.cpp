@@ -214,6 +214,13 @@ PointCloud moved(const std::vector<Eigen::Vector3f>& points, const Eigen::Isomet
   return PointCloud::fromPoints(std::move(out));
 }
 
+/// Whether two poses lie more than kSameInstanceMm or kSameInstanceDeg apart.
+bool posesDiffer(const Eigen::Isometry3d& T_a, const Eigen::Isometry3d& T_b) {
+  const double angle = Eigen::AngleAxisd(T_a.linear().transpose() * T_b.linear()).angle();
+  return (T_a.translation() - T_b.translation()).norm() > kSameInstanceMm ||
+         angle > kSameInstanceDeg * EIGEN_PI / 180.0;
+}
+
 /// Whether two views' detections put the part (TaughtModel::T_part_model) at poses more than
 /// kSameInstanceMm or kSameInstanceDeg apart; false when a view does not know its place in the
 /// part.
@@ -221,13 +228,8 @@ bool posesDiffer(const Detection& a, const Detection& b,
                  const std::vector<std::shared_ptr<const TaughtModel>>& models) {
   const auto& part_a = models[static_cast<std::size_t>(a.model_index)]->T_part_model;
   const auto& part_b = models[static_cast<std::size_t>(b.model_index)]->T_part_model;
-  if (!part_a || !part_b)
-    return false;
-  const Eigen::Isometry3d T_a = a.T_scene_model * part_a->inverse();
-  const Eigen::Isometry3d T_b = b.T_scene_model * part_b->inverse();
-  const double angle = Eigen::AngleAxisd(T_a.linear().transpose() * T_b.linear()).angle();
-  return (T_a.translation() - T_b.translation()).norm() > kSameInstanceMm ||
-         angle > kSameInstanceDeg * EIGEN_PI / 180.0;
+  return part_a && part_b &&
+         posesDiffer(a.T_scene_model * part_a->inverse(), b.T_scene_model * part_b->inverse());
 }
 
 } // namespace
@@ -309,16 +311,18 @@ mergeViewDetections(std::vector<Detection> detections,
   return kept;
 }
 
-std::vector<Detection> suppressDuplicates(std::vector<Detection> detections,
-                                          double min_distance_mm) {
+std::vector<Detection> suppressDuplicates(std::vector<Detection> detections, double min_distance_mm,
+                                          const SameInstanceArbiter& prefer) {
   std::vector<Detection> kept;
   for (auto& d : detections) {
-    const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const Detection& k) {
+    const auto same = std::find_if(kept.begin(), kept.end(), [&](const Detection& k) {
       return (k.T_scene_model.translation() - d.T_scene_model.translation()).norm() <
              min_distance_mm;
     });
-    if (!duplicate)
+    if (same == kept.end())
       kept.push_back(std::move(d));
+    else if (prefer && posesDiffer(same->T_scene_model, d.T_scene_model) && prefer(*same, d))
+      *same = std::move(d);
   }
   return kept;
 }

@@ -183,11 +183,35 @@ VotingScene votingScene(StageMemo& memo, const ModelPrep& prep, const Recognitio
   return out;
 }
 
+/// With views joined, which of two poses of one instance the view found the whole part bears out
+/// better (wholePartScore, clearly: kPartScoreMargin): the view's own points may verify a pose
+/// that turns the part's other sides away from the camera or into the floor as well as the right
+/// one. Empty without joined views or verification.
+SameInstanceArbiter wholePartArbiter(const ViewInScene& view) {
+  if (!view.verifying() || !view.prep->joined_points)
+    return {};
+  auto every = std::make_shared<const std::vector<std::uint32_t>>(
+      evenSubset(view.prep->joined_points->points.size(), kPartScorePoints));
+  auto scored = std::make_shared<std::vector<std::pair<Eigen::Matrix4d, double>>>();
+  return [&view, every, scored](const Detection& kept, const Detection& candidate) {
+    const auto score = [&](const Eigen::Isometry3d& T) {
+      for (const auto& [pose, s] : *scored)
+        if (pose == T.matrix())
+          return s;
+      const double s = wholePartScore(*view.prep->joined_points, view.scene, T,
+                                      view.params.matching.verify_tolerance_mm, every.get());
+      scored->emplace_back(T.matrix(), s);
+      return s;
+    };
+    return score(candidate.T_scene_model) > score(kept.T_scene_model) + kPartScoreMargin;
+  };
+}
+
 /// The detections of the view in the scene: feature matching and surface voting, best first,
-/// duplicates suppressed, the rotations matching cannot tell apart resolved when
-/// `resolve_ambiguities`, at most params.matching.max_detections, refined when
-/// params.refine.enabled, and placed (centres, grip points, free rotation axes). Adds the matching
-/// and refinement times to `timings`.
+/// duplicates suppressed (the pose the whole part bears out better kept, wholePartArbiter), the
+/// rotations matching cannot tell apart resolved when `resolve_ambiguities`, at most
+/// params.matching.max_detections, refined when params.refine.enabled, and placed (centres, grip
+/// points, free rotation axes). Adds the matching and refinement times to `timings`.
 std::vector<Detection> findDetections(const ViewInScene& view, const SceneAnalysis& scene,
                                       const VotingScene& voting, bool resolve_ambiguities,
                                       const ProgressFn& progress, StageTimings& timings) {
@@ -204,7 +228,7 @@ std::vector<Detection> findDetections(const ViewInScene& view, const SceneAnalys
   }
   sortBestFirst(detections);
   const double duplicate_mm = kDuplicateShare * view.model.diameter_mm;
-  detections = suppressDuplicates(std::move(detections), duplicate_mm);
+  detections = suppressDuplicates(std::move(detections), duplicate_mm, wholePartArbiter(view));
   const MatchingParams& matching = view.params.matching;
   if (resolve_ambiguities && view.prep)
     detections = resolveDetectionAmbiguities(std::move(detections), *view.prep, view.scene,
@@ -390,10 +414,7 @@ PartScorer Recognizer::partScorer(const std::vector<std::shared_ptr<const Taught
     if (!prep->joined_points || !(view.tolerance_mm > 0))
       continue;
     view.points = prep->joined_points;
-    const std::size_t count = view.points->points.size();
-    const std::size_t stride = std::max<std::size_t>(1, count / kPartScorePoints);
-    for (std::size_t k = 0; k < count; k += stride)
-      view.every.push_back(static_cast<std::uint32_t>(k));
+    view.every = evenSubset(view.points->points.size(), kPartScorePoints);
   }
   // The scorer keeps the analysis its VerifyScene points into alive.
   const auto at = std::make_shared<const SceneAnalysis>(withIndex(*scene, requested));
@@ -404,10 +425,8 @@ PartScorer Recognizer::partScorer(const std::vector<std::shared_ptr<const Taught
     const ViewPart& view = views[static_cast<std::size_t>(d.model_index)];
     if (!view.points)
       return std::numeric_limits<double>::quiet_NaN();
-    const PointTally t = tallyPoints(*view.points, verify_scene, d.T_scene_model, view.tolerance_mm,
-                                     {.subset = &view.every, .stop = {}, .sort_unmeasured = true});
-    const double expected = double(t.points) - double(t.hidden) - double(t.shadowed);
-    return expected > 0 ? (double(t.confirmed) - double(t.violations)) / expected : 0.0;
+    return wholePartScore(*view.points, verify_scene, d.T_scene_model, view.tolerance_mm,
+                          &view.every);
   };
 }
 

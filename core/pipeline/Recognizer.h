@@ -224,8 +224,10 @@ mergeViewDetections(std::vector<Detection> detections,
                     double min_distance_mm, const SameInstanceArbiter& prefer = {});
 
 /// Removes duplicates: detections (sorted best first) whose model origins (scene frame) lie
-/// closer than `min_distance_mm` to a better one's are dropped. Keeps the input order otherwise.
-std::vector<Detection> suppressDuplicates(std::vector<Detection> detections,
-                                          double min_distance_mm);
+/// closer than `min_distance_mm` to a better one's are dropped. Where the two poses differ
+/// (kSameInstanceMm, kSameInstanceDeg), `prefer` (when set) may give the later one the earlier
+/// one's place (and its place in the order). Keeps the input order otherwise.
+std::vector<Detection> suppressDuplicates(std::vector<Detection> detections, double min_distance_mm,
+                                          const SameInstanceArbiter& prefer = {});
 
 } // namespace scanpick::core

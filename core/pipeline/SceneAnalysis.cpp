@@ -144,7 +144,7 @@ void preprocessStage(StageMemo& memo, const PreKey& key, const PointCloud& scan_
   FloorRemovalResult floor = removeFloor(scan_mm, params.floor, params.seed,
                                          subProgress(progress, kProgressShares.preprocess));
   memo.floor_removed = floor.removed_points;
-  memo.floor_plane = floor.planes.empty() ? std::nullopt : std::optional(floor.planes.front());
+  memo.floor_plane = floor.resting_plane;
   // Without a voxel size the scan stays as it is: moved, not copied (a PhoXi scan is 9 MB).
   memo.pre = std::make_shared<const PointCloud>(
       params.downsample.voxel_mm > 0 ? voxelDownsample(floor.remaining, params.downsample.voxel_mm)

@@ -31,7 +31,8 @@ struct SceneAnalysis {
   /// The scan after floor removal and downsampling.
   std::shared_ptr<const PointCloud> preprocessed;
   std::size_t floor_points_removed = 0;
-  /// The largest plane removed, (a, b, c, d) with a unit normal towards the camera; none: no floor.
+  /// The plane the parts rest on (FloorRemovalResult::resting_plane), (a, b, c, d) with a unit
+  /// normal towards the camera; none: no floor.
   std::optional<Eigen::Vector4f> floor_plane;
   /// One cloud per object (cluster), then per object its keypoints and features.
   std::shared_ptr<const std::vector<PointCloud>> objects;

@@ -63,7 +63,7 @@ struct StageMemo {
   std::optional<PreKey> pre_key;
   std::shared_ptr<const PointCloud> pre;
   std::size_t floor_removed = 0;
-  std::optional<Eigen::Vector4f> floor_plane; ///< the largest plane removed (key: pre_key)
+  std::optional<Eigen::Vector4f> floor_plane; ///< the plane the parts rest on (key: pre_key)
   std::optional<SplitKey> split_key;
   std::shared_ptr<const std::vector<PointCloud>> objects;
   std::optional<KeypointKey> keypoint_key;

@@ -316,8 +316,9 @@ void removeBinFloor(FloorSearch& search, const std::vector<char>& part, bool sup
   const auto bin_floor =
       findBinFloor(search.scene_mm.points_mm, search.alive, search.result.planes.front(),
                    params.distance_mm, min_bin_floor_points);
-  if (bin_floor && (!support_only || reachesBeyondPart(search, part, *bin_floor)))
-    removePlane(search, *bin_floor, min_bin_floor_points);
+  if (bin_floor && (!support_only || reachesBeyondPart(search, part, *bin_floor)) &&
+      removePlane(search, *bin_floor, min_bin_floor_points))
+    search.result.resting_plane = search.result.planes.back();
 }
 
 /// `scene_mm` without the `removed` points: NaN in their place when organized, else dropped.
@@ -357,6 +358,8 @@ FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& pa
       static_cast<std::size_t>(std::ceil(params.min_plane_fraction * double(search.total_valid)));
   removeFloorPlanes(search, min_points, support_only, seed, progress);
   removeBinFloor(search, part, support_only);
+  if (!search.result.resting_plane && !search.result.planes.empty())
+    search.result.resting_plane = search.result.planes.front();
   search.result.remaining = withoutRemoved(scene_mm, search.removed);
   reportProgress(progress, 1.0);
   return std::move(search.result);

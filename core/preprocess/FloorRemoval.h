@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace scanpick::core {
@@ -20,6 +21,9 @@ struct FloorRemovalResult {
   /// The removed planes, largest first: (a, b, c, d) with a unit normal, a x + b y + c z + d = 0 in
   /// millimetres, the normal pointing towards the camera (the origin).
   std::vector<Eigen::Vector4f> planes;
+  /// The plane the parts rest on, one of `planes`: the bin's floor when one was removed (the
+  /// ground around a bin lies below it), else the largest plane; none when no plane was removed.
+  std::optional<Eigen::Vector4f> resting_plane;
   std::size_t removed_points = 0; ///< valid points that were removed
 };
 

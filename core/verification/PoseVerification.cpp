@@ -257,6 +257,23 @@ PointCloud edgeKeypointCloud(const std::vector<Keypoints>& keypoints, const Sens
   return image;
 }
 
+double wholePartScore(const VerifyModel& part, const VerifyScene& scene,
+                      const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
+                      const std::vector<std::uint32_t>* subset) {
+  const PointTally t = tallyPoints(part, scene, T_scene_model, tolerance_mm,
+                                   {.subset = subset, .stop = {}, .sort_unmeasured = true});
+  const double expected = double(t.points) - double(t.hidden) - double(t.shadowed);
+  return expected > 0 ? (double(t.confirmed) - double(t.violations)) / expected : 0.0;
+}
+
+std::vector<std::uint32_t> evenSubset(std::size_t count, std::size_t target) {
+  const std::size_t stride = std::max<std::size_t>(1, count / std::max<std::size_t>(1, target));
+  std::vector<std::uint32_t> every;
+  for (std::size_t k = 0; k < count; k += stride)
+    every.push_back(static_cast<std::uint32_t>(k));
+  return every;
+}
+
 double verifyPose(const VerifyModel& model, const VerifyScene& scene,
                   const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                   const EdgeCheck& edges, double drop_below) {

@@ -131,7 +131,7 @@ struct VerifyScene {
   const PointCloud* scan = nullptr;
   const SensorModel* sensor = nullptr;
   /// The floor (or table) plane, (a, b, c, d) with a unit normal towards the camera
-  /// (FloorRemovalResult::planes[0]); none: no floor test.
+  /// (FloorRemovalResult::resting_plane); none: no floor test.
   std::optional<Eigen::Vector4f> floor_plane;
   /// The scan's projector shadows; none: unmeasured points are expected like any other.
   const ProjectorShadow* shadow = nullptr;
@@ -158,6 +158,19 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
 /// reach with `left` points not looked at: each of them confirmed, and the expected count at its
 /// lowest (75 % of the points not shadowed so far and, with `all_around`, not turned away).
 double surfaceScoreBound(const PointTally& tally, std::size_t left, bool all_around = false);
+
+/// How well the scan bears out the points `subset` of `part` (all when null) at `T_scene_model`:
+/// (confirmed − violations) ÷ the points neither hidden nor shadowed (tallyPoints), 0 when there
+/// are none. Unlike verifyPose it takes the expected count as it is and has no edge check: it
+/// compares poses of one instance for the same points (a view's points and those of the views
+/// joined to it), where a pose that turns material away from the camera or into the floor must
+/// not be excused.
+double wholePartScore(const VerifyModel& part, const VerifyScene& scene,
+                      const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
+                      const std::vector<std::uint32_t>* subset = nullptr);
+
+/// Every stride-th index of `count` points, so that about `target` remain (all when fewer).
+std::vector<std::uint32_t> evenSubset(std::size_t count, std::size_t target);
 
 /// Verification score in [0, 1]: (confirmed − violations) ÷ the points expected to be seen,
 /// times the edge agreement (the share of model keypoints on confirmed surface with a scene

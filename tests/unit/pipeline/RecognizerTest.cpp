@@ -145,6 +145,30 @@ TEST(Recognizer, SuppressesDuplicatesCloserThanTheDistance) {
   EXPECT_EQ(kept[1].score, 0.7);
 }
 
+TEST(Recognizer, ADuplicateTheArbiterPrefersTakesThePlaceOfTheBetterScoredOne) {
+  Detection a, b, c, same_pose;
+  a.score = 0.9;
+  b.score = 0.8; // one instance, turned half about z
+  b.T_scene_model =
+      Eigen::Translation3d(3, 0, 0) * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ());
+  same_pose.score = 0.85; // a, a millimetre off: the same pose
+  same_pose.T_scene_model.translation() = Eigen::Vector3d(1, 0, 0);
+  c.score = 0.7;
+  c.T_scene_model.translation() = Eigen::Vector3d(50, 0, 0);
+  int asked = 0;
+  const SameInstanceArbiter prefer_turned = [&](const Detection& kept, const Detection& candidate) {
+    ++asked;
+    return kept.score == 0.9 && candidate.score == 0.8;
+  };
+  const auto kept = suppressDuplicates({a, same_pose, b, c}, 10.0, prefer_turned);
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].score, 0.8) << "the turned pose in the first one's place";
+  EXPECT_EQ(kept[1].score, 0.7);
+  EXPECT_EQ(asked, 1) << "poses that do not differ are not asked about";
+  // Without an arbiter the better-scored one stays.
+  EXPECT_EQ(suppressDuplicates({a, same_pose, b, c}, 10.0)[0].score, 0.9);
+}
+
 namespace {
 /// A 60 x 40 x 10 mm block's face at z = 10 (x, y in [0, 60] x [0, 40]) or at x = 0, as a view
 /// would scan it, 1 mm apart.

@@ -73,6 +73,11 @@ TEST(FloorRemoval, BinFloorGoesAndTheRimAndPartsStay) {
   ASSERT_EQ(result.planes.size(), 2u);
   EXPECT_NEAR(result.planes[1].z(), -1.0f, 1e-3);
   EXPECT_NEAR(result.planes[1].w(), 990.0f, 0.2) << "the bin floor's top, fitted exactly";
+  // The parts rest on the bin's floor, not on the ground 10 mm below it.
+  ASSERT_TRUE(result.resting_plane.has_value());
+  EXPECT_EQ(*result.resting_plane, result.planes[1]);
+  ASSERT_TRUE(ground_only.resting_plane.has_value());
+  EXPECT_EQ(*ground_only.resting_plane, ground_only.planes[0]);
   std::size_t bin_floor_kept = 0, bin_floor_seen = 0, rim = 0, rim_kept = 0, parts = 0,
               parts_kept = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
