@@ -331,9 +331,11 @@ std::shared_ptr<const ModelPrep> prepareModel(std::vector<std::shared_ptr<const 
   std::shared_ptr<const SceneIndex> surface; // the model's points and normals, when made here
   // The views joined to this one, made once when something needs them.
   const auto joined = [&]() -> const VerifyModel& {
-    if (!prep->joined_points)
+    if (!prep->joined_points) {
       prep->joined_points =
           std::make_shared<const VerifyModel>(joinedPoints(*model, *prep->verify, points, radius));
+      prep->joined_sample = evenSubset(prep->joined_points->points.size(), kJoinedSamplePoints);
+    }
     return *prep->joined_points;
   };
   if (found != preps.end()) {

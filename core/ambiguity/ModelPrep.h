@@ -23,6 +23,12 @@
 
 namespace scanpick::core::detail {
 
+/// About this many of the whole part's points compare two of its poses (ModelPrep::joined_sample).
+inline constexpr std::size_t kJoinedSamplePoints = 2000;
+/// One pose of an instance is clearly better than another when the whole part scores this much
+/// higher at it (wholePartScore): in the merge of views and among a view's duplicates.
+inline constexpr double kPartScoreMargin = 0.05;
+
 /// What a view's near symmetries were found with (findNearSymmetries' parameters).
 struct SymmetryKey {
   double overlap = 0.0;
@@ -72,6 +78,9 @@ struct ModelPrep {
   /// With views joined, the points of all of them in this view's frame (each view's with normals
   /// facing its own teach camera); null without joined views.
   std::shared_ptr<const VerifyModel> joined_points;
+  /// About kJoinedSamplePoints of joined_points, evenly strided (indices): what compares two poses
+  /// of the whole part (wholePartScore).
+  std::vector<std::uint32_t> joined_sample;
   double surface_sampling_mm = 0;              ///< of `pairs`
   std::shared_ptr<const PointPairModel> pairs; ///< when surface voting is on
   /// Near symmetries, and what they were found with (unset when not searched).

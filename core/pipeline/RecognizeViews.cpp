@@ -2,6 +2,7 @@
 /// Several views of one part in one scene: each view recognized with the recognizer's shared
 /// scene stages, their detections merged, and the merged ones refined.
 
+#include "core/ambiguity/ModelPrep.h"
 #include "core/common/Error.h"
 #include "core/common/Log.h"
 #include "core/common/Progress.h"
@@ -106,7 +107,7 @@ std::vector<Detection> mergeAndResolve(
     if (!on_part)
       on_part = recognizer.partScorer(models, scene, params);
     const double kept_score = on_part(kept), candidate_score = on_part(candidate);
-    const bool take = candidate_score > kept_score + kPartScoreMargin; // false for NaN
+    const bool take = candidate_score > kept_score + detail::kPartScoreMargin; // false for NaN
     logger()->debug("view {}'s pose at ({:.0f}, {:.0f}, {:.0f}) mm scores {:.3f} on the whole "
                     "part, view {}'s pose of that instance {:.3f}: {}",
                     candidate.model_index, candidate.centre_mm.x(), candidate.centre_mm.y(),

@@ -25,6 +25,7 @@ namespace scanpick::core {
 namespace {
 
 using detail::kIcpCoverageSlack;
+using detail::kPartScoreMargin;
 using detail::ModelPrep;
 using detail::placeDetections;
 using detail::PoseRefiner;
@@ -190,16 +191,15 @@ VotingScene votingScene(StageMemo& memo, const ModelPrep& prep, const Recognitio
 SameInstanceArbiter wholePartArbiter(const ViewInScene& view) {
   if (!view.verifying() || !view.prep->joined_points)
     return {};
-  auto every = std::make_shared<const std::vector<std::uint32_t>>(
-      evenSubset(view.prep->joined_points->points.size(), kPartScorePoints));
   auto scored = std::make_shared<std::vector<std::pair<Eigen::Matrix4d, double>>>();
-  return [&view, every, scored](const Detection& kept, const Detection& candidate) {
+  return [&view, scored](const Detection& kept, const Detection& candidate) {
     const auto score = [&](const Eigen::Isometry3d& T) {
       for (const auto& [pose, s] : *scored)
         if (pose == T.matrix())
           return s;
-      const double s = wholePartScore(*view.prep->joined_points, view.scene, T,
-                                      view.params.matching.verify_tolerance_mm, every.get());
+      const double s =
+          wholePartScore(*view.prep->joined_points, view.scene, T,
+                         view.params.matching.verify_tolerance_mm, &view.prep->joined_sample);
       scored->emplace_back(T.matrix(), s);
       return s;
     };
@@ -414,7 +414,7 @@ PartScorer Recognizer::partScorer(const std::vector<std::shared_ptr<const Taught
     if (!prep->joined_points || !(view.tolerance_mm > 0))
       continue;
     view.points = prep->joined_points;
-    view.every = evenSubset(view.points->points.size(), kPartScorePoints);
+    view.every = prep->joined_sample;
   }
   // The scorer keeps the analysis its VerifyScene points into alive.
   const auto at = std::make_shared<const SceneAnalysis>(withIndex(*scene, requested));

@@ -109,11 +109,11 @@ public:
   /// Scores detections of the views `models` (Detection::model_index naming the view) on the
   /// whole part in `scene`: of the points of the view and of the views joined to it
   /// (TaughtModel::joined_views) at the detection's pose, every few of them (about
-  /// kPartScorePoints), (confirmed − violations) ÷ those the camera should see (tallyPoints;
-  /// neither hidden, turned away nor shadowed). Two views' poses of one instance verify each on
-  /// its own view's points, so their scores do not compare; these do. The scorer gives NaN for a
-  /// view without joined views, throws Error for a view index out of range, and keeps `scene`
-  /// alive (and so needs the scan it refers to). Throws Error without a model.
+  /// kJoinedSamplePoints, ModelPrep::joined_sample), (confirmed − violations) ÷ those the camera
+  /// should see (tallyPoints; neither hidden, turned away nor shadowed). Two views' poses of one
+  /// instance verify each on its own view's points, so their scores do not compare; these do. The
+  /// scorer gives NaN for a view without joined views, throws Error for a view index out of range,
+  /// and keeps `scene` alive (and so needs the scan it refers to). Throws Error without a model.
   [[nodiscard]] PartScorer partScorer(const std::vector<std::shared_ptr<const TaughtModel>>& models,
                                       const std::shared_ptr<const SceneAnalysis>& scene,
                                       const RecognitionParams& params);
@@ -194,11 +194,6 @@ inline constexpr double kSameInstanceDeg = 3.0;
 /// Two views' differing poses of one instance whose scores lie this close are a tie that their own
 /// verification cannot break (mergeViewDetections asks its `prefer`).
 inline constexpr double kSameInstanceTie = 0.01;
-/// About this many of the whole part's points are tallied (Recognizer::partScorer).
-inline constexpr std::size_t kPartScorePoints = 2000;
-/// A later view's pose of an instance takes the place of a better-verified one when it scores this
-/// much higher on the whole part (recognizeViews).
-inline constexpr double kPartScoreMargin = 0.05;
 
 /// Whether `candidate`, a later (lower-scoring) detection of the instance `kept` is, should take
 /// its place (mergeViewDetections).
