@@ -462,7 +462,9 @@ TEST(JoinedMerge, AViewOfOneFaceTakesThePoseTheWholePartBearsOut) {
                        << off_deg << " deg off";
     found[nearest] = found[nearest] || right;
   }
-  for (std::size_t i = 0; i < found.size(); ++i)
-    if (bin->render.visible_fraction[i] >= 0.5)
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    if (bin->render.visible_fraction[i] >= 0.5) {
       EXPECT_TRUE(found[i]) << "instance " << i << " not found";
+    }
+  }
 }
