@@ -184,10 +184,12 @@ VotingScene votingScene(StageMemo& memo, const ModelPrep& prep, const Recognitio
   return out;
 }
 
-/// With views joined, which of two poses of one instance the view found the whole part bears out
-/// better (wholePartScore, clearly: kPartScoreMargin): the view's own points may verify a pose
-/// that turns the part's other sides away from the camera or into the floor as well as the right
-/// one. Empty without joined views or verification.
+/// With views joined, which of two poses of one instance the view found, verified alike (within
+/// kSameInstanceTie), the whole part bears out better (wholePartScore, clearly: kPartScoreMargin):
+/// the view's own points may verify a pose that puts the part's other sides into the floor or
+/// where the scan sees none of them as well as the right one. Only ties are asked: a bin is full of
+/// surface facing the camera, on which a pose clearly worse on the view's own points can still
+/// score well on the whole part. Empty without joined views or verification.
 SameInstanceArbiter wholePartArbiter(const ViewInScene& view) {
   if (!view.verifying() || !view.prep->joined_points)
     return {};
@@ -203,7 +205,8 @@ SameInstanceArbiter wholePartArbiter(const ViewInScene& view) {
       scored->emplace_back(T.matrix(), s);
       return s;
     };
-    return score(candidate.T_scene_model) > score(kept.T_scene_model) + kPartScoreMargin;
+    return kept.score - candidate.score <= kSameInstanceTie &&
+           score(candidate.T_scene_model) > score(kept.T_scene_model) + kPartScoreMargin;
   };
 }
 

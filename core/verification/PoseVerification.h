@@ -161,10 +161,9 @@ double surfaceScoreBound(const PointTally& tally, std::size_t left, bool all_aro
 
 /// How well the scan bears out the points `subset` of `part` (all when null) at `T_scene_model`:
 /// (confirmed − violations) ÷ the points neither hidden nor shadowed (tallyPoints), 0 when there
-/// are none. Unlike verifyPose it takes the expected count as it is and has no edge check: it
-/// compares poses of one instance for the same points (a view's points and those of the views
-/// joined to it), where a pose that turns material away from the camera or into the floor must
-/// not be excused.
+/// are none. Unlike verifyPose it has no lower bound on the expected count and no edge check: it
+/// compares poses of one instance on the same points (a view's and those of the views joined to
+/// it), whose other sides confirm or contradict a pose where the view's own points cannot.
 double wholePartScore(const VerifyModel& part, const VerifyScene& scene,
                       const Eigen::Isometry3d& T_scene_model, double tolerance_mm,
                       const std::vector<std::uint32_t>* subset = nullptr);
