@@ -66,17 +66,11 @@ now_ms() { echo $(($(date +%s%N) / 1000000)); }
 # ---------------------------------------------------------------------------------------------
 # What each part is taught and recognized with.
 
-# The preset a part is taught and recognized with on a sensor.
-part_preset() { # sensor part
+# The preset every part is taught and recognized with on a sensor: the sensor family's own.
+sensor_preset() { # sensor
   case $1 in
-    "$PHOXI")
-      case $2 in
-        support | pump-connector) echo phoxi-bin-surface ;;
-        coat-rack) echo phoxi-bin-coat-rack ;;
-        cup) echo phoxi-bin-cup ;;
-      esac
-      ;;
-    "$KINECT") echo kinect-bin-support ;;
+    "$PHOXI") echo phoxi-bin ;;
+    "$KINECT") echo kinect-bin ;;
   esac
 }
 
@@ -86,14 +80,6 @@ part_views() { # sensor part
   local views="$2 $2-side1 $2-side2 $2-side3"
   [[ $1 == "$PHOXI" && $2 != pump-connector ]] && views+=" $2-bin"
   echo "$views"
-}
-
-# Matching parameters a PhoXi view sets for itself (teach --view-set).
-view_settings() { # view
-  case $1 in
-    coat-rack-bin) echo matching.min_coverage=0.5 ;;             # a plate seen edge-on
-    cup-side1) echo matching.surface_reference_stride=2 ;;         # the cup's flat bottom
-  esac
 }
 
 # --model arguments for a part's views, one per line.
@@ -121,17 +107,13 @@ TEACH_MS=$WORK/teach-ms.txt
 for sensor in "$PHOXI" "$KINECT"; do
   mkdir -p "$WORK/models/$sensor"
   for part in "${PARTS[@]}"; do
-    preset=$(part_preset "$sensor" "$part")
+    preset=$(sensor_preset "$sensor")
     for view in $(part_views "$sensor" "$part"); do
       log "teaching $sensor/$view ($preset)"
-      sets=()
-      if [[ $sensor == "$PHOXI" ]]; then
-        for s in $(view_settings "$view"); do sets+=(--view-set "$s"); done
-      fi
       T=$SUITES/teach/$sensor
       t0=$(now_ms)
       "$CLI" teach --scan "$T/$view.pcd" --crop-from-truth "$T/$view.gt.json" --remove-floor \
-        --sensor "$sensor" --preset "$preset" --name "$part" "${sets[@]}" \
+        --sensor "$sensor" --preset "$preset" --name "$part" \
         --out "$WORK/models/$sensor/$view.spmodel" > "$WORK/models/$sensor/$view.log"
       echo "$sensor $(($(now_ms) - t0))" >> "$TEACH_MS"
     done
@@ -158,7 +140,7 @@ done
 # Recognizes every scene of a suite with a part's views and scores the results strictly and with
 # the reported turns and alternatives accepted: RESULTS/SUITE/NAME/ (results files),
 # NAME.strict.json and NAME.accepted.json (eval reports).
-# With name NAME-derived, the views taught with no preset and their own parameters.
+# With name NAME-derived, the views taught with no preset, recognized with their parameters.
 run_suite() { # suite sensor part name [recognize options...]
   local suite=$1 sensor=$2 part=$3 name=$4
   shift 4
@@ -168,7 +150,7 @@ run_suite() { # suite sensor part name [recognize options...]
     recipe=()
   else
     mapfile -t models < <(model_args "$sensor" "$part")
-    recipe=(--preset "$(part_preset "$sensor" "$part")")
+    recipe=(--preset "$(sensor_preset "$sensor")")
   fi
   log "recognizing $suite with the $part's views ($name)"
   rm -rf "$res"
@@ -197,7 +179,7 @@ for part in "${PARTS[@]}"; do
   scene=$(jq -r '.scenes | map(select(.total_ms != null)) | max_by(.total_ms) | .name' "$report")
   echo "$scene" > "$WORK/bench/$part.scene"
   mapfile -t models < <(model_args "$PHOXI" "$part")
-  preset=$(part_preset "$PHOXI" "$part")
+  preset=$(sensor_preset "$PHOXI")
   log "bench: the $part's slowest scene, $scene"
   "$CLI" bench "${models[@]}" --scene "$SUITES/phoxi-bin/$scene.pcd" --preset "$preset" \
     --runs "$BENCH_RUNS" --prepare > "$WORK/bench/$part.prepared.txt"
@@ -247,14 +229,14 @@ for F in "${DEFORMATIONS[@]}"; do
   for view in support support-side1 support-side2 support-side3; do
     models+=(--model "$WORK/models/$PHOXI/$view.spmodel")
   done
-  "$CLI" recognize --suite "$dir" "${models[@]}" --preset phoxi-table-surface --out "$res" \
-    > "$res.log"
+  "$CLI" recognize --suite "$dir" "${models[@]}" --preset phoxi-bin \
+    --set floor.bin_floor_fraction=0 --out "$res" > "$res.log"
   "$CLI" eval --suite "$dir" --results "$res" --teach-truth "$SUITES/teach/$PHOXI" \
     --json "$res.strict.json" > "$res.strict.txt"
 done
 
 RABBIT=$PCL_DATA/tum_rabbit.vtk
-RABBIT_PRESETS=(kinect kinect-bin-support)
+RABBIT_PRESETS=(kinect kinect-bin)
 if [[ -f $RABBIT ]]; then
   dir=$WORK/rabbit
   if [[ ! -f $dir/scenes/scene-009.gt.json ]]; then
@@ -302,12 +284,12 @@ rm -f "$MILK"
 if [[ -f $PCL_DATA/milk.pcd && -f $PCL_DATA/milk_cartoon_all_small_clorox.pcd ]]; then
   log "the milk carton"
   mkdir -p "$WORK/results"
-  "$CLI" teach --scan "$PCL_DATA/milk.pcd" --units m --sensor "$KINECT" \
-    --crop-box=-100000,-100000,-100000,100000,100000,100000 --preset kinect-milk --name milk \
+  "$CLI" teach --scan "$PCL_DATA/milk.pcd" --units m \
+    --crop-box=-100000,-100000,-100000,100000,100000,100000 --name milk \
     --out "$WORK/models/milk.spmodel" > /dev/null
   "$CLI" recognize --model "$WORK/models/milk.spmodel" \
-    --scene "$PCL_DATA/milk_cartoon_all_small_clorox.pcd" --units m --sensor "$KINECT" \
-    --out "$MILK" > "$WORK/results/milk.log"
+    --scene "$PCL_DATA/milk_cartoon_all_small_clorox.pcd" --units m --out "$MILK" \
+    > "$WORK/results/milk.log"
 fi
 
 # ---------------------------------------------------------------------------------------------
@@ -446,12 +428,11 @@ EOF
 24 simulated bins (PhoXi M 1032 × 772): five of each part and four of all four mixed. Each part
 runs on all 24 scenes. Its views are taught from the teach suite with `--crop-from-truth` (which
 also stores each view's place in the part, so `recognize` joins them): one per side the part
-rests on and, but for the pump-connector, one cut from a bin scan. The coat-rack's view cut from a
-bin is taught with `--view-set matching.min_coverage=0.5`, the cup's bottom view (`cup-side1`)
-with `--view-set matching.surface_reference_stride=2`.
+rests on and, but for the pump-connector, one cut from a bin scan. Every part is taught and
+recognized with the PhoXi preset `phoxi-bin`, no part's own parameters.
 
 Produced by `scanpick-cli recognize --suite suites/phoxi-bin --model VIEW.spmodel … --preset
-PRESET --out res/PART` and `scanpick-cli eval --suite suites/phoxi-bin --results res/PART --json
+phoxi-bin --out res/PART` and `scanpick-cli eval --suite suites/phoxi-bin --results res/PART --json
 PART.strict.json`, again with `--accept-free-turns`. Without ICP (`refine.enabled` off):
 
 | part | views, preset | detections | strictly: right / precision / recall | accepted: right / precision / recall / R@P99 | median / p95 / max origin error (mm) | median / p95 rotation error (°) | median / p95 grip error (mm) |
@@ -462,7 +443,7 @@ EOF
     a=$R/$part.accepted.json
     n=$(part_views "$PHOXI" "$part" | wc -w)
     printf '| %s | %s, `%s` | %s | %s / %s / %s | %s / %s / %s / %s | %s / %s / %s | %s / %s | %s / %s |\n' \
-      "$part" "$n" "$(part_preset "$PHOXI" "$part")" "$(ov "$s" .detections)" \
+      "$part" "$n" "$(sensor_preset "$PHOXI")" "$(ov "$s" .detections)" \
       "$(ov "$s" .true_positives)" "$(num %.3f "$(ov "$s" .precision)")" \
       "$(num %.3f "$(ov "$s" .recall)")" \
       "$(ov "$a" .true_positives)" "$(num %.3f "$(ov "$a" .precision)")" \
@@ -505,7 +486,7 @@ EOF
 ## Bin picking with a Kinect v1 (kinect-bin)
 
 12 simulated bins (Kinect v1 640 × 480, camera 1.1 m above the floor), each part on all 12; four
-table views per part, preset `kinect-bin-support` (surface voting, no lines or circles). Produced
+table views per part, preset `kinect-bin` (surface voting, no lines or circles). Produced
 by `scanpick-cli recognize --suite suites/kinect-bin …` and `scanpick-cli eval` as above; strictly.
 
 | part | detections | right | precision | recall | median origin error (mm) | median rotation error (°) | median / p95 time per scene (ms) |
@@ -526,9 +507,9 @@ EOF
 ## With no preset
 
 The same views taught with no preset (`teach` without `--preset`: every value derived from the
-part and the scan, [user guide](user-guide.md#parameters-derived-at-teach)) and without a view's
-own parameters, recognized with the parameters stored in the first view (`recognize` without
-`--preset`); strictly and accepted as above.
+part and the scan, [user guide](user-guide.md#parameters-derived-at-teach)), recognized with the
+parameters stored in the first view (`recognize` without `--preset`); strictly and accepted as
+above.
 
 | suite | part | detections | strictly: right / precision / recall | accepted: precision / recall | accepted: median origin error (mm) | median time per scene (ms) |
 |---|---|---|---|---|---|---|
@@ -606,8 +587,8 @@ EOF
 
 Supports scattered on a table, six per scene, five scenes per row (`synth --part support --layout
 scatter --count 6 --seed 0..4 --deform F`: each instance stretched, sheared and bent by up to F),
-searched with the four table views taught from the part as designed, preset
-`phoxi-table-surface`, scored against the design by `scanpick-cli eval --suite DIR --results RES
+searched with the four table views taught from the part as designed, preset `phoxi-bin` with
+`--set floor.bin_floor_fraction=0` (a table, not a bin), scored against the design by `scanpick-cli eval --suite DIR --results RES
 --teach-truth suites/teach/phoxi-m-1032`; strictly.
 
 | deformation F | detections | right | precision | recall | median / p95 origin error (mm) | median / p95 rotation error (°) |
@@ -630,7 +611,7 @@ EOF
 PCL's scanned rabbit figure (`tum_rabbit.vtk`, capped by `synth --close-holes`) scanned by the
 simulated Kinect v1 from 1 m: eight scatters of three rabbits on a table and two bins of five.
 Three views: lying, standing, and one dropped on the table resting the third way. The thesis's
-set-up (`kinect`, its table 5.6: lines and circles) against surface voting (`kinect-bin-support`);
+set-up (`kinect`, its table 5.6: lines and circles) against surface voting (`kinect-bin`);
 `scanpick-cli recognize --suite` and `scanpick-cli eval` as above, strictly.
 
 | preset | detections | right | precision | recall | median origin error (mm) | median rotation error (°) | median time per scene (ms) |
@@ -653,9 +634,9 @@ EOF
 
 ## The milk carton (a real Kinect v1 scan)
 
-PCL's `milk.pcd` taught whole (preset `kinect-milk`) and searched in
-`milk_cartoon_all_small_clorox.pcd` (organized 640 × 480) by `scanpick-cli recognize --scene …
---units m --sensor kinect-v1`; the figures are those of its results file.
+PCL's `milk.pcd` taught whole with no preset and no sensor (`teach --units m`: every value derived
+from the scan and the carton) and searched in `milk_cartoon_all_small_clorox.pcd` (organized 640 ×
+480) by `scanpick-cli recognize --scene … --units m`; the figures are those of its results file.
 
 EOF
   if [[ -f $MILK ]]; then

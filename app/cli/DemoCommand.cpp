@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 
 struct DemoOptions {
   std::string out;
-  std::string preset = "phoxi-bin-surface";
+  std::string preset = "phoxi-bin";
 };
 
 int runDemo(const DemoOptions& o) {

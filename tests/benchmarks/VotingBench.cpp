@@ -1,8 +1,7 @@
 // Surface point pair voting (core/matching/PointPairVoting.h) on simulated PhoXi M (1032 x 772)
 // scans of the cup: the model from its teach scan lying on its side (as the suite's cup-side2),
 // the scene a bin of 10 cups; both cut to the cups' own pixels (the simulator's labels stand in
-// for floor removal), normals as the recognizer estimates them, sampled at 6 mm as in the preset
-// phoxi-bin-cup. Run:
+// for floor removal), normals as the recognizer estimates them, sampled at 6 mm. Run:
 //   bench_voting --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // (tools/results.sh puts the medians in docs/results.md).
 #include "core/matching/PointPairVoting.h"
@@ -56,8 +55,8 @@ void BM_PairTable(benchmark::State& state) {
   state.counters["pairs"] = double(pairs);
 }
 
-/// The scene voting of phoxi-bin-cup: every 16th scene point a reference (Arg 16), or every
-/// second as the cup's bottom view does (Arg 2); 30 poses.
+/// Scene voting: every 16th scene point a reference (Arg 16), or every second (Arg 2); 30
+/// poses.
 void BM_SceneVote(benchmark::State& state) {
   const auto& d = data();
   const core::PointPairModel model(d.model, kSamplingMm);

@@ -5,6 +5,7 @@
 #include <QApplication>
 #include <QSettings>
 #include <QStandardPaths>
+#include <QTemporaryDir>
 #include <cstring>
 #include <gtest/gtest.h>
 #include <memory>
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
     listing = listing || std::strncmp(argv[i], "--gtest_list_tests", 18) == 0;
   testing::InitGoogleTest(&argc, argv);
   std::unique_ptr<QApplication> app;
+  std::unique_ptr<QTemporaryDir> settings_dir;
   if (!listing) {
     QSurfaceFormat::setDefaultFormat(scanpick::ui::QtVtkViewport::defaultFormat());
     QApplication::setAttribute(Qt::AA_ShareOpenGLContexts);
@@ -23,8 +25,11 @@ int main(int argc, char** argv) {
     QApplication::setApplicationName("scanpick-gui-tests");
     // QSettings and caches go to a test location, never the user's.
     QStandardPaths::setTestModeEnabled(true);
-    // Each test process starts from empty settings, so no test sees what another left behind
-    // (last preset, device id, layout).
+    // Each test process has settings of its own, empty at the start, so no test sees what another
+    // left behind (last preset, device id, layout) or what one running beside it writes (ctest -j).
+    settings_dir = std::make_unique<QTemporaryDir>();
+    QSettings::setDefaultFormat(QSettings::IniFormat);
+    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, settings_dir->path());
     QSettings().clear();
   }
   return RUN_ALL_TESTS();

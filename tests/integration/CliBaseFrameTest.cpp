@@ -78,7 +78,7 @@ protected:
     s_e2h = calibrate(s_eye_to_hand, d, "eye-to-hand");
     s_eih = calibrate(s_eye_in_hand, d, "eye-in-hand");
     // A support taught on a table, then three supports scattered on a table.
-    const core::RecognitionParams params = test::bundledPreset("phoxi-bin-surface");
+    const core::RecognitionParams params = test::bundledPreset("phoxi-bin");
     const test::SynthTeach taught = test::teachFromSynth("support", 5, params);
     core::saveModel(d / "support.spmodel", *taught.model);
     core::SynthRequest request;
@@ -106,7 +106,7 @@ protected:
                                   "--scene",
                                   quoted(*s_dir / "scene.pcd"),
                                   "--preset",
-                                  "phoxi-bin-surface",
+                                  "phoxi-bin",
                                   "--out",
                                   quoted(out)};
     args.insert(args.end(), extra.begin(), extra.end());

@@ -72,11 +72,11 @@ double median(const std::vector<double>& sorted) {
 } // namespace
 
 TEST(DeformedParts, SupportsVaryingByFivePercentAreStillFound) {
-  // A table, not a bin: phoxi-bin-surface without the bin-floor search, which would take the top
+  // A table, not a bin: the PhoXi preset without the bin-floor search, which would take the top
   // faces of supports lying flat for a bin's floor (docs/design-notes.md, "Floor removal and the
   // bin's floor").
-  const RecognitionParams params = test::bundledPreset("phoxi-table-surface");
-  ASSERT_EQ(params.floor.bin_floor_fraction, 0.0);
+  RecognitionParams params = test::bundledPreset("phoxi-bin");
+  params.floor.bin_floor_fraction = 0.0;
   ASSERT_GT(params.matching.surface_sampling_mm, 0.0);
   std::vector<test::SynthTeach> views;
   std::vector<std::shared_ptr<const TaughtModel>> models;

@@ -10,7 +10,7 @@ using namespace scanpick;
 using namespace scanpick::core;
 
 TEST(MixedParts, OnlyTheTaughtTypeIsReported) {
-  const RecognitionParams params = test::bundledPreset("phoxi-bin-surface");
+  const RecognitionParams params = test::bundledPreset("phoxi-bin");
   const test::SynthTeach taught = test::teachFromSynth("support", 5, params);
 
   // Two of each part scattered on a table (round robin over the four types).

@@ -24,8 +24,17 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-RecognitionParams cupPreset() {
-  return test::bundledPreset("phoxi-bin-cup");
+/// The PhoXi preset set up for a surface of revolution whose rim splits into arcs: the cup is
+/// searched by its surface alone (sampled at 6 mm, no lines or circles, the scene not split into
+/// objects) with a 0.75 minimum coverage.
+RecognitionParams cupParams() {
+  RecognitionParams params = test::bundledPreset("phoxi-bin");
+  params.matching.surface_sampling_mm = 6.0;
+  params.matching.min_coverage = 0.75;
+  params.features.lines = false;
+  params.features.circles = false;
+  params.clustering.enabled = false;
+  return params;
 }
 
 /// The detection's part pose against the truth: rotation (degrees) and origin distance (mm).
@@ -57,7 +66,7 @@ std::vector<std::shared_ptr<const TaughtModel>> cupTableViews(const RecognitionP
 /// The cup taught lying on its side (a view that sees its handle), and a scan of another cup
 /// lying so, with the pose the view should be found at.
 struct CupOnItsSide {
-  test::SynthTeach side = test::teachFromSynth("cup", 5, cupPreset(), 2);
+  test::SynthTeach side = test::teachFromSynth("cup", 5, cupParams(), 2);
   SynthScene scan = test::teachScan("cup", 21, 2);
   Eigen::Isometry3d T_true =
       scan.scene.T_scene_part(scan.scene.instances.at(0)) * side.T_part_model();
@@ -74,7 +83,7 @@ SynthScene phoxiBin(const std::string& name) {
 } // namespace
 
 TEST(NearRevolution, ACupWhoseHandleShowsIsFoundAtItsRotation) {
-  const RecognitionParams params = cupPreset();
+  const RecognitionParams params = cupParams();
   const CupOnItsSide cup;
   const auto& [side, scan, T_true] = cup;
   Recognizer recognizer;
@@ -91,7 +100,7 @@ TEST(NearRevolution, ACupWhoseHandleShowsIsFoundAtItsRotation) {
 }
 
 TEST(NearRevolution, ACupWhoseHandleIsNotConfirmedReportsItsRotationAsFree) {
-  const RecognitionParams params = cupPreset();
+  const RecognitionParams params = cupParams();
   const test::SynthTeach side = test::teachFromSynth("cup", 5, params, 2);
   int seen = 0, free = 0, free_right = 0;
   for (const int scan_side : {2, 3})
@@ -152,7 +161,7 @@ TEST(NearRevolution, ACupWhoseHandleIsNotConfirmedReportsItsRotationAsFree) {
 TEST(NearRevolution, ACupFoundAtAWrongRotationIsRotatedToWhereItsHandleIs) {
   // Its surface of revolution verifies at any rotation; which of it the projector lit does not,
   // and can favour a wrong one. The handle decides (detail::resolveAxisRotations).
-  const RecognitionParams params = cupPreset();
+  const RecognitionParams params = cupParams();
   const CupOnItsSide cup;
   const auto& [side, scan, T_true] = cup;
   std::vector<std::shared_ptr<const detail::ModelPrep>> preps;
@@ -186,7 +195,7 @@ TEST(NearRevolution, ACupFoundAtAWrongRotationIsRotatedToWhereItsHandleIs) {
 
 TEST(NearRevolution, TheRecognizerRotatesADetectionToWhereItsHandleIs) {
   // As recognizeViews does after the views' merge (Recognizer::resolveAmbiguities).
-  const RecognitionParams params = cupPreset();
+  const RecognitionParams params = cupParams();
   const CupOnItsSide cup;
   const auto& [side, scan, T_true] = cup;
   Recognizer recognizer;
@@ -232,7 +241,7 @@ TEST(NearRevolution, AnUprightCupInABinIsFoundByItsTopView) {
   // (ProjectorShadow.AnUprightCupsBodyHidesPartOfItsInside). Surface voting's pose of it has the
   // handle facing away and verifies under the minimum; rotated to where the handle is, it
   // verifies.
-  const RecognitionParams params = cupPreset();
+  const RecognitionParams params = cupParams();
   const auto find = [](const std::string& name) {
     for (const SuiteScene& s :
          suiteScenes(name == "teach/phoxi-m-1032/cup" ? "teach" : "phoxi-bin", kDefaultSuiteSeed))
@@ -274,7 +283,7 @@ TEST(NearRevolution, ViewsJoinedTellTheRotationOfACupWhoseHandleNoViewSawFromTha
   // towards the camera: the view that finds them (the cup on its side, handle up and away from its
   // teach camera) saw the handle from behind, so alone it cannot tell their rotation. Joined, the
   // other views' handle tells it.
-  const RecognitionParams params = cupPreset();
+  const RecognitionParams params = cupParams();
   const std::vector<std::shared_ptr<const TaughtModel>> views = cupTableViews(params);
   ASSERT_EQ(views.size(), 4u);
   const SynthScene bin = phoxiBin("scene-005");
@@ -316,7 +325,7 @@ TEST(NearRevolution, ViewsJoinedTellWhichEndOfALyingCupFacesTheCamera) {
   // end faces the camera (the mouth of instances 5 and 7, the bottom of instance 10). The views
   // that find them saw the cup from the side, where it looks the same flipped end over end, and
   // the table views that saw its ends did not see them lying so. Joined, the views' ends tell.
-  const RecognitionParams params = cupPreset();
+  const RecognitionParams params = cupParams();
   const std::vector<std::shared_ptr<const TaughtModel>> views = joinViews(cupTableViews(params));
   ASSERT_EQ(views.size(), 4u);
   const SynthScene bin = phoxiBin("scene-013");
@@ -354,7 +363,7 @@ TEST(NearRevolution, ViewsJoinedTakeTheEndAtWhichTheScanConfirmsTheHandle) {
   // The phoxi-bin suite's scene-020: instance 9 lies on its side, its bottom tilted a little
   // towards the camera and its handle in sight. The side view finds it end over end, where its
   // handle would lie out of sight at every rotation; flipped back, the joined handle is confirmed.
-  const RecognitionParams params = cupPreset();
+  const RecognitionParams params = cupParams();
   const std::vector<std::shared_ptr<const TaughtModel>> views = joinViews(cupTableViews(params));
   const SynthScene bin = phoxiBin("scene-020");
   const auto instance = std::find_if(bin.scene.instances.begin(), bin.scene.instances.end(),
@@ -385,7 +394,7 @@ TEST(NearRevolution, ALegSeenFaceOnIsNotASurfaceOfRevolution) {
   // through a circle among its nearest points, but none of the leg is rotationally symmetric about
   // it. Taken for a cup, every detection of it would search its "handle" (all of it) at 360
   // rotations.
-  const RecognitionParams params = test::bundledPreset("phoxi-bin-surface");
+  const RecognitionParams params = test::bundledPreset("phoxi-bin");
   const test::SynthTeach top = test::teachFromSynth("support", 5, params, 0);
   std::vector<std::shared_ptr<const detail::ModelPrep>> preps;
   const auto prep = detail::prepareModel(preps, top.model, params);

@@ -173,7 +173,7 @@ TEST(ProjectorShadow, AnUprightCupsBodyHidesPartOfItsInside) {
   // The cup taught upright (its top view: rim, inside, the inside's bottom) and a scan of it
   // placed again: its wall keeps the projector's light, and the camera's view, off part of the
   // inside, also where the scan did not measure that wall.
-  const RecognitionParams params = test::bundledPreset("phoxi-bin-cup");
+  const RecognitionParams params = test::bundledPreset("phoxi-bin");
   const test::VerifyCase c = test::verifyCase("cup", params, 5, 9, 0);
   std::vector<std::shared_ptr<const detail::ModelPrep>> preps;
   const auto prep = detail::prepareModel(preps, c.taught.model, params);

@@ -2,7 +2,7 @@
 // recognized in other scans, where it lies elsewhere. PCL's scanned rabbit figure
 // (../shared/data/pcl/tum_rabbit.vtk, its open base capped by closeHoles) is scanned by the
 // simulated Kinect v1 lying and standing on a table (two views) and scattered three at a time;
-// with surface voting (preset kinect-bin-support) every rabbit that rests as one of the views
+// with surface voting (preset kinect-bin) every rabbit that rests as one of the views
 // shows it is found, no detection is off its rabbit, and the poses are within a millimetre.
 #include "core/pipeline/Recognizer.h"
 #include "tests/integration/EvalTruth.h"
@@ -38,7 +38,7 @@ TEST(RabbitKinect, TaughtFromOneScanFoundInOthers) {
   if (mesh.empty())
     GTEST_SKIP() << "../shared/data/pcl/tum_rabbit.vtk is absent (the real scanned mesh lives "
                     "beside the project, not in it)";
-  const RecognitionParams params = test::bundledPreset("kinect-bin-support");
+  const RecognitionParams params = test::bundledPreset("kinect-bin");
   // Teach sides 1 and 2 of the rabbit: lying and standing on its base, the two ways
   // the rabbits of these scatters rest.
   std::vector<test::SynthTeach> views;

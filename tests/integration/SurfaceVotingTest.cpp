@@ -37,7 +37,7 @@ constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 } // namespace
 
 TEST(SurfaceVoting, FindsMoreSupportsInBinsWithoutFalseDetections) {
-  const RecognitionParams with_surface = test::bundledPreset("phoxi-bin-surface");
+  const RecognitionParams with_surface = test::bundledPreset("phoxi-bin");
   ASSERT_GT(with_surface.matching.surface_sampling_mm, 0.0);
   RecognitionParams features_only = with_surface;
   features_only.matching.surface_sampling_mm = 0.0;
@@ -113,7 +113,7 @@ TEST(SurfaceVoting, FindsMoreSupportsInBinsWithoutFalseDetections) {
 }
 
 TEST(SurfaceVoting, PumpConnectorsSeenFromTheSideReportTheirPipeAxisAsFreeTurn) {
-  RecognitionParams params = test::bundledPreset("phoxi-bin-surface");
+  RecognitionParams params = test::bundledPreset("phoxi-bin");
   // The bin's floor stays: with it removed, this bin gives one false detection, an upright view's
   // top flange matched on the lower flange of a leaning pump-connector (the view does not hold the
   // rest of the part; docs/design-notes.md, "Floor removal and the bin's floor"). This test is
