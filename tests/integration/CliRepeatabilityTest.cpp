@@ -181,7 +181,7 @@ TEST(CliDemo, TeachesRecognizesAndWritesResultsAndPicture) {
   EXPECT_NE(runCli({"demo", "--out", quoted(dir.path() / "bad"), "--preset", "no-such-preset"}), 0);
 
   // Scored with the render check: each found support lies where the scan cannot tell it from
-  // the truth (measured: at most 0.034 of its pixels differ by more than 1 mm).
+  // the truth.
   const std::vector<std::string> eval{"eval",
                                       "--truth",
                                       quoted(d / "demo-bin.gt.json"),

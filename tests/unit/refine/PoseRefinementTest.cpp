@@ -89,9 +89,8 @@ TEST(PoseRefinement, FromThreeMillimetresAndFiveDegreesReachesATenthOfAMillimetr
     std::cout << "case " << k << ": error " << t << " mm, " << r << " deg, rmse " << result.rmse_mm
               << " mm, inliers " << result.inlier_fraction << ", iterations " << result.iterations
               << "\n";
-    // Noise 0.1 mm averaged over ~2000 points leaves a few micrometres (measured: 0.005 mm,
-    // 0.013°); the bound is the project's target (sub-0.1 mm), far below the thesis's ~2 mm /
-    // 3.5°.
+    // Noise 0.1 mm averaged over ~2000 points leaves a few micrometres; the bound is the
+    // project's target (sub-0.1 mm), far below the thesis's ~2 mm / 3.5°.
     EXPECT_LT(t, 0.1) << "case " << k;
     EXPECT_LT(r, 0.1) << "case " << k;
     EXPECT_TRUE(result.converged) << "case " << k;
@@ -159,12 +158,10 @@ TEST(PoseRefinement, BasinOfConvergenceCoversTheFeatureMatchingError) {
         EXPECT_LT(r, 0.1) << angle << " deg about " << axis.transpose();
       }
     }
-    // Measured: 5 of 5 from each start since the steps turn about the pairs' centroid with the
-    // rotation scaled by the model radius and leave the directions the surface does not pin down
-    // (PoseRefinement.cpp, kStableRatio); turning about the scene origin, 3 of 5 from 5 mm / 10°
-    // and 1 of 5 from 5 mm / 15° converged, the others slid 4-6 mm along the bracket's extrusion
-    // axis, which this view sees edge-on so that only the holes hold it. None claims convergence
-    // wrongly (checked above).
+    // The steps turn about the pairs' centroid with the rotation scaled by the model radius and
+    // leave the directions the surface does not pin down (PoseRefinement.cpp, kStableRatio), so
+    // the bracket, whose extrusion axis this view sees edge-on, does not slide along it. None
+    // claims convergence wrongly (checked above).
     if (angle == 15.0) {
       EXPECT_GE(converged, 4);
     } else {
@@ -258,7 +255,6 @@ TEST(PoseRefinement, PointToPointIsSupportedButCoarser) {
   // Point-to-point pulls towards the nearest scene samples, which lie up to ~0.3 mm off the
   // model's own samples, so pairs on flat faces resist sliding and it creeps along them: better
   // than the 3 mm / 5° start, far from point-to-plane.
-  // Measured: 1.0 mm, 0.20° after 100 iterations (point-to-plane: 0.02 mm, 0.02° in 8).
   EXPECT_LT(t, 1.5);
   EXPECT_LT(r, 1.0);
 }
