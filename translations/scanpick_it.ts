@@ -1373,6 +1373,10 @@
         <translation>Quota del fondo del cassone</translation>
     </message>
     <message>
+        <source>Remove bin walls</source>
+        <translation>Rimuovi le pareti del cassone</translation>
+    </message>
+    <message>
         <source>Voxel size</source>
         <translation>Dimensione voxel</translation>
     </message>
@@ -1619,6 +1623,10 @@
     <message>
         <source>Beyond the thesis, for a bin standing on the ground: also remove the plane parallel to the first removed one that holds at least this fraction of the scene&apos;s points and has (almost) nothing behind it, the bin&apos;s floor; 0 = off.</source>
         <translation>Oltre la tesi, per un cassone appoggiato a terra: rimuove anche il piano parallelo al primo rimosso che contiene almeno questa frazione dei punti della scena e non ha (quasi) nulla dietro di sé, il fondo del cassone; 0 = disattivato.</translation>
+    </message>
+    <message>
+        <source>Beyond the thesis, after a bin&apos;s floor: also remove the bin&apos;s walls and rim from what forms objects and votes (verification and ICP still see them).</source>
+        <translation>Oltre la tesi, dopo il fondo del cassone: rimuove anche le pareti e il bordo del cassone da ciò che forma gli oggetti e vota (verifica e ICP li vedono ancora).</translation>
     </message>
     <message>
         <source>Voxel-grid downsampling of the scene before keypoints; 0 keeps every point.</source>

@@ -641,7 +641,7 @@ void MainWindow::setViews(std::vector<std::shared_ptr<const core::TaughtModel>> 
   m_loaded_views = std::move(views);
   m_view_paths = std::move(paths);
   const core::TaughtModel& first = *m_loaded_views.front();
-  core::RecognitionParams params = first.params;
+  core::RecognitionParams params = core::viewsParams(m_loaded_views);
   if (m_loaded_views.size() == 1 && !first.view_params.empty()) {
     // A single view's own matching parameters become the panel's values, so that the panel tunes
     // them (the searched copy drops them; the file keeps them when saved again). With several

@@ -85,7 +85,7 @@ ClearBinSetup makeSetup(Options& o) {
     s.models = loadModelViews(o.models).models;
   else
     s.models = autoTeachViews(o.part, o.teach_seed, s.sensor);
-  s.params = resolveParams(o.recipe, s.models.front()->params);
+  s.params = resolveParams(o.recipe, core::viewsParams(s.models));
   return s;
 }
 

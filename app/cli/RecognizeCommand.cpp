@@ -129,8 +129,8 @@ int run(const Options& o) {
   }
   const ModelViews loaded = loadModelViews(o.models);
   const core::TaughtModel& first = *loaded.models.front();
-  // Without --preset/--params the (first) model's own parameters are used.
-  const core::RecognitionParams params = resolveParams(o.recipe, first.params);
+  // Without --preset/--params the views' own parameters are used (viewsParams).
+  const core::RecognitionParams params = resolveParams(o.recipe, core::viewsParams(loaded.models));
   core::Recognizer recognizer;
   // The views are prepared once, as a cell does when it loads them; the scenes' timings are
   // then their own.

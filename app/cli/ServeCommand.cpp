@@ -100,7 +100,7 @@ core::link::CellRecipe loadRecipe(const std::string& path) {
       throw core::Error(path + ": \"preset\" is a preset name or file");
     options.preset = doc["preset"].get<std::string>();
   }
-  core::RecognitionParams params = resolveParams(options, first.params);
+  core::RecognitionParams params = resolveParams(options, core::viewsParams(views->models));
   if (doc.contains("set"))
     params = core::paramsFromJson(doc["set"], params);
   std::string sensor_name;

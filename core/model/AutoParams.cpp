@@ -211,11 +211,21 @@ AutoParams deriveScanParams(const ScanMeasures& scan, RecognitionParams base) {
   out.scan = scan;
   Deriver d(out);
   const double s = scan.spacing_mm, sigma = scan.noise_mm;
-  d.set("floor.distance_mm", std::max({1.0, 3.0 * s, 8.0 * sigma}),
-        "3 x the point spacing (" + mm(s) + ") or 8 x the depth noise (" + mm(sigma) +
-            "), at least 1 mm: the whole floor within, noise and all");
+  double floor_mm = std::max({1.0, 3.0 * s, 8.0 * sigma});
+  std::string floor_reason = "3 x the point spacing (" + mm(s) + ") or 8 x the depth noise (" +
+                             mm(sigma) + "), at least 1 mm: the whole floor within, noise and all";
+  const double layer = scan.part_layer_mm;
+  if (layer > 0 && 0.5 * layer < floor_mm) {
+    floor_mm = std::max(0.5 * layer, 4.0 * sigma);
+    floor_reason = "half the height of the part's lowest face above the floor (" + mm(layer) +
+                   "), at least 4 x the depth noise (" + mm(sigma) +
+                   "): a thin part lying flat stays";
+  }
+  d.set("floor.distance_mm", floor_mm, floor_reason);
   d.set("floor.bin_floor_fraction", 0.02,
         "a bin's floor (a plane parallel to the ground with nothing behind it) goes too");
+  d.set("floor.bin_walls", 1.0,
+        "a bin's walls and rim go too: a part's flat face matches a wall all along it");
   d.set("clustering.method", 1.0, "projected clusters keep touching parts apart");
   d.set("clustering.count_radius_mm", std::max(1.5, 3.0 * s),
         "3 x the point spacing, at least 1.5 mm: neighbouring points of one part link");

@@ -18,6 +18,9 @@ namespace scanpick::core {
 struct ScanMeasures {
   double spacing_mm = 0.0; ///< median distance from a point to its nearest neighbour
   double noise_mm = 0.0;   ///< median RMS distance of a point's neighbours to their plane
+  /// Height of the part's lowest face above the plane it rests on (mm; 0 = not measured): a thin
+  /// part lying flat must stand above the floor distance.
+  double part_layer_mm = 0.0;
 };
 
 /// The part's size, from its cropped points (flying pixels left out).

@@ -55,25 +55,82 @@ PointCloud cropToOrientedBox(const PointCloud& cloud, const OrientedBox& box) {
   });
 }
 
+namespace {
+
+/// The floor under the crop of `options`, removed from `scan_mm` with `params.floor`. The floor is
+/// found in the whole scan, where the table is the dominant plane: inside a tight crop a large
+/// flat face of the part may hold more points than the table and would go instead. It is the
+/// plane the part rests on (removeFloor with the crop as the part): a face that outnumbers the
+/// table even so (a large plate's) has the table behind it.
+FloorRemovalResult floorUnderCrop(const PointCloud& scan_mm, const TeachOptions& options,
+                                  const RecognitionParams& params, const ProgressFn& progress) {
+  FloorParams floor = params.floor;
+  floor.enabled = true;
+  const auto inCrop = cropTest(options);
+  std::vector<char> cropped(scan_mm.size());
+  for (std::size_t i = 0; i < scan_mm.size(); ++i)
+    cropped[i] = inCrop(scan_mm.points_mm[i]);
+  return removeFloor(scan_mm, floor, params.seed, progress, cropped);
+}
+
+/// The `fraction` quantile of `values` (reordered); `values` must not be empty.
+double quantile(std::vector<double>& values, double fraction) {
+  const auto at = values.begin() + std::ptrdiff_t(fraction * double(values.size() - 1));
+  std::nth_element(values.begin(), at, values.end());
+  return *at;
+}
+
+/// ScanMeasures::part_layer_mm: the 10th percentile of the heights above the plane the part rests
+/// on of the crop's points higher than 4 x `noise_mm` (the table's own points lie below), when at
+/// least kThinShare of them lie within `params.floor.distance_mm` (a thin part lying flat, which
+/// that distance would remove with the floor) and that layer stands clear of the table's own
+/// spread (twice the 99th percentile |height| of the table's points outside the crop: a sensor's
+/// depth steps on the table are not a part); else, without a floor or with fewer than
+/// kMinTeachPoints such points, 0.
+double partLayer_mm(const PointCloud& scan_mm, const TeachOptions& options,
+                    const RecognitionParams& params, double noise_mm) {
+  if (!options.remove_floor || scan_mm.validCount() < kMinTeachPoints)
+    return 0.0;
+  const std::optional<Eigen::Vector4f> plane =
+      floorUnderCrop(scan_mm, options, params, {}).resting_plane;
+  if (!plane)
+    return 0.0;
+  const auto inCrop = cropTest(options);
+  const double floor_mm = params.floor.distance_mm;
+  std::vector<double> part_heights, table_heights;
+  for (const Eigen::Vector3f& p : scan_mm.points_mm) {
+    if (!p.allFinite())
+      continue;
+    const double h = plane->head<3>().dot(p) + (*plane)[3];
+    if (!inCrop(p)) {
+      if (std::abs(h) <= floor_mm)
+        table_heights.push_back(std::abs(h));
+    } else if (h > 4.0 * noise_mm) {
+      part_heights.push_back(h);
+    }
+  }
+  constexpr double kThinShare = 0.2;
+  const auto within = std::count_if(part_heights.begin(), part_heights.end(),
+                                    [&](double h) { return h <= floor_mm; });
+  if (part_heights.size() < kMinTeachPoints || table_heights.size() < kMinTeachPoints ||
+      double(within) < kThinShare * double(part_heights.size()))
+    return 0.0;
+  const double layer = quantile(part_heights, 0.1);
+  return layer > 2.0 * quantile(table_heights, 0.99) ? layer : 0.0;
+}
+
+} // namespace
+
 PointCloud cropPart(const PointCloud& scan_mm, const TeachOptions& options,
                     const RecognitionParams& params, const ProgressFn& progress) {
   scan_mm.validate();
   if (!options.crop_box_mm && !options.crop_oriented)
     throw Error("no crop box given: draw a box around the part (or pass --crop-box)");
-  // The floor is found in the whole scan, where the table is the dominant plane: inside a tight
-  // crop a large flat face of the part may hold more points than the table and would go instead.
-  // It is the plane the part rests on (removeFloor with the crop as the part): a face that
-  // outnumbers the table even so (a large plate's) has the table behind it.
   const auto inCrop = cropTest(options);
   PointCloud floorless;
   const PointCloud* source = &scan_mm;
   if (options.remove_floor && scan_mm.validCount() >= kMinTeachPoints) {
-    FloorParams floor = params.floor;
-    floor.enabled = true;
-    std::vector<char> cropped(scan_mm.size());
-    for (std::size_t i = 0; i < scan_mm.size(); ++i)
-      cropped[i] = inCrop(scan_mm.points_mm[i]);
-    floorless = removeFloor(scan_mm, floor, params.seed, progress, cropped).remaining;
+    floorless = floorUnderCrop(scan_mm, options, params, progress).remaining;
     source = &floorless;
   }
   PointCloud part =
@@ -100,6 +157,8 @@ AutoParams autoTeachParams(const PointCloud& scan_mm, const TeachOptions& option
   // the sensor: its spacing and noise, at the least, are what the scenes will have.
   if (!seenFromOneCamera(crop, Eigen::Vector3d::Zero(), scan.spacing_mm))
     scan = asScannedBy(scan, options.sensor);
+  scan.part_layer_mm =
+      partLayer_mm(scan_mm, options, deriveScanParams(scan, base).params, scan.noise_mm);
   const AutoParams scan_params = deriveScanParams(scan, base);
   const PointCloud part = cropPart(scan_mm, options, scan_params.params, progress);
   return deriveParams(scan, measurePart(part, scan.spacing_mm), base);
@@ -196,6 +255,13 @@ void requireOnePart(const std::vector<std::shared_ptr<const TaughtModel>>& model
       throw Error("models '" + models.front()->name + "' and '" + model->name +
                   "' are different parts: the models searched together must be views of one "
                   "part (recognize each part on its own)");
+}
+
+RecognitionParams viewsParams(const std::vector<std::shared_ptr<const TaughtModel>>& models) {
+  RecognitionParams params = models.front()->params;
+  for (const auto& model : models)
+    params.floor.distance_mm = std::min(params.floor.distance_mm, model->params.floor.distance_mm);
+  return params;
 }
 
 std::vector<std::shared_ptr<const TaughtModel>>

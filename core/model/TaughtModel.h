@@ -136,6 +136,11 @@ Eigen::Isometry3d partPose(const std::string& text);
 /// part: the models searched together (recognizeViews) must be.
 void requireOnePart(const std::vector<std::shared_ptr<const TaughtModel>>& models);
 
+/// The parameters a scene is searched with for `models` (views of one part, not empty): the first
+/// view's, with the smallest of the views' floor distances: a view taught lying flat and thin
+/// keeps its points in the bin.
+RecognitionParams viewsParams(const std::vector<std::shared_ptr<const TaughtModel>>& models);
+
 /// Points of `cloud` inside the oriented box (unorganized, channels follow).
 PointCloud cropToOrientedBox(const PointCloud& cloud, const OrientedBox& box);
 

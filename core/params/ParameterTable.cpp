@@ -79,6 +79,11 @@ std::vector<ParamInfo> buildTable() {
            "Beyond the thesis, for a bin standing on the ground: also remove the plane parallel "
            "to the first removed one that holds at least this fraction of the scene's points and "
            "has (almost) nothing behind it, the bin's floor; 0 = off.")));
+  t.push_back(entry(
+      &RP::floor, &FloorParams::bin_walls,
+      make("floor.bin_walls", "Remove bin walls", "", Stage::Preprocess, B, 0, 1, 1,
+           "Beyond the thesis, after a bin's floor: also remove the bin's walls and rim from what "
+           "forms objects and votes (verification and ICP still see them).")));
   t.push_back(
       entry(&RP::downsample, &DownsampleParams::voxel_mm,
             make("downsample.voxel_mm", "Voxel size", "mm", Stage::Preprocess, D, 0, 20, 0.1,

@@ -17,6 +17,7 @@ struct FloorParams {
   int max_planes = 1;
   double min_plane_fraction = 0.15;
   double bin_floor_fraction = 0.0;
+  bool bin_walls = false;
   bool operator==(const FloorParams&) const = default;
 };
 

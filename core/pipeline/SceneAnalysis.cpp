@@ -63,13 +63,40 @@ std::uint64_t sensorHash(const SensorModel& s) {
   return hashBytes(s.T_camera_projector.matrix().data(), 16 * sizeof(double), h);
 }
 
+namespace {
+/// The points of `index` (built on `with_walls`) that `pre` holds too, with their normals: the
+/// walls left out. `pre`'s valid points are those of `with_walls` less the walls, in their order.
+OrientedPoints withoutWalls(const SceneIndex& index, const PointCloud& pre,
+                            const PointCloud& with_walls) {
+  OrientedPoints out;
+  std::size_t k = 0, next = 0; // k: index point; next: the next of pre's points to meet
+  for (const Eigen::Vector3f& p : with_walls.points_mm) {
+    if (!isValid(p))
+      continue;
+    while (next < pre.size() && !isValid(pre.points_mm[next]))
+      ++next;
+    if (next < pre.size() && pre.points_mm[next] == p) {
+      out.points.push_back(index.points()[k]);
+      out.normals.push_back(index.normals()[k]);
+      ++next;
+    }
+    ++k;
+  }
+  return out;
+}
+} // namespace
+
 std::shared_ptr<const ScenePairs> StageMemo::pairScene(const PreKey& key, double sampling_mm,
                                                        int stride, const PairQuantizer& quantizer,
                                                        double diameter_mm, PairKeySet keys,
                                                        bool pair_now, const ProgressFn& progress) {
   if (surface_scene_key != key || surface_scene_sampling != sampling_mm) {
+    // The walls do not vote: a part's flat face would match them all along.
+    const OrientedPoints votable =
+        pre == pre_with_walls ? OrientedPoints{scene_index->points(), scene_index->normals()}
+                              : withoutWalls(*scene_index, *pre, *pre_with_walls);
     surface_scene = std::make_shared<const OrientedPoints>(
-        sampleOriented(scene_index->points(), scene_index->normals(), sampling_mm));
+        sampleOriented(votable.points, votable.normals, sampling_mm));
     surface_scene_key = key;
     surface_scene_sampling = sampling_mm;
     surface_pairings.clear();
@@ -146,9 +173,15 @@ void preprocessStage(StageMemo& memo, const PreKey& key, const PointCloud& scan_
   memo.floor_removed = floor.removed_points;
   memo.floor_plane = floor.resting_plane;
   // Without a voxel size the scan stays as it is: moved, not copied (a PhoXi scan is 9 MB).
+  const double voxel_mm = params.downsample.voxel_mm;
   memo.pre = std::make_shared<const PointCloud>(
-      params.downsample.voxel_mm > 0 ? voxelDownsample(floor.remaining, params.downsample.voxel_mm)
-                                     : std::move(floor.remaining));
+      voxel_mm > 0 ? voxelDownsample(floor.remaining, voxel_mm) : std::move(floor.remaining));
+  // Downsampled, the scene's points are no longer the scan's, and withoutWalls could not tell the
+  // walls among them: the walls then stay out of the index too.
+  memo.pre_with_walls =
+      floor.remaining_with_walls.empty() || voxel_mm > 0
+          ? memo.pre
+          : std::make_shared<const PointCloud>(std::move(floor.remaining_with_walls));
   memo.pre_key = key;
   memo.split_key.reset();
   timings.preprocess_ms = msSince(t0);
@@ -175,7 +208,7 @@ void startSceneTasks(tbb::task_group& tasks, StageMemo& memo, const PreKey& pre_
     shared = sharedPairings(memo.model_preps, requested, sampling_mm);
   if (index || !shared.empty())
     tasks.run([&memo, &sensor, &params, pre_key, sampling_mm, index, shared = std::move(shared),
-               scene = memo.pre] {
+               scene = memo.pre_with_walls] {
       if (index) {
         const auto t0 = Clock::now();
         SceneIndexOptions options;

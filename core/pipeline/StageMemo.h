@@ -62,6 +62,10 @@ constexpr double kPairingMargin = 1.1;
 struct StageMemo {
   std::optional<PreKey> pre_key;
   std::shared_ptr<const PointCloud> pre;
+  /// `pre` with the bin's walls and rim back in (FloorRemovalResult::remaining_with_walls), or
+  /// `pre` itself: what the scene index holds, since poses must not pass through the walls, while
+  /// the walls neither form objects nor vote.
+  std::shared_ptr<const PointCloud> pre_with_walls;
   std::size_t floor_removed = 0;
   std::optional<Eigen::Vector4f> floor_plane; ///< the plane the parts rest on (key: pre_key)
   std::optional<SplitKey> split_key;

@@ -6,11 +6,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <optional>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/ransac.h>
+#include <pcl/sample_consensus/sac_model_parallel_plane.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
+#include <pcl/search/kdtree.h>
 #include <string>
 #include <tbb/parallel_for.h>
 
@@ -18,11 +22,13 @@ namespace scanpick::core {
 namespace {
 
 /// PCL seeds its sampler with a constant; this exposes the generator so our seed drives it.
-class SeededPlaneModel : public pcl::SampleConsensusModelPlane<pcl::PointXYZ> {
+template <class Model> class Seeded : public Model {
 public:
-  using pcl::SampleConsensusModelPlane<pcl::PointXYZ>::SampleConsensusModelPlane;
-  void seed(std::uint64_t s) { rng_alg_.seed(static_cast<unsigned>(s ^ (s >> 32))); }
+  using Model::Model;
+  void seed(std::uint64_t s) { this->rng_alg_.seed(static_cast<unsigned>(s ^ (s >> 32))); }
 };
+using SeededPlaneModel = Seeded<pcl::SampleConsensusModelPlane<pcl::PointXYZ>>;
+using SeededWallModel = Seeded<pcl::SampleConsensusModelParallelPlane<pcl::PointXYZ>>;
 
 /// RANSAC on a sample is as good as on all points for a dominant plane and 10-20x cheaper.
 constexpr std::size_t kMaxSamplePoints = 60000;
@@ -39,6 +45,22 @@ constexpr double kMaxShareBehindBinFloor = 0.02;
 /// kBehindDistances x the plane distance behind it (noise and flying pixels).
 constexpr double kMaxShareBehindFloor = 0.02;
 constexpr double kBehindDistances = 3.0;
+
+/// Bin walls: at most this many, each within kWallAngleDeg of parallel to the bin floor's normal,
+/// found by RANSAC (kWallTrials) on at most kMaxWallSamplePoints points whose three samples lie
+/// within kWallSampleDistances x the plane distance of each other (a wall is a small share of a
+/// bin's points: samples drawn far apart would rarely fall on one); kWallRetries planes with
+/// points behind them (faces of parts) may be set aside.
+constexpr std::size_t kMaxBinWalls = 4;
+constexpr double kWallAngleDeg = 10.0;
+constexpr int kWallTrials = 100;
+constexpr std::size_t kMaxWallSamplePoints = 5000;
+constexpr double kWallSampleDistances = 25.0;
+constexpr int kWallRetries = 4;
+
+/// A bin wall has at most this share of the points above the bin's floor behind it
+/// (removeBinWalls): a face of a part inside the bin has the bin's far side behind it.
+constexpr double kMaxShareBehindBinWall = 0.02;
 
 /// "Around the part": within this many times the part's radius of its centre, along the plane.
 /// What lies behind a table farther off (a room's floor or wall beyond the table's edge) says
@@ -305,20 +327,170 @@ bool reachesBeyondPart(const FloorSearch& search, const std::vector<char>& part,
   return outside > inside;
 }
 
-/// Removes the bin floor above the first plane removed, if params.bin_floor_fraction asks for it
-/// and one is found (with a `part`, only one that reaches beyond it).
-void removeBinFloor(FloorSearch& search, const std::vector<char>& part, bool support_only) {
-  const FloorParams& params = search.params;
-  if (!(params.bin_floor_fraction > 0 && !search.result.planes.empty()))
-    return;
-  const auto min_bin_floor_points =
-      static_cast<std::size_t>(std::ceil(params.bin_floor_fraction * double(search.total_valid)));
-  const auto bin_floor =
-      findBinFloor(search.scene_mm.points_mm, search.alive, search.result.planes.front(),
-                   params.distance_mm, min_bin_floor_points);
-  if (bin_floor && (!support_only || reachesBeyondPart(search, part, *bin_floor)) &&
-      removePlane(search, *bin_floor, min_bin_floor_points))
-    search.result.resting_plane = search.result.planes.back();
+/// The remaining points within params.distance_mm of `plane` (mm).
+std::vector<Eigen::Vector3f> planePoints(const FloorSearch& search, const Eigen::Vector4f& plane) {
+  std::vector<Eigen::Vector3f> out;
+  for (const int i : search.alive) {
+    const auto& p = search.scene_mm.points_mm[static_cast<std::size_t>(i)];
+    if (std::abs(plane.head<3>().dot(p) + plane[3]) <= search.params.distance_mm)
+      out.push_back(p);
+  }
+  return out;
+}
+
+/// Removes the remaining points for which `gone` holds; returns how many.
+template <class Gone> std::size_t removeWhere(FloorSearch& search, Gone gone) {
+  const auto from = std::stable_partition(search.alive.begin(), search.alive.end(),
+                                          [&](int i) { return !gone(i); });
+  for (auto it = from; it != search.alive.end(); ++it)
+    search.removed[static_cast<std::size_t>(*it)] = 1;
+  const auto removed = static_cast<std::size_t>(search.alive.end() - from);
+  search.alive.erase(from, search.alive.end());
+  search.result.removed_points += removed;
+  return removed;
+}
+
+/// The largest plane among `indices` of `points` within kWallAngleDeg of parallel to `up` (see
+/// kMaxBinWalls), refined by least squares on its inliers, its unit normal turned towards
+/// `inside`; none when RANSAC finds none.
+std::optional<Eigen::Vector4f> fitWall(const std::vector<Eigen::Vector3f>& points,
+                                       const std::vector<int>& indices, const Eigen::Vector3f& up,
+                                       const Eigen::Vector3f& inside, double distance_mm,
+                                       std::uint64_t seed) {
+  if (indices.size() < 3)
+    return std::nullopt;
+  const std::size_t stride = std::max<std::size_t>(1, indices.size() / kMaxWallSamplePoints);
+  auto sample = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  for (std::size_t j = 0; j < indices.size(); j += stride) {
+    const auto& p = points[static_cast<std::size_t>(indices[j])];
+    sample->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  }
+  auto tree = std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>();
+  tree->setInputCloud(sample);
+  auto model = std::make_shared<SeededWallModel>(sample);
+  model->seed(seed);
+  model->setAxis(up);
+  model->setEpsAngle(kWallAngleDeg * std::numbers::pi / 180.0);
+  model->setSamplesMaxDist(kWallSampleDistances * distance_mm, tree);
+  pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, distance_mm);
+  ransac.setMaxIterations(kWallTrials);
+  if (!ransac.computeModel())
+    return std::nullopt;
+  pcl::Indices inliers;
+  ransac.getInliers(inliers);
+  Eigen::VectorXf coefficients;
+  ransac.getModelCoefficients(coefficients);
+  if (inliers.size() >= 3) {
+    Eigen::VectorXf refined;
+    model->optimizeModelCoefficients(inliers, coefficients, refined);
+    if (refined.size() == 4 && refined.allFinite() &&
+        std::abs(refined.head<3>().normalized().dot(up)) <
+            std::sin(kWallAngleDeg * std::numbers::pi / 180.0))
+      coefficients = refined;
+  }
+  Eigen::Vector4f plane = coefficients.head<4>();
+  plane /= plane.head<3>().norm();
+  if (plane.head<3>().dot(inside) + plane[3] < 0)
+    plane = -plane;
+  return plane;
+}
+
+/// A bin wall: its plane (unit normal into the bin) and the height of its top above the floor.
+struct BinWall {
+  Eigen::Vector4f plane;
+  float top_mm = 0.0f;
+};
+
+/// Removes the walls of the bin whose floor (`bin_floor`, normal up; its points `floor_points`)
+/// was just removed, one after the other (fitWall, normals towards the floor's centroid): a wall
+/// holds at least `min_points` and has at most kMaxShareBehindBinWall of the points left after
+/// the floor beyond kBehindDistances x params.distance_mm behind it, but for those as high as its
+/// top (within as much: the rim's top, the wall's thickness); a part's face inside the bin has the
+/// bin's far side behind it (its wall, or the rim of a wall that was not seen) and is set aside.
+/// Each wall goes with the points within params.distance_mm of it or behind it up to that far above
+/// its top (the rim). Returns the walls removed.
+std::vector<BinWall> removeBinWalls(FloorSearch& search, const Eigen::Vector4f& bin_floor,
+                                    const std::vector<Eigen::Vector3f>& floor_points,
+                                    std::size_t min_points, std::uint64_t seed) {
+  Eigen::Vector3f inside = Eigen::Vector3f::Zero();
+  for (const auto& p : floor_points)
+    inside += p / float(floor_points.size());
+  const Eigen::Vector3f up = bin_floor.head<3>();
+  const auto distance = static_cast<float>(search.params.distance_mm);
+  const float behind_mm = static_cast<float>(kBehindDistances) * distance;
+  const auto& points = search.scene_mm.points_mm;
+  const auto height = [&](int i) {
+    return up.dot(points[static_cast<std::size_t>(i)]) + bin_floor[3];
+  };
+  const std::vector<int> above_floor = search.alive;
+  std::vector<BinWall> walls;
+  std::vector<char> set_aside(points.size(), 0);
+  for (int retries = 0, attempt = 1; walls.size() < kMaxBinWalls; ++attempt) {
+    std::vector<int> candidates;
+    for (const int i : search.alive)
+      if (!set_aside[static_cast<std::size_t>(i)])
+        candidates.push_back(i);
+    const auto plane = fitWall(points, candidates, up, inside, distance,
+                               seed + 0x9e3779b97f4a7c15ULL * std::uint64_t(attempt));
+    if (!plane)
+      break;
+    const auto signedDistance = [&](int i) {
+      return plane->head<3>().dot(points[static_cast<std::size_t>(i)]) + (*plane)[3];
+    };
+    BinWall wall{*plane, -std::numeric_limits<float>::infinity()};
+    std::size_t on_wall = 0;
+    for (const int i : search.alive)
+      if (std::abs(signedDistance(i)) <= distance) {
+        wall.top_mm = std::max(wall.top_mm, height(i));
+        ++on_wall;
+      }
+    if (on_wall < std::max<std::size_t>(3, min_points))
+      break; // the largest wall left is too small: no more walls
+    const auto behind = std::count_if(above_floor.begin(), above_floor.end(), [&](int i) {
+      return signedDistance(i) < -behind_mm && std::abs(height(i) - wall.top_mm) > behind_mm;
+    });
+    if (double(behind) > kMaxShareBehindBinWall * double(above_floor.size())) {
+      for (const int i : candidates)
+        if (std::abs(signedDistance(i)) <= distance)
+          set_aside[static_cast<std::size_t>(i)] = 1;
+      if (++retries > kWallRetries)
+        break;
+      continue;
+    }
+    const std::size_t removed = removeWhere(search, [&](int i) {
+      return signedDistance(i) <= distance && height(i) <= wall.top_mm + behind_mm;
+    });
+    logger()->debug("bin wall {}: ({:.3f}, {:.3f}, {:.3f}) at {:.1f} mm from the camera, {} points "
+                    "on it, {} on or behind it removed",
+                    walls.size(), wall.plane[0], wall.plane[1], wall.plane[2], wall.plane[3],
+                    on_wall, removed);
+    walls.push_back(wall);
+  }
+  return walls;
+}
+
+/// Removes the rim of a wall that was not seen (its face in the projector's shadow), across the
+/// bin from each wall in `walls`: the points as high as that wall's top (within kBehindDistances
+/// x params.distance_mm) beyond the farthest point of the bin's floor (`floor_points`) from it.
+void removeUnseenRims(FloorSearch& search, const Eigen::Vector4f& bin_floor,
+                      const std::vector<Eigen::Vector3f>& floor_points,
+                      const std::vector<BinWall>& walls) {
+  const float behind_mm = static_cast<float>(kBehindDistances * search.params.distance_mm);
+  for (const BinWall& wall : walls) {
+    const Eigen::Vector3f n = wall.plane.head<3>();
+    float floor_end = -std::numeric_limits<float>::infinity();
+    for (const auto& p : floor_points)
+      floor_end = std::max(floor_end, n.dot(p));
+    const std::size_t removed = removeWhere(search, [&](int i) {
+      const auto& p = search.scene_mm.points_mm[static_cast<std::size_t>(i)];
+      return n.dot(p) > floor_end + float(search.params.distance_mm) &&
+             bin_floor.head<3>().dot(p) + bin_floor[3] >= wall.top_mm - behind_mm;
+    });
+    if (removed > 0)
+      logger()->debug("{} points as high as the rim beyond the bin's floor across from bin wall "
+                      "({:.3f}, {:.3f}, {:.3f}) removed",
+                      removed, n.x(), n.y(), n.z());
+  }
 }
 
 /// `scene_mm` without the `removed` points: NaN in their place when organized, else dropped.
@@ -335,6 +507,35 @@ PointCloud withoutRemoved(const PointCloud& scene_mm, const std::vector<char>& r
     if (removed[i])
       marked.points_mm[i] = invalidPoint();
   return dropInvalid(marked);
+}
+
+/// Removes the bin floor above the first plane removed, if params.bin_floor_fraction asks for it
+/// and one is found (with a `part`, only one that reaches beyond it), and with params.bin_walls,
+/// in a scene (no `part`), the bin's walls after it (`remaining_with_walls` keeps them).
+void removeBinFloor(FloorSearch& search, const std::vector<char>& part, bool support_only,
+                    std::uint64_t seed) {
+  const FloorParams& params = search.params;
+  if (!(params.bin_floor_fraction > 0 && !search.result.planes.empty()))
+    return;
+  const auto min_bin_floor_points =
+      static_cast<std::size_t>(std::ceil(params.bin_floor_fraction * double(search.total_valid)));
+  const auto bin_floor =
+      findBinFloor(search.scene_mm.points_mm, search.alive, search.result.planes.front(),
+                   params.distance_mm, min_bin_floor_points);
+  if (!bin_floor || (support_only && !reachesBeyondPart(search, part, *bin_floor)))
+    return;
+  const std::vector<Eigen::Vector3f> floor_points = planePoints(search, *bin_floor);
+  if (!removePlane(search, *bin_floor, min_bin_floor_points))
+    return;
+  search.result.resting_plane = search.result.planes.back();
+  if (support_only || !params.bin_walls)
+    return;
+  std::vector<char> removed_before_walls = search.removed;
+  const std::vector<BinWall> walls =
+      removeBinWalls(search, *bin_floor, floor_points, min_bin_floor_points / 4, seed);
+  removeUnseenRims(search, *bin_floor, floor_points, walls);
+  if (search.removed != removed_before_walls)
+    search.result.remaining_with_walls = withoutRemoved(search.scene_mm, removed_before_walls);
 }
 
 } // namespace
@@ -357,7 +558,7 @@ FloorRemovalResult removeFloor(const PointCloud& scene_mm, const FloorParams& pa
   const auto min_points =
       static_cast<std::size_t>(std::ceil(params.min_plane_fraction * double(search.total_valid)));
   removeFloorPlanes(search, min_points, support_only, seed, progress);
-  removeBinFloor(search, part, support_only);
+  removeBinFloor(search, part, support_only, seed);
   if (!search.result.resting_plane && !search.result.planes.empty())
     search.result.resting_plane = search.result.planes.front();
   search.result.remaining = withoutRemoved(scene_mm, search.removed);

@@ -18,6 +18,10 @@ struct FloorRemovalResult {
   /// The scene without the plane points. Same size and organization as the input when the input
   /// is organized (removed points become NaN, other channels are kept); unorganized otherwise.
   PointCloud remaining;
+  /// `remaining` with the bin's walls and rim back in (same size and organization): the surfaces
+  /// a pose must not pass through, for verification and refinement. Empty when no wall was
+  /// removed.
+  PointCloud remaining_with_walls;
   /// The removed planes, largest first: (a, b, c, d) with a unit normal, a x + b y + c z + d = 0 in
   /// millimetres, the normal pointing towards the camera (the origin).
   std::vector<Eigen::Vector4f> planes;
@@ -35,8 +39,13 @@ struct FloorRemovalResult {
 /// standing on the first plane (beyond the thesis): the plane parallel to it that holds at least
 /// that fraction of the points and has at most 2 % of the remaining points behind it (which the
 /// rim of the bin's walls and the parts' flat faces have: the floor lies behind them), fitted by
-/// least squares to the points within 5 mm of that height. `params.enabled == false` or
-/// `max_planes == 0` returns a copy.
+/// least squares to the points within 5 mm of that height. With `params.bin_walls`, in a scene
+/// (no `part`) the bin's walls then go too: up to four planes parallel to the bin floor's normal
+/// (RANSAC, inlier distance `params.distance_mm`), each with at most 2 % of the points above the
+/// floor behind it but its rim (a part's face inside the bin has the bin's far side behind it),
+/// with the points within `params.distance_mm` of it or behind it up to its rim; and the rim of a
+/// wall whose face the scan does not see (the projector's shadow) across from each wall found.
+/// `params.enabled == false` or `max_planes == 0` returns a copy.
 /// `part` (empty, or one flag per point) marks the part an operator cropped to teach; the floors
 /// removed are then the ones it rests on. A plane with more than 2 % of the valid points around
 /// the part (along the plane, within 1.5 x the part's radius of its centre) farther than 3 x

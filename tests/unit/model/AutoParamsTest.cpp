@@ -144,6 +144,37 @@ TEST(AutoParams, ValuesFollowTheScanAndThePartWithAReasonEach) {
     }
 }
 
+TEST(AutoParams, AThinPlateLyingFlatStaysAboveTheFloorDistance) {
+  // A 60 x 40 x 1.5 mm plate on the table: the floor distance the spacing asks (3 x 1.67 mm) would
+  // take the plate with the table; half its height above the table keeps it.
+  test::RaycastScene scene;
+  scene.floor_z_mm = 1000.0;
+  scene.boxes.emplace_back(Eigen::Vector3d(-30, -20, 998.5), Eigen::Vector3d(30, 20, 1000));
+  const PointCloud scan = scene.render(400, 300, 600.0, {300, 0, 0}, 0.05, 4);
+  TeachOptions options;
+  options.crop_box_mm =
+      Eigen::AlignedBox3f(Eigen::Vector3f(-40, -30, 900), Eigen::Vector3f(40, 30, 1010));
+  options.remove_floor = true;
+  const AutoParams a = autoTeachParams(scan, options);
+  EXPECT_NEAR(a.scan.part_layer_mm, 1.5, 0.3);
+  EXPECT_NEAR(a.params.floor.distance_mm, 0.75, 0.15);
+  const auto floor = std::find_if(a.values.begin(), a.values.end(), [](const DerivedValue& v) {
+    return v.key == "floor.distance_mm";
+  });
+  ASSERT_NE(floor, a.values.end());
+  EXPECT_NE(floor->reason.find("lowest face"), std::string::npos) << floor->reason;
+  EXPECT_NEAR(a.part.diameter_mm, Eigen::Vector2d(60, 40).norm(), 5.0);
+  // A 30 mm block keeps the distance the spacing asks.
+  const AutoParams block = autoTeachParams(blockOnTable(), [] {
+    TeachOptions o;
+    o.crop_box_mm =
+        Eigen::AlignedBox3f(Eigen::Vector3f(-90, -65, 900), Eigen::Vector3f(90, 65, 1010));
+    o.remove_floor = true;
+    return o;
+  }());
+  EXPECT_NEAR(block.params.floor.distance_mm, 3.0 * block.scan.spacing_mm, 0.01);
+}
+
 TEST(AutoParams, TeachMeasuresThePartWithoutItsTable) {
   // The block cropped with the table inside the box.
   const PointCloud scan = blockOnTable();

@@ -213,6 +213,20 @@ TEST(JoinViews, EachViewGetsTheOthersInItsOwnFrame) {
   }
 }
 
+TEST(JoinViews, AScenesFloorDistanceKeepsEveryViewsPart) {
+  // A thin side lying flat was taught with a small floor distance; the scene keeps it whichever
+  // view comes first, and takes the rest from the first.
+  const auto view = [](double floor_mm, std::uint64_t seed) {
+    auto m = std::make_shared<TaughtModel>();
+    m->params.floor.distance_mm = floor_mm;
+    m->params.seed = seed;
+    return std::shared_ptr<const TaughtModel>(std::move(m));
+  };
+  const RecognitionParams params = viewsParams({view(2.0, 7), view(0.9, 8), view(1.5, 9)});
+  EXPECT_DOUBLE_EQ(params.floor.distance_mm, 0.9);
+  EXPECT_EQ(params.seed, 7u);
+}
+
 TEST(ModelFile, AViewsOwnParametersAreKeptAndChecked) {
   TaughtModel m = teach(teachScan(), cropAll(), test::idealParams(0.001));
   m.view_params = {{"matching.min_coverage", 0.5}, {"matching.surface_reference_stride", 2}};

@@ -46,11 +46,14 @@ TEST(FloorRemoval, RemovesTheFloorPlaneAndKeepsTheBox) {
   EXPECT_EQ(result.removed_points, floor_points + (box_points - kept_box));
 }
 
-TEST(FloorRemoval, BinFloorGoesAndTheRimAndPartsStay) {
+TEST(FloorRemoval, BinFloorAndWallsGoAndThePartsStay) {
   // A bin standing on the ground 1000 mm from the camera: a 10 mm floor slab (its top at 990 mm),
-  // walls up to a rim at 850 mm, two parts lying on its floor. The ground around the bin is the
-  // dominant plane; the bin's floor, parallel to it, has nothing behind it; the rim and the parts'
-  // tops have the bin's floor behind them.
+  // 10 mm walls up to a rim at 850 mm, two flat parts and a 100 mm tall block on its floor. With
+  // bin_walls the walls go after the floor. The
+  // ground around the bin is the dominant plane; the bin's floor, parallel to it, has nothing
+  // behind it; the walls have nothing behind them but their rim, the block's faces have the bin's
+  // far side behind them. The projector (300 mm to +x) leaves the +x wall's face in shadow: only
+  // its rim is seen.
   test::RaycastScene scene;
   scene.floor_z_mm = 1000.0;
   scene.boxes.emplace_back(Eigen::Vector3d(-160, -110, 990), Eigen::Vector3d(160, 110, 1000));
@@ -60,7 +63,8 @@ TEST(FloorRemoval, BinFloorGoesAndTheRimAndPartsStay) {
   scene.boxes.emplace_back(Eigen::Vector3d(-150, 100, 850), Eigen::Vector3d(150, 110, 990));
   scene.boxes.emplace_back(Eigen::Vector3d(-60, -30, 960), Eigen::Vector3d(0, 30, 990));
   scene.boxes.emplace_back(Eigen::Vector3d(40, -50, 975), Eigen::Vector3d(100, 10, 990));
-  const core::PointCloud cloud = scene.render(320, 240, 300.0, {300, 0, 0}, 0.1, 3);
+  scene.boxes.emplace_back(Eigen::Vector3d(-20, 30, 890), Eigen::Vector3d(20, 70, 990));
+  const core::PointCloud cloud = scene.render(640, 480, 600.0, {300, 0, 0}, 0.1, 3);
   constexpr int kBinFloor = 0, kFirstPart = 5;
 
   core::FloorParams params; // the ground only
@@ -69,8 +73,12 @@ TEST(FloorRemoval, BinFloorGoesAndTheRimAndPartsStay) {
   EXPECT_NEAR(ground_only.planes[0].w(), 1000.0f, 0.5);
 
   params.bin_floor_fraction = 0.02;
+  const auto floor_only = core::removeFloor(cloud, params, 42);
+  EXPECT_TRUE(floor_only.remaining_with_walls.empty());
+  params.bin_walls = true;
   const auto result = core::removeFloor(cloud, params, 42);
   ASSERT_EQ(result.planes.size(), 2u);
+  ASSERT_EQ(result.remaining_with_walls.size(), cloud.size());
   EXPECT_NEAR(result.planes[1].z(), -1.0f, 1e-3);
   EXPECT_NEAR(result.planes[1].w(), 990.0f, 0.2) << "the bin floor's top, fitted exactly";
   // The parts rest on the bin's floor, not on the ground 10 mm below it.
@@ -78,29 +86,39 @@ TEST(FloorRemoval, BinFloorGoesAndTheRimAndPartsStay) {
   EXPECT_EQ(*result.resting_plane, result.planes[1]);
   ASSERT_TRUE(ground_only.resting_plane.has_value());
   EXPECT_EQ(*ground_only.resting_plane, ground_only.planes[0]);
-  std::size_t bin_floor_kept = 0, bin_floor_seen = 0, rim = 0, rim_kept = 0, parts = 0,
-              parts_kept = 0;
+  std::size_t bin_floor_kept = 0, bin_floor_seen = 0, walls = 0, walls_kept = 0, rim_x = 0,
+              rim_x_kept = 0, parts = 0, parts_kept = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    if (!core::isValid(cloud.points_mm[i]))
+    const Eigen::Vector3f& p = cloud.points_mm[i];
+    if (!core::isValid(p))
       continue;
     const bool kept = core::isValid(result.remaining.points_mm[i]);
     const int label = scene.labels[i];
     if (label == kBinFloor) {
       ++bin_floor_seen;
       bin_floor_kept += kept ? 1 : 0;
-    } else if (label > kBinFloor && label < kFirstPart && cloud.points_mm[i].z() < 851.0f) {
-      ++rim;
-      rim_kept += kept ? 1 : 0;
-    } else if (label >= kFirstPart && cloud.points_mm[i].z() < 986.0f) {
+    } else if (label > kBinFloor && label < kFirstPart) {
+      ++walls;
+      walls_kept += kept ? 1 : 0;
+      // Without bin_walls, and for verification, the walls stay.
+      EXPECT_TRUE(core::isValid(floor_only.remaining.points_mm[i]));
+      EXPECT_TRUE(core::isValid(result.remaining_with_walls.points_mm[i]));
+      if (label == 2) {
+        ++rim_x;
+        rim_x_kept += kept ? 1 : 0;
+      }
+    } else if (label >= kFirstPart && p.z() < 986.0f) {
       ++parts;
       parts_kept += kept ? 1 : 0;
     }
   }
   ASSERT_GT(bin_floor_seen, cloud.validCount() / 50);
   EXPECT_EQ(bin_floor_kept, 0u);
-  ASSERT_GT(rim, 100u);
-  EXPECT_EQ(rim_kept, rim);
-  ASSERT_GT(parts, 300u);
+  ASSERT_GT(walls, 3000u);
+  EXPECT_LT(walls_kept, walls / 100) << "of the walls' " << walls << " points";
+  ASSERT_GT(rim_x, 300u);
+  EXPECT_EQ(rim_x_kept, 0u) << "the rim of the wall in the projector's shadow";
+  ASSERT_GT(parts, 3000u);
   EXPECT_EQ(parts_kept, parts);
 
   // A part taught from the bin (the first one cropped) rests on the bin's floor: it goes too.
