@@ -129,25 +129,28 @@ std::optional<Eigen::Vector4f> findBinFloor(const std::vector<Eigen::Vector3f>& 
   return plane.cast<float>();
 }
 
-/// The plane RANSAC finds among `indices` of `points` (an evenly strided sample of at most
-/// kMaxSamplePoints), refined by least squares on its inliers: (a, b, c, d) with a unit normal
-/// pointing towards the camera (the origin). None when RANSAC finds nothing.
-std::optional<Eigen::Vector4f> fitPlane(const std::vector<Eigen::Vector3f>& points,
-                                        const std::vector<int>& indices, double distance_mm,
-                                        std::uint64_t seed) {
-  if (indices.size() < 3)
-    return std::nullopt;
-  // Evenly strided sample: deterministic and spatially uniform.
-  const std::size_t stride = std::max<std::size_t>(1, indices.size() / kMaxSamplePoints);
+/// An evenly strided sample (deterministic and spatially uniform) of at most about `max_points`
+/// of `indices` into `points`.
+pcl::PointCloud<pcl::PointXYZ>::Ptr stridedSample(const std::vector<Eigen::Vector3f>& points,
+                                                  const std::vector<int>& indices,
+                                                  std::size_t max_points) {
+  const std::size_t stride = std::max<std::size_t>(1, indices.size() / max_points);
   auto sample = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   for (std::size_t j = 0; j < indices.size(); j += stride) {
     const auto& p = points[static_cast<std::size_t>(indices[j])];
     sample->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
   }
-  auto model = std::make_shared<SeededPlaneModel>(sample);
-  model->seed(seed);
+  return sample;
+}
+
+/// The plane RANSAC finds with `model` (inlier distance `distance_mm`, `trials` iterations),
+/// refined by least squares on its inliers when `keep_refined` accepts the refined normal;
+/// (a, b, c, d) with a unit normal. None when RANSAC finds nothing.
+template <class Model, class KeepRefined>
+std::optional<Eigen::Vector4f> ransacPlane(const std::shared_ptr<Model>& model, double distance_mm,
+                                           int trials, KeepRefined keep_refined) {
   pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, distance_mm);
-  ransac.setMaxIterations(kPlaneTrials);
+  ransac.setMaxIterations(trials);
   if (!ransac.computeModel())
     return std::nullopt;
   pcl::Indices inliers;
@@ -157,13 +160,28 @@ std::optional<Eigen::Vector4f> fitPlane(const std::vector<Eigen::Vector3f>& poin
   if (inliers.size() >= 3) {
     Eigen::VectorXf refined;
     model->optimizeModelCoefficients(inliers, coefficients, refined);
-    if (refined.size() == 4 && refined.allFinite())
+    if (refined.size() == 4 && refined.allFinite() &&
+        keep_refined(Eigen::Vector3f(refined.head<3>().normalized())))
       coefficients = refined;
   }
   Eigen::Vector4f plane = coefficients.head<4>();
-  plane /= plane.head<3>().norm();
-  if (plane[3] < 0) // the camera (origin) on the positive side
-    plane = -plane;
+  return plane / plane.head<3>().norm();
+}
+
+/// The plane RANSAC finds among `indices` of `points` (an evenly strided sample of at most
+/// kMaxSamplePoints), refined by least squares on its inliers: (a, b, c, d) with a unit normal
+/// pointing towards the camera (the origin). None when RANSAC finds nothing.
+std::optional<Eigen::Vector4f> fitPlane(const std::vector<Eigen::Vector3f>& points,
+                                        const std::vector<int>& indices, double distance_mm,
+                                        std::uint64_t seed) {
+  if (indices.size() < 3)
+    return std::nullopt;
+  auto model = std::make_shared<SeededPlaneModel>(stridedSample(points, indices, kMaxSamplePoints));
+  model->seed(seed);
+  auto plane =
+      ransacPlane(model, distance_mm, kPlaneTrials, [](const Eigen::Vector3f&) { return true; });
+  if (plane && (*plane)[3] < 0) // the camera (origin) on the positive side
+    *plane = -*plane;
   return plane;
 }
 
@@ -359,39 +377,20 @@ std::optional<Eigen::Vector4f> fitWall(const std::vector<Eigen::Vector3f>& point
                                        std::uint64_t seed) {
   if (indices.size() < 3)
     return std::nullopt;
-  const std::size_t stride = std::max<std::size_t>(1, indices.size() / kMaxWallSamplePoints);
-  auto sample = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-  for (std::size_t j = 0; j < indices.size(); j += stride) {
-    const auto& p = points[static_cast<std::size_t>(indices[j])];
-    sample->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-  }
+  const auto sample = stridedSample(points, indices, kMaxWallSamplePoints);
   auto tree = std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>();
   tree->setInputCloud(sample);
   auto model = std::make_shared<SeededWallModel>(sample);
   model->seed(seed);
   model->setAxis(up);
-  model->setEpsAngle(kWallAngleDeg * std::numbers::pi / 180.0);
+  const double angle_rad = kWallAngleDeg * std::numbers::pi / 180.0;
+  model->setEpsAngle(angle_rad);
   model->setSamplesMaxDist(kWallSampleDistances * distance_mm, tree);
-  pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, distance_mm);
-  ransac.setMaxIterations(kWallTrials);
-  if (!ransac.computeModel())
-    return std::nullopt;
-  pcl::Indices inliers;
-  ransac.getInliers(inliers);
-  Eigen::VectorXf coefficients;
-  ransac.getModelCoefficients(coefficients);
-  if (inliers.size() >= 3) {
-    Eigen::VectorXf refined;
-    model->optimizeModelCoefficients(inliers, coefficients, refined);
-    if (refined.size() == 4 && refined.allFinite() &&
-        std::abs(refined.head<3>().normalized().dot(up)) <
-            std::sin(kWallAngleDeg * std::numbers::pi / 180.0))
-      coefficients = refined;
-  }
-  Eigen::Vector4f plane = coefficients.head<4>();
-  plane /= plane.head<3>().norm();
-  if (plane.head<3>().dot(inside) + plane[3] < 0)
-    plane = -plane;
+  auto plane = ransacPlane(model, distance_mm, kWallTrials, [&](const Eigen::Vector3f& normal) {
+    return std::abs(normal.dot(up)) < std::sin(angle_rad);
+  });
+  if (plane && plane->head<3>().dot(inside) + (*plane)[3] < 0)
+    *plane = -*plane;
   return plane;
 }
 
