@@ -80,28 +80,21 @@ double quantile(std::vector<double>& values, double fraction) {
   return *at;
 }
 
-/// ScanMeasures::part_layer_mm: the 10th percentile of the heights above the plane the part rests
-/// on of the crop's points higher than 4 x `noise_mm` (the table's own points lie below), when at
-/// least kThinShare of them lie within `params.floor.distance_mm` (a thin part lying flat, which
-/// that distance would remove with the floor) and that layer stands clear of the table's own
-/// spread (twice the 99th percentile |height| of the table's points outside the crop: a sensor's
-/// depth steps on the table are not a part); else, without a floor or with fewer than
-/// kMinTeachPoints such points, 0.
+/// ScanMeasures::part_layer_mm: the 10th percentile of the heights above `plane` (the plane the
+/// part rests on) of the crop's points higher than 4 x `noise_mm` (the table's own points lie
+/// below), when at least kThinShare of them lie within `floor_mm` (a thin part lying flat, which
+/// that floor distance would remove with the floor) and that layer stands clear of the table's
+/// own spread (twice the 99th percentile |height| of the table's points outside the crop: a
+/// sensor's depth steps on the table are not a part); else, with fewer than kMinTeachPoints such
+/// points, 0.
 double partLayer_mm(const PointCloud& scan_mm, const TeachOptions& options,
-                    const RecognitionParams& params, double noise_mm) {
-  if (!options.remove_floor || scan_mm.validCount() < kMinTeachPoints)
-    return 0.0;
-  const std::optional<Eigen::Vector4f> plane =
-      floorUnderCrop(scan_mm, options, params, {}).resting_plane;
-  if (!plane)
-    return 0.0;
+                    const Eigen::Vector4f& plane, double floor_mm, double noise_mm) {
   const auto inCrop = cropTest(options);
-  const double floor_mm = params.floor.distance_mm;
   std::vector<double> part_heights, table_heights;
   for (const Eigen::Vector3f& p : scan_mm.points_mm) {
     if (!p.allFinite())
       continue;
-    const double h = plane->head<3>().dot(p) + (*plane)[3];
+    const double h = plane.head<3>().dot(p) + plane[3];
     if (!inCrop(p)) {
       if (std::abs(h) <= floor_mm)
         table_heights.push_back(std::abs(h));
@@ -119,34 +112,47 @@ double partLayer_mm(const PointCloud& scan_mm, const TeachOptions& options,
   return layer > 2.0 * quantile(table_heights, 0.99) ? layer : 0.0;
 }
 
+/// The points of `source` (the scan, its floor removed or not) inside the crop of `options`,
+/// downsampled to `voxel_mm`.
+PointCloud cropOf(const PointCloud& source, const TeachOptions& options, double voxel_mm) {
+  const auto inCrop = cropTest(options);
+  PointCloud part =
+      selectPoints(source, [&](std::size_t i) { return inCrop(source.points_mm[i]); });
+  part = dropInvalid(voxelDownsample(part, voxel_mm));
+  if (part.size() < kMinTeachPoints)
+    throw Error("the crop holds " + std::to_string(part.size()) + " points (at least " +
+                std::to_string(kMinTeachPoints) + " are needed): widen the crop box");
+  return part;
+}
+
+/// Whether teach removes the floor of `scan_mm` before cropping.
+bool removesFloor(const PointCloud& scan_mm, const TeachOptions& options) {
+  return options.remove_floor && scan_mm.validCount() >= kMinTeachPoints;
+}
+
+void requireCrop(const TeachOptions& options) {
+  if (!options.crop_box_mm && !options.crop_oriented)
+    throw Error("no crop box given: draw a box around the part (or pass --crop-box)");
+}
+
 } // namespace
 
 PointCloud cropPart(const PointCloud& scan_mm, const TeachOptions& options,
                     const RecognitionParams& params, const ProgressFn& progress) {
   scan_mm.validate();
-  if (!options.crop_box_mm && !options.crop_oriented)
-    throw Error("no crop box given: draw a box around the part (or pass --crop-box)");
-  const auto inCrop = cropTest(options);
-  PointCloud floorless;
-  const PointCloud* source = &scan_mm;
-  if (options.remove_floor && scan_mm.validCount() >= kMinTeachPoints) {
-    floorless = floorUnderCrop(scan_mm, options, params, progress).remaining;
-    source = &floorless;
-  }
-  PointCloud part =
-      selectPoints(*source, [&](std::size_t i) { return inCrop(source->points_mm[i]); });
-  part = dropInvalid(voxelDownsample(part, params.downsample.voxel_mm));
-  if (part.size() < kMinTeachPoints)
-    throw Error("the crop holds " + std::to_string(part.size()) + " points (at least " +
-                std::to_string(kMinTeachPoints) + " are needed): widen the crop box");
+  requireCrop(options);
+  PointCloud part = removesFloor(scan_mm, options)
+                        ? cropOf(floorUnderCrop(scan_mm, options, params, progress).remaining,
+                                 options, params.downsample.voxel_mm)
+                        : cropOf(scan_mm, options, params.downsample.voxel_mm);
   reportProgress(progress, 1.0);
   return part;
 }
 
 AutoParams autoTeachParams(const PointCloud& scan_mm, const TeachOptions& options,
                            const RecognitionParams& base, const ProgressFn& progress) {
-  if (!options.crop_box_mm && !options.crop_oriented)
-    throw Error("no crop box given: draw a box around the part (or pass --crop-box)");
+  scan_mm.validate();
+  requireCrop(options);
   const auto inCrop = cropTest(options);
   const PointCloud crop =
       selectPoints(scan_mm, [&](std::size_t i) { return inCrop(scan_mm.points_mm[i]); });
@@ -157,10 +163,21 @@ AutoParams autoTeachParams(const PointCloud& scan_mm, const TeachOptions& option
   // the sensor: its spacing and noise, at the least, are what the scenes will have.
   if (!seenFromOneCamera(crop, Eigen::Vector3d::Zero(), scan.spacing_mm))
     scan = asScannedBy(scan, options.sensor);
-  scan.part_layer_mm =
-      partLayer_mm(scan_mm, options, deriveScanParams(scan, base).params, scan.noise_mm);
-  const AutoParams scan_params = deriveScanParams(scan, base);
-  const PointCloud part = cropPart(scan_mm, options, scan_params.params, progress);
+  const RecognitionParams flat = deriveScanParams(scan, base).params;
+  if (!removesFloor(scan_mm, options)) {
+    const PointCloud part = cropOf(scan_mm, options, flat.downsample.voxel_mm);
+    return deriveParams(scan, measurePart(part, scan.spacing_mm), base);
+  }
+  // The floor found with the scan's own floor distance tells how thin the part lies; it is found
+  // again only when that thinness moves the floor distance.
+  FloorRemovalResult floor = floorUnderCrop(scan_mm, options, flat, progress);
+  if (floor.resting_plane)
+    scan.part_layer_mm =
+        partLayer_mm(scan_mm, options, *floor.resting_plane, flat.floor.distance_mm, scan.noise_mm);
+  const RecognitionParams scan_params = deriveScanParams(scan, base).params;
+  if (scan_params.floor.distance_mm != flat.floor.distance_mm)
+    floor = floorUnderCrop(scan_mm, options, scan_params, {});
+  const PointCloud part = cropOf(floor.remaining, options, scan_params.downsample.voxel_mm);
   return deriveParams(scan, measurePart(part, scan.spacing_mm), base);
 }
 

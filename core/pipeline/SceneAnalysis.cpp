@@ -92,11 +92,12 @@ std::shared_ptr<const ScenePairs> StageMemo::pairScene(const PreKey& key, double
                                                        bool pair_now, const ProgressFn& progress) {
   if (surface_scene_key != key || surface_scene_sampling != sampling_mm) {
     // The walls do not vote: a part's flat face would match them all along.
-    const OrientedPoints votable =
-        pre == pre_with_walls ? OrientedPoints{scene_index->points(), scene_index->normals()}
-                              : withoutWalls(*scene_index, *pre, *pre_with_walls);
+    const bool walls_apart = pre != pre_with_walls;
+    const OrientedPoints without =
+        walls_apart ? withoutWalls(*scene_index, *pre, *pre_with_walls) : OrientedPoints{};
     surface_scene = std::make_shared<const OrientedPoints>(
-        sampleOriented(votable.points, votable.normals, sampling_mm));
+        sampleOriented(walls_apart ? without.points : scene_index->points(),
+                       walls_apart ? without.normals : scene_index->normals(), sampling_mm));
     surface_scene_key = key;
     surface_scene_sampling = sampling_mm;
     surface_pairings.clear();
