@@ -1,5 +1,8 @@
 #include "core/verification/PoseVerification.h"
 
+#include "core/model/AutoParams.h"
+#include "core/verification/SelfOcclusion.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -63,9 +66,11 @@ bool seenBehind(const PointCloud& scan, const SensorModel& sensor, const Eigen::
 }
 
 /// The points a tally's pose could show the camera: those not shadowed and, of a model seen from
-/// every side, not turned away (its far side is no part of what one scan shows).
+/// every side, neither turned away nor behind its own body (its far side and its recesses are no
+/// part of what one scan shows).
 double seeablePoints(const PointTally& t, bool all_around) {
-  return double(t.points) - double(t.shadowed) - (all_around ? double(t.turned_away) : 0.0);
+  return double(t.points) - double(t.shadowed) - double(t.self_hidden) -
+         (all_around ? double(t.turned_away) : 0.0);
 }
 
 } // namespace
@@ -136,6 +141,9 @@ std::shared_ptr<const VerifyModel> makeVerifyModel(const TaughtModel& model,
     strided->normals.push_back(model_index.normals()[i]);
   }
   strided->all_around = model.all_around;
+  if (model.all_around)
+    strided->spacing_mm =
+        measureScan(PointCloud::fromPoints(std::vector(strided->points))).spacing_mm;
   const std::size_t key_stride = std::max<std::size_t>(1, (model.keypoints_mm.size() + 399) / 400);
   for (std::size_t i = 0; i < model.keypoints_mm.size(); i += key_stride)
     strided->keypoints.push_back(model.keypoints_mm[i]);
@@ -158,6 +166,9 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
   const Eigen::Isometry3f T_model_scene = T.inverse();
   const Eigen::Vector3f camera_model = T_model_scene.translation();
   const Eigen::Vector3f projector_model = T_model_scene * sensor.projectorPosition().cast<float>();
+  const std::vector<char> self_hidden = model.all_around
+                                            ? selfHidden(model.points, T, model.spacing_mm, margin)
+                                            : std::vector<char>{};
   PointTally tally;
   const auto look = [&](std::size_t k) {
     ++tally.points;
@@ -179,6 +190,10 @@ PointTally tallyPoints(const VerifyModel& model, const VerifyScene& scene,
     }
     if (below_floor) {
       ++tally.violations;
+      return;
+    }
+    if (!self_hidden.empty() && self_hidden[k]) {
+      ++tally.self_hidden;
       return;
     }
     const std::int64_t near = turned_away ? -1 : index.nearest(p, tol_sq);
@@ -262,7 +277,8 @@ double wholePartScore(const VerifyModel& part, const VerifyScene& scene,
                       const std::vector<std::uint32_t>* subset) {
   const PointTally t = tallyPoints(part, scene, T_scene_model, tolerance_mm,
                                    {.subset = subset, .stop = {}, .sort_unmeasured = true});
-  const double expected = double(t.points) - double(t.hidden) - double(t.shadowed);
+  const double expected =
+      double(t.points) - double(t.hidden) - double(t.shadowed) - double(t.self_hidden);
   return expected > 0 ? (double(t.confirmed) - double(t.violations)) / expected : 0.0;
 }
 

@@ -38,6 +38,9 @@ struct VerifyModel {
   /// The points cover the part's every side (TaughtModel::all_around): at any pose about half of
   /// them face away, and verification expects only the others.
   bool all_around = false;
+  /// Of a model seen from every side: the spacing of `points` (mm), for the points its own body
+  /// hides at a pose (selfHidden); 0 otherwise.
+  double spacing_mm = 0.0;
 };
 
 /// Every valid point of `model`, strided to at most about `points`, with its normal (PCA within
@@ -78,6 +81,8 @@ struct PointTally {
   /// Whose normal faces away from the camera, wherever else they are counted (the floor test
   /// comes first): a model of every side expects only the others.
   std::size_t turned_away = 0;
+  /// Of a model seen from every side: facing the camera, but behind its own body (selfHidden).
+  std::size_t self_hidden = 0;
   /// Unmeasured, and the projector's light to it is blocked by measured surface (the inside of
   /// an upright cup behind its rim): the scan can say nothing about it.
   std::size_t shadowed = 0;
