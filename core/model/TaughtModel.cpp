@@ -135,6 +135,14 @@ void requireCrop(const TeachOptions& options) {
     throw Error("no crop box given: draw a box around the part (or pass --crop-box)");
 }
 
+/// Whether `crop_mm`, cut from `scan_mm`, is the part seen from every side (merged scans, points
+/// sampled on a mesh): never when the scan is organized, one camera's image however noisy its
+/// depth (a Kinect's steps stack points along a line of sight); else when no one camera at the
+/// origin could have taken it (seenFromOneCamera).
+bool seenAllAround(const PointCloud& scan_mm, const PointCloud& crop_mm, double spacing_mm) {
+  return !scan_mm.isOrganized() && !seenFromOneCamera(crop_mm, Eigen::Vector3d::Zero(), spacing_mm);
+}
+
 } // namespace
 
 PointCloud cropPart(const PointCloud& scan_mm, const TeachOptions& options,
@@ -161,7 +169,7 @@ AutoParams autoTeachParams(const PointCloud& scan_mm, const TeachOptions& option
     throw Error("the crop's points coincide (no spacing between them): crop a part of a scan");
   // A part seen from every side (merged scans, points sampled on a mesh) is searched in scans of
   // the sensor: its spacing and noise, at the least, are what the scenes will have.
-  if (!seenFromOneCamera(crop, Eigen::Vector3d::Zero(), scan.spacing_mm))
+  if (seenAllAround(scan_mm, crop, scan.spacing_mm))
     scan = asScannedBy(scan, options.sensor);
   const RecognitionParams flat = deriveScanParams(scan, base).params;
   if (!removesFloor(scan_mm, options)) {
@@ -186,7 +194,7 @@ TaughtModel teach(const PointCloud& scan_mm, const TeachOptions& options,
   PointCloud part = cropPart(scan_mm, options, params, subProgress(progress, 0.0, 0.25));
   const double spacing_mm = measureScan(part).spacing_mm;
   // A part seen from every side has no camera its normals could face: they face out of it.
-  const bool all_around = !seenFromOneCamera(part, Eigen::Vector3d::Zero(), spacing_mm);
+  const bool all_around = seenAllAround(scan_mm, part, spacing_mm);
   if (all_around)
     part.normals = outwardNormals(
         part, std::max(params.keypoints.normal_radius_mm, kNormalRadiusSpacings * spacing_mm));

@@ -62,10 +62,10 @@ struct TaughtModel {
   /// Why each parameter derived for this part has its value (autoTeachParams), by key; empty when
   /// the parameters were given.
   std::map<std::string, std::string> param_reasons;
-  /// The crop is the part seen from every side, not one view (seenFromOneCamera): merged scans or
-  /// points sampled on a mesh. Its cloud then carries normals turned out of the part
-  /// (outwardNormals), which verification and refinement take as they are instead of turning
-  /// them towards the teach camera, and it covers every viewing direction.
+  /// The crop is the part seen from every side, not one view (an unorganized cloud that fails
+  /// seenFromOneCamera): merged scans or points sampled on a mesh. Its cloud then carries normals
+  /// turned out of the part (outwardNormals), which verification and refinement take as they are
+  /// instead of turning them towards the teach camera, and it covers every viewing direction.
   bool all_around = false;
 };
 

@@ -1,7 +1,8 @@
 // A part taught from a cloud of its every side (points sampled on its mesh, as merged scans or a
 // CAD export give them) instead of one scan: teach sees that no camera took it, turns its normals
 // out of the part and derives the scan parameters from the sensor; recognition then finds the part
-// in simulated bins however it lies, with no false detection.
+// in simulated bins however it lies, with no false detection. An organized scan, however noisy,
+// is one view.
 #include "core/model/AutoParams.h"
 #include "core/pipeline/Recognizer.h"
 #include "core/sim/Mesh.h"
@@ -96,4 +97,26 @@ TEST(AllAroundModel, TheSupportIsFoundInBinsHoweverItLies) {
   }
   std::printf("found %zu of the %zu instances at least half visible\n", found, seen);
   EXPECT_GE(found, seen * 2 / 3);
+}
+
+TEST(AllAroundModel, AKinectViewIsOneViewHoweverNoisyItsDepth) {
+  // A Kinect's depth steps stack points along lines of sight as two surfaces would; the scan is
+  // still one camera's image (organized), and its views were taken for the part's every side.
+  for (const std::string part : {"support", "cup", "coat-rack"}) {
+    for (int side = 0; side < 3; ++side) {
+      SynthRequest request;
+      request.parts = {part};
+      request.layout = LayoutKind::Teach;
+      request.count = 1;
+      request.seed = 3;
+      request.teach_side = side;
+      request.sensor = "kinect-v1";
+      const SynthScene scan = synthesize(request);
+      ASSERT_TRUE(scan.render.cloud.isOrganized());
+      const TeachOptions options = test::teachOptionsFor(scan, part);
+      const AutoParams derived = autoTeachParams(scan.render.cloud, options);
+      EXPECT_FALSE(teach(scan.render.cloud, options, derived.params).all_around)
+          << part << " side " << side;
+    }
+  }
 }
